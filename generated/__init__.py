@@ -1,0 +1,1 @@
+"""NumPy kernels emitted by symbolic/codegen.py (do not edit; `make generate`)."""

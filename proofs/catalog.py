@@ -1,0 +1,104 @@
+"""The list of ledger rows: every id of ``paper/CLAIMS.md`` plus the rows this project added.
+
+``paper/CLAIMS.md`` and ``paper/chaplygin-sphere-nd.tex`` are copies of the shared originals
+(a test keeps them identical when ``../shared`` is present). A CLAIMS.md cell such as
+``eq:motion-general, eq:M-O, eq:Inertia`` or ``eq:Manakov / eq:itildendim`` yields one row per id.
+"""
+
+from __future__ import annotations
+
+import importlib
+import pkgutil
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+CLAIMS_PATH = ROOT / "paper" / "CLAIMS.md"
+PAPER_PATH = ROOT / "paper" / "chaplygin-sphere-nd.tex"
+
+#: Modules of the ``proofs`` package that hold machinery, not proofs.
+MACHINERY = {"ledger", "catalog", "runner", "report", "__main__"}
+
+
+@dataclass(frozen=True)
+class Row:
+    id: str
+    section: str
+    claim: str
+
+
+#: Rows added by this project (CLAIMS.md says: add rows for what is missing, never drop one).
+EXTRA_ROWS = (
+    Row("eq:vert-3D", "Section 3 — vertical and horizontal momentum",
+        "the Euler equations Ĩ Ω̇ = (ĨΩ)×Ω of P:EulerTop hold along V (labelled equation "
+        "without its own CLAIMS row)"),
+    Row("eq:SOnminus1", "Section 4 — the axisymmetric sphere",
+        "SO(n−1) = {h ∈ SO(n): h Eₙ = Eₙ}; definition used by eq:action"),
+)
+
+#: Who decides the rows that are not proved yet, by section heading prefix.
+PENDING = {
+    "Section 4": "Section 4 is decided by issue #3 (derived L_γ⁻¹, Δ, ζ, χ for every n); "
+                 "no proof is registered for this row yet",
+    "Section 5": "Section 5 is decided by issue #4 (4D system, SO(3) reduction derived from "
+                 "scratch); no proof is registered for this row yet",
+}
+
+
+def _split_ids(cell: str) -> list[str]:
+    return [part.strip() for part in re.split(r",|/", cell) if part.strip()]
+
+
+def claims_rows(path: Path = CLAIMS_PATH) -> list[Row]:
+    """The rows of CLAIMS.md in document order."""
+    rows: list[Row] = []
+    section = ""
+    for line in path.read_text(encoding="utf-8").splitlines():
+        if line.startswith("## "):
+            section = line[3:].strip()
+            continue
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if not line.startswith("|") or len(cells) < 2 or cells[0] in ("id", "") \
+                or set(cells[0]) <= set("-: "):
+            continue
+        rows.extend(Row(i, section, cells[1]) for i in _split_ids(cells[0]))
+    return rows
+
+
+def all_rows() -> list[Row]:
+    """CLAIMS.md rows then the extra rows, each extra row placed at the end of its section."""
+    rows = claims_rows()
+    for extra in EXTRA_ROWS:
+        last = max((i for i, r in enumerate(rows) if r.section == extra.section), default=len(rows) - 1)
+        rows.insert(last + 1, extra)
+    ids = [r.id for r in rows]
+    duplicates = {i for i in ids if ids.count(i) > 1}
+    if duplicates:
+        raise ValueError(f"duplicate ledger ids: {sorted(duplicates)}")
+    return rows
+
+
+def paper_labels(path: Path = PAPER_PATH) -> list[str]:
+    r"""Every ``\label{...}`` of the paper, in order."""
+    return re.findall(r"\\label\{([^}]*)\}", path.read_text(encoding="utf-8"))
+
+
+def pending_reason(row: Row) -> str:
+    for prefix, reason in PENDING.items():
+        if row.section.startswith(prefix):
+            return reason
+    return ""
+
+
+def discover() -> list[str]:
+    """Import every proof module of the ``proofs`` package (registering its claims)."""
+    import proofs
+
+    names = []
+    for info in sorted(pkgutil.iter_modules(proofs.__path__), key=lambda i: i.name):
+        if info.name in MACHINERY:
+            continue
+        importlib.import_module(f"proofs.{info.name}")
+        names.append(info.name)
+    return names

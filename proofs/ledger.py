@@ -1,0 +1,195 @@
+r"""Verdicts and the claim registry.
+
+A proof module registers one function per ledger row::
+
+    from proofs.ledger import Verdict, claim
+
+    @claim("eq:invL3D", uses=("eq:mom3D", "S2.1:detL3D"))
+    def inverse_3d() -> Verdict:
+        printed = rational_identity(...)          # a symbolic.exact.Check
+        return Verdict.decide(printed, method_suffix="", n_values=(3,))
+
+The verdict of a comparison is *computed*, never asserted: :meth:`Verdict.decide` returns
+``holds`` when the printed formula agrees with the derivation, ``corrected`` when it does not but
+a stated correction is proved, ``fails`` otherwise. A row may consist of named :class:`Part`\ s,
+each with its own verdict; the row's verdict is then the worst of its parts.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import asdict, dataclass, field
+
+from symbolic.exact import Check
+
+__all__ = ["Verdict", "Part", "claim", "registry", "VERDICTS", "ClaimSpec"]
+
+#: Verdicts, best first. ``error`` is set only by the runner when a proof raises.
+VERDICTS = ("holds", "definition", "corrected", "open", "fails", "error")
+_RANK = {v: i for i, v in enumerate(VERDICTS)}
+
+
+@dataclass(frozen=True)
+class Part:
+    """One named sub-claim of a row (e.g. one component of a vector field)."""
+
+    name: str
+    verdict: str
+    method: str
+    counterexample: str | None = None
+    counterexample_latex: str | None = None
+    printed_latex: str | None = None
+    correction_latex: str | None = None
+    notes: str = ""
+
+    def __post_init__(self):
+        if self.verdict not in VERDICTS:
+            raise ValueError(f"unknown verdict {self.verdict!r}")
+
+
+def _decide(printed: Check, corrected: Check | None, correction_latex: str | None):
+    """(verdict, counterexample text, counterexample latex, correction) from two checks."""
+    if printed.ok:
+        return "holds", None, None, None
+    cx = printed.counterexample
+    text = cx.text() if cx else None
+    latex = cx.latex() if cx else None
+    if corrected is not None and corrected.ok and correction_latex:
+        return "corrected", text, latex, correction_latex
+    if corrected is not None and not corrected.ok:
+        extra = corrected.counterexample.text() if corrected.counterexample else "no counterexample"
+        text = f"{text}; the proposed correction fails too: {extra}"
+    return "fails", text, latex, None
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """The outcome of one ledger row. Build it with the class methods, not directly."""
+
+    verdict: str
+    method: str
+    n_values: tuple[int, ...] = ()
+    counterexample: str | None = None
+    counterexample_latex: str | None = None
+    printed_latex: str | None = None
+    correction_latex: str | None = None
+    notes: str = ""
+    parts: tuple[Part, ...] = ()
+
+    def __post_init__(self):
+        if self.verdict not in VERDICTS:
+            raise ValueError(f"unknown verdict {self.verdict!r}")
+        if self.verdict == "corrected" and not (self.counterexample and self.correction_latex):
+            raise ValueError("a corrected row needs a counterexample and a corrected formula")
+
+    # -- constructors ------------------------------------------------------------------------
+    @classmethod
+    def decide(cls, printed: Check, *, n_values: Sequence[int] = (), method: str = "",
+               corrected: Check | None = None, correction_latex: str | None = None,
+               printed_latex: str | None = None, notes: str = "") -> Verdict:
+        """Compare the printed formula (``printed``: the check of printed == derived) and, if it
+        fails, a proposed correction (``corrected``: the check of corrected == derived)."""
+        verdict, cx, cx_latex, fix = _decide(printed, corrected, correction_latex)
+        how = method or printed.method
+        if verdict == "corrected" and corrected is not None:
+            how = f"{how}; correction: {corrected.method}"
+        return cls(verdict, how, tuple(n_values), cx, cx_latex,
+                   printed_latex if verdict != "holds" else None, fix, notes)
+
+    @classmethod
+    def all_of(cls, checks: Iterable[tuple[str, Check]], *, n_values: Sequence[int] = (),
+               method: str = "", notes: str = "") -> Verdict:
+        """``holds`` iff every named check holds; otherwise ``fails`` with the first counterexample.
+        The method lists each check's method unless ``method`` is given."""
+        checks = list(checks)
+        methods = "; ".join(f"{name}: {c.method}" for name, c in checks)
+        for name, c in checks:
+            if not c.ok:
+                cx = c.counterexample
+                return cls("fails", method or methods, tuple(n_values),
+                           f"{name}: {cx.text()}" if cx else name,
+                           cx.latex() if cx else None, None, None, notes)
+        return cls("holds", method or methods, tuple(n_values), notes=notes)
+
+    @classmethod
+    def definition(cls, method: str, *, n_values: Sequence[int] = (), notes: str = "",
+                   consistency: Iterable[tuple[str, Check]] = ()) -> Verdict:
+        """A definition. Optional ``consistency`` checks (e.g. the nD definition restricts to the 3D
+        one); if one fails the row is ``fails``, with its counterexample."""
+        checks = list(consistency)
+        for name, c in checks:
+            if not c.ok:
+                return cls.all_of(checks, n_values=n_values, notes=notes)
+        if checks:
+            method = method + "; " + "; ".join(f"{name}: {c.method}" for name, c in checks)
+        return cls("definition", method, tuple(n_values), notes=notes)
+
+    @classmethod
+    def open(cls, reason: str) -> Verdict:
+        """Not decided yet; ``reason`` says why and names the work that will decide it."""
+        if not reason.strip():
+            raise ValueError("an open row must say why and what will decide it")
+        return cls("open", "not yet checked", notes=reason)
+
+    @classmethod
+    def of_parts(cls, parts: Sequence[Part], *, n_values: Sequence[int] = (), method: str = "",
+                 notes: str = "") -> Verdict:
+        """A row made of named parts; its verdict is the worst part's (``definition`` ~ ``holds``)."""
+        if not parts:
+            raise ValueError("of_parts needs at least one part")
+        worst = max(parts, key=lambda p: _RANK["holds" if p.verdict == "definition" else p.verdict])
+        verdict = "holds" if worst.verdict == "definition" else worst.verdict
+        method = method or "; ".join(sorted({p.method for p in parts}))
+        if verdict in ("corrected", "fails"):
+            bad = [p for p in parts if p.verdict == verdict]
+            cx = "; ".join(f"{p.name}: {p.counterexample}" for p in bad)
+            fix = "\n".join(f"{p.name}: {p.correction_latex}" for p in bad if p.correction_latex)
+            printed = "\n".join(f"{p.name}: {p.printed_latex}" for p in bad if p.printed_latex)
+            return cls(verdict, method, tuple(n_values), cx, None, printed or None, fix or None,
+                       notes, tuple(parts))
+        if verdict == "open":
+            notes = notes or "; ".join(f"{p.name}: {p.notes}" for p in parts if p.verdict == "open")
+        return cls(verdict, method, tuple(n_values), notes=notes, parts=tuple(parts))
+
+    def as_part(self, name: str) -> Part:
+        """This verdict as a named part of a larger row."""
+        return Part(name, self.verdict, self.method, self.counterexample,
+                    self.counterexample_latex, self.printed_latex, self.correction_latex,
+                    self.notes)
+
+    def to_dict(self) -> dict:
+        d = asdict(self)
+        d["n_values"] = list(self.n_values)
+        d["parts"] = [asdict(p) for p in self.parts]
+        return d
+
+
+@dataclass(frozen=True)
+class ClaimSpec:
+    """A registered proof: the row id, the function that decides it, the ids it uses."""
+
+    id: str
+    run: Callable[[], Verdict]
+    uses: tuple[str, ...] = field(default=())
+    module: str = ""
+
+
+_REGISTRY: dict[str, ClaimSpec] = {}
+
+
+def claim(claim_id: str, *, uses: Sequence[str] = ()) -> Callable:
+    """Register the decorated zero-argument function as the proof of ledger row ``claim_id``."""
+
+    def register(fn: Callable[[], Verdict]) -> Callable[[], Verdict]:
+        if claim_id in _REGISTRY:
+            raise ValueError(f"ledger row {claim_id!r} registered twice "
+                             f"({_REGISTRY[claim_id].module} and {fn.__module__})")
+        _REGISTRY[claim_id] = ClaimSpec(claim_id, fn, tuple(uses), fn.__module__)
+        return fn
+
+    return register
+
+
+def registry() -> dict[str, ClaimSpec]:
+    """The registered proofs (import :mod:`proofs.catalog` ``discover()`` first)."""
+    return dict(_REGISTRY)

@@ -1,0 +1,109 @@
+"""Run ledger rows (in parallel processes), one result per row, in ledger order."""
+
+from __future__ import annotations
+
+import multiprocessing as mp
+import os
+import time
+import traceback
+from collections.abc import Callable, Sequence
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass
+
+from proofs.catalog import Row, all_rows, discover, pending_reason
+from proofs.ledger import Verdict, registry
+
+
+@dataclass(frozen=True)
+class Result:
+    """One ledger line: the row, its verdict, the seconds it took, where it was proved."""
+
+    row: Row
+    verdict: Verdict
+    seconds: float
+    module: str = ""
+    uses: tuple[str, ...] = ()
+    error: str = ""
+
+    @property
+    def status(self) -> str:
+        return "error" if self.error else self.verdict.verdict
+
+    def to_dict(self) -> dict:
+        d = {"id": self.row.id, "section": self.row.section, "claim": self.row.claim,
+             "seconds": round(self.seconds, 3), "proof_module": self.module,
+             "uses": list(self.uses), "error": self.error or None}
+        d.update(self.verdict.to_dict())
+        d["verdict"] = self.status
+        return d
+
+
+def _run_one(claim_id: str) -> tuple[Verdict, float, str]:
+    spec = registry()[claim_id]
+    start = time.perf_counter()
+    try:
+        verdict = spec.run()
+        if not isinstance(verdict, Verdict):
+            raise TypeError(f"proof of {claim_id} returned {type(verdict).__name__}, not Verdict")
+        return verdict, time.perf_counter() - start, ""
+    except Exception:  # a proof that raises is an error row, never a silent pass
+        return (Verdict("fails", "raised an exception", notes="see error"),
+                time.perf_counter() - start, traceback.format_exc(limit=8))
+
+
+def _init_worker():
+    discover()
+
+
+def select(ids: Sequence[str] = ()) -> list[Row]:
+    """The ledger rows to run: all, or those named (unknown names raise ``KeyError``)."""
+    rows = all_rows()
+    if not ids:
+        return rows
+    by_id = {r.id: r for r in rows}
+    unknown = [i for i in ids if i not in by_id]
+    if unknown:
+        raise KeyError(f"unknown ledger id(s): {', '.join(unknown)}")
+    return [by_id[i] for i in ids]
+
+
+def unknown_registrations() -> list[str]:
+    """Registered proofs whose id is not a ledger row (a typo in a proof module)."""
+    known = {r.id for r in all_rows()}
+    return sorted(set(registry()) - known)
+
+
+def run(rows: Sequence[Row], *, jobs: int | None = None,
+        on_result: Callable[[Result], None] = lambda r: None) -> list[Result]:
+    """Decide ``rows``; registered ones run in ``jobs`` processes, the rest are ``open``."""
+    discover()
+    specs = registry()
+    todo = [r.id for r in rows if r.id in specs]
+    jobs = max(1, min(jobs or os.cpu_count() or 1, len(todo) or 1))
+    if jobs == 1:
+        iterator = map(_run_one, todo)
+        pool = None
+    else:
+        pool = ProcessPoolExecutor(jobs, mp_context=mp.get_context("fork"), initializer=_init_worker)
+        iterator = pool.map(_run_one, todo)
+    results = []
+    try:
+        pending = iter(todo)
+        for row in rows:
+            if row.id in specs:
+                claim_id = next(pending)
+                assert claim_id == row.id
+                verdict, seconds, error = next(iterator)
+                spec = specs[row.id]
+                result = Result(row, verdict, seconds, spec.module, spec.uses, error)
+            else:
+                reason = pending_reason(row)
+                # No proof and no section owner: an open row WITHOUT a reason (fails the run).
+                verdict = Verdict.open(reason) if reason else Verdict("open", "not yet checked")
+                result = Result(row, verdict, 0.0)
+            results.append(result)
+            on_result(result)
+    finally:
+        if pool is not None:
+            pool.shutdown(cancel_futures=True)
+    return results

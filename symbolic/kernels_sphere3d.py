@@ -1,0 +1,60 @@
+r"""Kernels of the classical 3D Chaplygin sphere with a general diagonal inertia $\mathbb{I}$ (Section 2.1).
+
+Every expression is *derived* here from the definition eq:mom3D (an exact symbolic solve of the
+3x3 linear system $M = L_\gamma\Omega$), never taken from the printed inverse eq:invL3D; the ledger
+row ``eq:invL3D`` proves the two agree on $\lVert\gamma\rVert = 1$.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import sympy as sp
+
+from symbolic.algebra import column
+from symbolic.codegen import Argument, Kernel
+from symbolic.model import motion3d
+
+M_ = sp.symbols("M1:4", real=True)
+G_ = sp.symbols("gamma1:4", real=True)
+I_ = sp.symbols("I1:4", positive=True)
+b_ = sp.Symbol("b", positive=True)
+
+
+@lru_cache(maxsize=None)
+def L_gamma_matrix_3d() -> sp.Matrix:
+    r"""The 3x3 matrix of $L_\gamma: \Omega \mapsto \mathbb{I}\Omega + b\gamma\times(\Omega\times\gamma)$
+    (eq:mom3D), i.e. $\mathbb{I} + b(\lVert\gamma\rVert^2\,\mathrm{Id} - \gamma\gamma^T)$; any $\gamma$."""
+    gamma = column(G_)
+    return sp.diag(*I_) + b_ * ((gamma.T * gamma)[0] * sp.eye(3) - gamma * gamma.T)
+
+
+@lru_cache(maxsize=None)
+def angular_velocity_3d() -> sp.Matrix:
+    r"""$\Omega = L_\gamma^{-1} M$ solved exactly from eq:mom3D (Cramer's rule, each entry a
+    cancelled rational function of $M, \gamma, \mathbb{I}, b$); valid where $\det L_\gamma \neq 0$,
+    in particular on $\lVert\gamma\rVert = 1$ with $I_j, b > 0$ (S2.1:detL3D)."""
+    L = L_gamma_matrix_3d()
+    adj, det = L.adjugate(), sp.factor(L.det())
+    return column([sp.factor(sp.expand((adj * column(M_))[i])) / det for i in range(3)])
+
+
+def kernels() -> list[Kernel]:
+    """The kernel list of ``generated/sphere3d.py``."""
+    M, gamma = Argument("M", M_), Argument("gamma", G_)
+    inertia, b = Argument("inertia", I_), Argument("b", (b_,), scalar=True)
+    Omega = angular_velocity_3d()
+    Mdot, gdot = motion3d(column(M_), column(G_), Omega)
+    return [
+        Kernel("L_gamma_3d", ("eq:mom3D",),
+               "Matrix of L_gamma (eq:mom3D): M = L_gamma @ Omega; any gamma, inertia = diag(I).",
+               (gamma, inertia, b), L_gamma_matrix_3d(), (3, 3)),
+        Kernel("angular_velocity_3d", ("eq:mom3D", "eq:invL3D"),
+               "Omega = L_gamma^{-1} M (derived from eq:mom3D; equals eq:invL3D on |gamma| = 1).\n"
+               "    Domain: det L_gamma != 0, e.g. |gamma| = 1 and I_j, b > 0.",
+               (M, gamma, inertia, b), Omega, (3,)),
+        Kernel("vector_field_3d", ("eq:motion3D", "eq:mom3D"),
+               "(dM/dt, dgamma/dt) = (M x Omega, gamma x Omega), Omega = L_gamma^{-1} M (eq:motion3D);\n"
+               "    returns shape (..., 6). Domain as angular_velocity_3d.",
+               (M, gamma, inertia, b), sp.Matrix.vstack(Mdot, gdot), (6,)),
+    ]

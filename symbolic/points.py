@@ -1,0 +1,96 @@
+r"""Seeded exact rational sample points (the random half of the identity engine).
+
+Every generator is a :class:`random.Random` seeded from an explicit integer seed *and* a tuple
+of labels through SHA-256, so that a check's points depend only on ``(seed, labels)``, never on
+``hash()`` (randomised per process) or on the order checks run in.
+
+Points on the unit sphere $S^{n-1}$ are exact: the inverse stereographic projection
+$t \in \mathbb{Q}^{n-1} \mapsto \big(2t, \lVert t\rVert^2 - 1\big)/(\lVert t\rVert^2 + 1)$
+maps rational points to rational points of $S^{n-1}$ (every rational point but the pole arises).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import random
+from collections.abc import Sequence
+
+import sympy as sp
+
+from symbolic.algebra import column, unvec
+
+__all__ = [
+    "DEFAULT_SEED", "generator", "rational", "rationals", "sphere_point", "skew_matrix",
+    "rational_rotation", "axisymmetric_parameters",
+]
+
+#: The seed of every ledger check unless a proof names another one.
+DEFAULT_SEED = 20261121
+
+
+def generator(seed: int, *labels: object) -> random.Random:
+    """A ``random.Random`` determined by ``seed`` and ``labels`` (stable across processes)."""
+    digest = hashlib.sha256(repr((int(seed),) + tuple(str(x) for x in labels)).encode()).digest()
+    return random.Random(int.from_bytes(digest[:16], "big"))
+
+
+def rational(rng: random.Random, lo: sp.Rational | int = -3, hi: sp.Rational | int = 3,
+             max_den: int = 12, *, nonzero: bool = False,
+             open_lo: bool = False, open_hi: bool = False) -> sp.Rational:
+    """A random rational ``p/q`` with ``1 <= q <= max_den`` in ``[lo, hi]`` (ends excluded on request)."""
+    lo, hi = sp.Rational(lo), sp.Rational(hi)
+    if lo > hi:
+        raise ValueError(f"empty interval [{lo}, {hi}]")
+    for _ in range(10_000):
+        q = rng.randint(1, max_den)
+        p = rng.randint(int(sp.ceiling(lo * q)), int(sp.floor(hi * q)))
+        r = sp.Rational(p, q)
+        if (nonzero and r == 0) or (open_lo and r == lo) or (open_hi and r == hi):
+            continue
+        return r
+    raise ValueError(f"no admissible rational in [{lo}, {hi}] with denominator <= {max_den}")
+
+
+def rationals(rng: random.Random, count: int, lo=-3, hi=3, max_den: int = 12) -> list[sp.Rational]:
+    """``count`` independent draws of :func:`rational`."""
+    return [rational(rng, lo, hi, max_den) for _ in range(count)]
+
+
+def sphere_point(rng: random.Random, n: int, max_den: int = 6) -> sp.Matrix:
+    r"""An exact rational point of $S^{n-1} \subset \mathbb{R}^n$ (column vector), by inverse
+    stereographic projection of a random $t \in \mathbb{Q}^{n-1}$. The last coordinate is
+    $(\lVert t\rVert^2-1)/(\lVert t\rVert^2+1)$, so it takes every rational value in $(-1, 1]$ in turn."""
+    if n < 2:
+        raise ValueError("the sphere S^{n-1} needs n >= 2")
+    t = rationals(rng, n - 1, -2, 2, max_den)
+    s = sum(ti**2 for ti in t)
+    gamma = column([2 * ti / (s + 1) for ti in t] + [(s - 1) / (s + 1)])
+    # Randomise which coordinate plays the role of the pole, so no coordinate is special.
+    perm = list(range(n))
+    rng.shuffle(perm)
+    return column([gamma[p] for p in perm])
+
+
+def skew_matrix(rng: random.Random, n: int, lo=-3, hi=3, max_den: int = 12) -> sp.Matrix:
+    r"""A random exact element of $\mathfrak{so}(n)$."""
+    return unvec(rationals(rng, n * (n - 1) // 2, lo, hi, max_den), n)
+
+
+def rational_rotation(rng: random.Random, n: int) -> sp.Matrix:
+    r"""A random exact rotation $h \in SO(n)$ with rational entries: the Cayley transform
+    $h = (I - S)^{-1}(I + S)$ of a random skew $S$ (always invertible, $\det h = 1$)."""
+    S = skew_matrix(rng, n, -2, 2, 4)
+    eye = sp.eye(n)
+    return (eye - S).LUsolve(eye + S)
+
+
+def axisymmetric_parameters(rng: random.Random, *, a_zero: bool = False) -> dict[str, sp.Rational]:
+    r"""Physical parameters of the axisymmetric sphere (eq:axisymm): $a \in [-1, 1]$ and $b > 0$."""
+    a = sp.Integer(0) if a_zero else rational(rng, -1, 1, 8)
+    b = rational(rng, 0, 4, 8, open_lo=True)
+    return {"a": a, "b": b}
+
+
+def pick(rng: random.Random, options: Sequence):
+    """One element of ``options`` (re-exported so callers need only this module)."""
+    return options[rng.randrange(len(options))]
