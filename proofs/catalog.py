@@ -67,11 +67,18 @@ def claims_rows(path: Path = CLAIMS_PATH) -> list[Row]:
 
 
 def all_rows() -> list[Row]:
-    """CLAIMS.md rows then the extra rows, each extra row placed at the end of its section."""
+    """CLAIMS.md rows, the extra rows (each at the end of its section), then the rows that
+    registered proofs add (``@claim(..., adds=(section, claim))``), in id order.
+    Call :func:`discover` first for the latter."""
     rows = claims_rows()
     for extra in EXTRA_ROWS:
         last = max((i for i, r in enumerate(rows) if r.section == extra.section), default=len(rows) - 1)
         rows.insert(last + 1, extra)
+    from proofs.ledger import registry
+
+    for spec in sorted(registry().values(), key=lambda s: s.id):
+        if spec.adds and spec.id not in {r.id for r in rows}:
+            rows.append(Row(spec.id, spec.adds[0], spec.adds[1]))
     ids = [r.id for r in rows]
     duplicates = {i for i in ids if ids.count(i) > 1}
     if duplicates:

@@ -172,19 +172,24 @@ class ClaimSpec:
     run: Callable[[], Verdict]
     uses: tuple[str, ...] = field(default=())
     module: str = ""
+    adds: tuple[str, str] | None = None  # (section, claim) of a row this project adds
 
 
 _REGISTRY: dict[str, ClaimSpec] = {}
 
 
-def claim(claim_id: str, *, uses: Sequence[str] = ()) -> Callable:
-    """Register the decorated zero-argument function as the proof of ledger row ``claim_id``."""
+def claim(claim_id: str, *, uses: Sequence[str] = (), adds: tuple[str, str] | None = None) -> Callable:
+    """Register the decorated zero-argument function as the proof of ledger row ``claim_id``.
+
+    ``adds=(section, claim)`` makes it a row this project adds to the ledger (e.g. a stable
+    rewrite of a formula for a kernel); without it ``claim_id`` must be a row of CLAIMS.md or of
+    ``proofs.catalog.EXTRA_ROWS``."""
 
     def register(fn: Callable[[], Verdict]) -> Callable[[], Verdict]:
         if claim_id in _REGISTRY:
             raise ValueError(f"ledger row {claim_id!r} registered twice "
                              f"({_REGISTRY[claim_id].module} and {fn.__module__})")
-        _REGISTRY[claim_id] = ClaimSpec(claim_id, fn, tuple(uses), fn.__module__)
+        _REGISTRY[claim_id] = ClaimSpec(claim_id, fn, tuple(uses), fn.__module__, adds)
         return fn
 
     return register

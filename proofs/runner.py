@@ -57,6 +57,7 @@ def _init_worker():
 
 def select(ids: Sequence[str] = ()) -> list[Row]:
     """The ledger rows to run: all, or those named (unknown names raise ``KeyError``)."""
+    discover()
     rows = all_rows()
     if not ids:
         return rows
