@@ -1,0 +1,49 @@
+r"""Closed-form solutions: relative equilibria $t\mapsto e^{Xt}\cdot(M_0, \gamma_0)$ and their reconstruction.
+
+Three models of the planner are one formula with a different velocity $X \in \mathfrak{so}(n)$:
+
+* vertical momentum, $M_0\gamma_0 = 0$ (Th:Re): $X = \zeta$ from the generated kernel;
+* steady rotation, $n = 4$, $\eta_0\times\xi_0 = 0$ (P:steady-rot), and the spherical case $a = 0$
+  ($\dot\Omega = 0$, Section 4 after eq:M-O-axi-symm): $X = -\Omega_0$.
+
+.. math::
+    M(t) = e^{Xt}M_0e^{-Xt},\quad \gamma(t) = e^{Xt}\gamma_0,\quad \Omega(t) = e^{Xt}\Omega_0e^{-Xt}.
+
+Reconstruction (our derivation; convention of :mod:`simulate.reconstruction`: $\gamma = g^TE_n$,
+$\dot g = g\Omega$, $\dot c = r\,g\Omega\gamma$). With $W := \Omega_0 + X$,
+
+.. math::
+    g(t) = g_0\,e^{Wt}e^{-Xt}, \qquad c(t) = c_0 + r\,g_0\int_0^t e^{Ws}\,ds\;\Omega_0\gamma_0 .
+
+Proof: $\dot g = g_0e^{Wt}(W - X)e^{-Xt} = g_0e^{Wt}e^{-Xt}\,e^{Xt}\Omega_0e^{-Xt} = g\,\Omega(t)$, and
+$g\Omega\gamma = g_0e^{Wt}\Omega_0e^{-Xt}e^{Xt}\gamma_0 = g_0e^{Wt}\Omega_0\gamma_0$. Consistency
+$g(t)^TE_n = \gamma(t)$ needs $W\gamma_0 = 0$: true for $X = -\Omega_0$, and for $X = \zeta$ by Th:Re
+($\zeta\gamma_0 = -\Omega_0\gamma_0$). For $X = -\Omega_0$: $W = 0$, $g = g_0e^{\Omega_0t}$ and the contact
+point moves on a straight line, $c(t) = c_0 + rt\,g_0\Omega_0\gamma_0$.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from simulate import so
+
+__all__ = ["relative_equilibrium"]
+
+
+def relative_equilibrium(X: np.ndarray, M0: np.ndarray, gamma0: np.ndarray, Omega0: np.ndarray,
+                         t: np.ndarray, g0: np.ndarray | None = None, radius: float = 1.0
+                         ) -> dict[str, np.ndarray]:
+    r"""The solution through one point $(M_0, \gamma_0)$, $\Omega_0 = L_{\gamma_0}^{-1}M_0$, with velocity
+    ``X`` (Th:Re: $X = \zeta$; P:steady-rot and $a = 0$: $X = -\Omega_0$), sampled at ``t``.
+    Returns arrays ``M, Omega (S, n, n)``, ``gamma (S, n)``, and with ``g0`` also
+    ``g (S, n, n)``, ``c (S, n)`` ($c_0 = 0$). Domain: $X\gamma_0 = -\Omega_0\gamma_0$, $X E_n = 0$
+    or $X = -\Omega_0$ (not checked here: the planner only calls it on such points)."""
+    E = so.expm(X[None] * t[:, None, None])
+    Et = np.swapaxes(E, -1, -2)
+    out = {"M": E @ M0 @ Et, "gamma": E @ gamma0, "Omega": E @ Omega0 @ Et}
+    if g0 is not None:
+        W = Omega0 + X
+        out["g"] = g0 @ so.expm(W[None] * t[:, None, None]) @ Et
+        out["c"] = radius * (so.expm_integral(W, Omega0 @ gamma0, t) @ g0.T)
+    return out

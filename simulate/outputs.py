@@ -1,0 +1,169 @@
+r"""The requested outputs of a scene, computed from a :class:`simulate.run.Trajectory`, and written.
+
+Output arrays (``S`` samples, ``count`` initial conditions):
+
+* ``M``, ``Omega``, ``orientation`` ($g$): ``(S, count, n, n)``; ``gamma``: ``(S, count, n)``;
+* ``x`` $= \gamma_n$: ``(S, count)``; ``zeta`` (Th:Re): ``(count, n, n)``;
+* ``reduced`` $= (A, B, F_1, E, G, x, \delta)$ (Section 5): ``(S, count, 7)``;
+* ``contact_path``: the first $n-1$ coordinates of the centre $c$ (= the contact point), ``(S, count, n-1)``;
+* ``integrals``: energy $H = \tfrac12\langle M, \Omega\rangle_\kappa$ (S2.2:energy), the coefficients of
+  $p(\lambda, \sigma)$ (eq:pol-first-integrals), $\|\gamma\|^2$; or, from the reduced model,
+  $F_1, F_2, F_3, H$ (S5:red-integrals). Each with its drift $I(t) - I(0)$.
+
+:func:`write` puts ``outputs.npz``, one CSV per output and one PNG per output into a temporary
+folder next to the destination and moves it into place only when everything succeeded.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from simulate import so
+from simulate.kernels import active
+
+__all__ = ["collect", "integrals", "p_coefficients", "write"]
+
+
+def p_coefficients(M: np.ndarray, gamma: np.ndarray) -> np.ndarray:
+    r"""Coefficients of $p(\lambda,\sigma) = \det(M + \sigma\gamma\gamma^T - \lambda\,\mathrm{Id})$
+    (eq:pol-first-integrals), ``out[..., i, j]`` multiplying $\lambda^i\sigma^j$; $p$ is affine in
+    $\sigma$ (rank one), so $p = \det(M - \lambda) + \sigma(\det(M + \gamma\gamma^T - \lambda) - \det(M - \lambda))$.
+    Numerically from eigenvalues (``numpy.poly``); any $n$."""
+    n = M.shape[-1]
+    flatM = M.reshape(-1, n, n)
+    flatg = gamma.reshape(-1, n)
+    out = np.empty((flatM.shape[0], n + 1, 2))
+    sign = (-1.0) ** n
+    for i, (Mi, gi) in enumerate(zip(flatM, flatg)):
+        c0 = np.real(np.poly(Mi))
+        c1 = np.real(np.poly(Mi + np.outer(gi, gi)))
+        out[i, :, 0] = sign * c0[::-1]
+        out[i, :, 1] = sign * (c1 - c0)[::-1]
+    return out.reshape(M.shape[:-2] + (n + 1, 2))
+
+
+def integrals(M, gamma, Omega) -> dict[str, np.ndarray]:
+    r"""$H$, the coefficients of $p(\lambda,\sigma)$ and $\|\gamma\|^2$ along the samples (see module)."""
+    return {"energy": 0.5 * so.killing(M, Omega), "p": p_coefficients(M, gamma),
+            "gamma_norm2": np.einsum("...i,...i->...", gamma, gamma)}
+
+
+def collect(scene, traj) -> dict[str, np.ndarray]:
+    """The arrays of the outputs ``scene.outputs`` (names as in the module docstring), plus
+    ``t`` and, for ``integrals``, ``integrals.<name>`` and ``drift.<name>`` arrays."""
+    d = traj.data
+    out = {"t": traj.t}
+    need_omega = {"Omega", "integrals"} & set(scene.outputs) and "reduced" not in d
+    if need_omega and "Omega" not in d:
+        d["Omega"] = active().require("angular_velocity")(d["M"], d["gamma"], scene.a, scene.b)
+    for name in scene.outputs:
+        if name == "zeta" and "zeta" not in d:
+            continue  # only the vertical closed form computes zeta (a full run does not)
+        if name in ("M", "Omega", "gamma", "zeta"):
+            out[name] = d[name]
+        elif name == "x":
+            out["x"] = d["gamma"][..., -1] if "gamma" in d else d["reduced"][..., 5]
+        elif name == "reduced":
+            if "reduced" in d:
+                out["reduced"] = d["reduced"]
+            else:
+                from simulate.run import reduced_invariants
+                out["reduced"] = reduced_invariants(d["M"], d["gamma"])
+        elif name == "orientation":
+            out["orientation"] = d["g"]
+        elif name == "contact_path":
+            out["contact_path"] = d["c"][..., :-1]
+        elif name == "integrals":
+            if "M" in d:
+                vals = integrals(d["M"], d["gamma"], d["Omega"])
+            else:
+                F = active().require("reduced_integrals")(d["reduced"], scene.a, scene.b)
+                vals = {"F1": F[..., 0], "F2": F[..., 1], "F3": F[..., 2], "energy": F[..., 3]}
+            for key, v in vals.items():
+                out[f"integrals.{key}"] = v
+                out[f"drift.{key}"] = v - v[:1]
+    return out
+
+
+def max_drift(arrays: dict[str, np.ndarray]) -> dict[str, float]:
+    """Largest $|I(t) - I(0)|$ per integral."""
+    return {k[6:]: float(np.max(np.abs(v))) for k, v in arrays.items() if k.startswith("drift.")}
+
+
+def _csv(path: Path, t: np.ndarray, arr: np.ndarray, name: str) -> None:
+    S = arr.shape[0]
+    if arr.ndim == 1:
+        arr = arr[:, None]
+    count = arr.shape[1]
+    comp = arr.reshape(S, count, -1)
+    idx = np.stack(np.unravel_index(np.arange(comp.shape[-1]), arr.shape[2:] or (1,)), -1) + 1
+    head = ["t", "member"] + [name + ("_" + "_".join(map(str, i)) if arr.ndim > 2 else "")
+                              for i in idx]
+    rows = [np.concatenate([[t[s], e], comp[s, e]]) for e in range(count) for s in range(S)]
+    np.savetxt(path, np.array(rows), delimiter=",", header=",".join(head), comments="",
+               fmt="%.17g")
+
+
+def _plot(path: Path, t: np.ndarray, arr: np.ndarray, name: str) -> None:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7, 4))
+    first = arr[:, 0] if arr.ndim > 1 else arr
+    if name == "contact_path":
+        ax.plot(first[:, 0], first[:, 1] if first.shape[-1] > 1 else 0 * first[:, 0])
+        ax.set_xlabel("c_1")
+        ax.set_ylabel("c_2")
+        ax.set_aspect("equal", "datalim")
+    elif name.startswith("drift."):
+        ys = np.abs(first.reshape(len(t), -1)) + 1e-300
+        ax.semilogy(t, ys, lw=0.8)
+        ax.set_ylabel(f"|{name}|")
+    else:
+        ax.plot(t, first.reshape(len(t), -1), lw=0.8)
+        ax.set_ylabel(name)
+    if name != "contact_path":
+        ax.set_xlabel("t")
+    ax.set_title(f"{name} (first initial condition)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+
+
+def write(out_dir: str | Path, arrays: dict[str, np.ndarray], summary: str,
+          plots: bool = True) -> Path:
+    """Write ``arrays`` (NPZ, CSV per output, PNG per output) and ``summary.txt`` into
+    ``out_dir``, atomically: a failure leaves ``out_dir`` as it was."""
+    out_dir = Path(out_dir)
+    out_dir.parent.mkdir(parents=True, exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.tmp-", dir=out_dir.parent))
+    try:
+        np.savez(tmp / "outputs.npz", **arrays)
+        t = arrays["t"]
+        for name, arr in arrays.items():
+            if name == "t":
+                continue
+            if name != "zeta":
+                _csv(tmp / f"{name}.csv", t, arr, name.replace(".", "_"))
+                if plots and not name.startswith("integrals."):
+                    _plot(tmp / f"{name}.png", t, arr, name)
+            else:
+                np.savetxt(tmp / "zeta.csv", arr.reshape(arr.shape[0], -1), delimiter=",")
+        (tmp / "summary.txt").write_text(summary + "\n")
+        old = None
+        if out_dir.exists():
+            old = out_dir.with_name(f".{out_dir.name}.old-{os.getpid()}")
+            os.replace(out_dir, old)
+        os.replace(tmp, out_dir)
+        if old is not None:
+            shutil.rmtree(old)
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+    return out_dir

@@ -1,0 +1,132 @@
+r"""NumPy helpers on $\mathfrak{so}(n)$ and $SO(n)$, batched over leading axes (Section 2.2).
+
+Definitions only (no derived formula lives here):
+
+* wedge $u\wedge v = uv^T - vu^T$ (footnote to eq:M-O);
+* commutator $[A, B] = AB - BA$ (eq:motion-general);
+* Killing metric $\langle A, B\rangle_\kappa = -\tfrac12\operatorname{tr}(AB)$ (S2.2:energy);
+* coordinates ``vec``/``unvec`` in the basis $E_i\wedge E_j$, $i<j$ (as :mod:`symbolic.algebra`);
+* the 4D blocks $M = \begin{pmatrix}\hat k & u\\ -u^T & 0\end{pmatrix}$, $\gamma = (q, x)$
+  (Section 5, before eq:motion-n4), with $\hat w v = w\times v$;
+* the exponential of skew matrices and $\int_0^t e^{Ws}\,ds\,v$ (Van Loan block exponential).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.linalg import expm as _expm
+
+__all__ = [
+    "so_dim", "pairs", "vec", "unvec", "wedge", "commutator", "killing", "expm", "expm_integral",
+    "hat", "split4", "join4", "rotation_to",
+]
+
+
+def so_dim(n: int) -> int:
+    r"""$\dim\mathfrak{so}(n) = n(n-1)/2$."""
+    return n * (n - 1) // 2
+
+
+def pairs(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Row and column indices $(i, j)$, $i < j$, in lexicographic order (the basis order)."""
+    return np.triu_indices(n, 1)
+
+
+def vec(M: np.ndarray) -> np.ndarray:
+    r"""Coordinates of $M \in \mathfrak{so}(n)$ (shape ``(..., n, n)``): the entries $M_{ij}$, $i<j$."""
+    M = np.asarray(M, dtype=float)
+    i, j = pairs(M.shape[-1])
+    return M[..., i, j]
+
+
+def unvec(c: np.ndarray, n: int) -> np.ndarray:
+    r"""The skew matrix with coordinates ``c`` (shape ``(..., n(n-1)/2)``) in the basis $E_i\wedge E_j$."""
+    c = np.asarray(c, dtype=float)
+    if c.shape[-1] != so_dim(n):
+        raise ValueError(f"so({n}) has {so_dim(n)} coordinates, got shape {c.shape}")
+    out = np.zeros(c.shape[:-1] + (n, n))
+    i, j = pairs(n)
+    out[..., i, j] = c
+    out[..., j, i] = -c
+    return out
+
+
+def wedge(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    r"""$u\wedge v = uv^T - vu^T$ (footnote to eq:M-O), batched: ``(..., n) -> (..., n, n)``."""
+    uv = u[..., :, None] * v[..., None, :]
+    return uv - np.swapaxes(uv, -1, -2)
+
+
+def commutator(A: np.ndarray, B: np.ndarray) -> np.ndarray:
+    r"""$[A, B] = AB - BA$ (eq:motion-general)."""
+    return A @ B - B @ A
+
+
+def killing(A: np.ndarray, B: np.ndarray) -> np.ndarray:
+    r"""$\langle A, B\rangle_\kappa = -\tfrac12\operatorname{tr}(AB)$ (S2.2:energy); for skew matrices
+    $=\sum_{i<j}A_{ij}B_{ij}$."""
+    return -0.5 * np.einsum("...ij,...ji->...", A, B)
+
+
+def expm(X: np.ndarray) -> np.ndarray:
+    r"""$\exp X$ for square ``X`` of shape ``(..., n, n)`` (SciPy Padé, batched); in $SO(n)$ for skew $X$."""
+    X = np.asarray(X, dtype=float)
+    if X.ndim == 2:
+        return _expm(X)
+    return _expm(X.reshape((-1,) + X.shape[-2:])).reshape(X.shape)
+
+
+def expm_integral(W: np.ndarray, v: np.ndarray, t: np.ndarray) -> np.ndarray:
+    r"""$\int_0^{t} e^{Ws}\,ds\; v$ for each time in ``t`` (Van Loan: the top-right block of
+    $\exp\begin{pmatrix}W & v\\ 0 & 0\end{pmatrix}t$). ``W`` is ``(n, n)``, ``v`` is ``(n,)``;
+    returns ``(len(t), n)``."""
+    n = W.shape[-1]
+    big = np.zeros((n + 1, n + 1))
+    big[:n, :n] = W
+    big[:n, n] = v
+    t = np.asarray(t, dtype=float)
+    return expm(big[None] * t[:, None, None])[:, :n, n]
+
+
+def hat(w: np.ndarray) -> np.ndarray:
+    r"""Hat map $\mathbb{R}^3\to\mathfrak{so}(3)$, $\hat w v = w\times v$ (eq:xiV3D), batched."""
+    w = np.asarray(w, dtype=float)
+    out = np.zeros(w.shape[:-1] + (3, 3))
+    out[..., 0, 1], out[..., 0, 2], out[..., 1, 2] = -w[..., 2], w[..., 1], -w[..., 0]
+    out[..., 1, 0], out[..., 2, 0], out[..., 2, 1] = w[..., 2], -w[..., 1], w[..., 0]
+    return out
+
+
+def split4(M: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    r"""$(k, u)$ from $M = \begin{pmatrix}\hat k & u\\ -u^T & 0\end{pmatrix}\in\mathfrak{so}(4)$
+    (Section 5; also $(\eta, \xi)$ from $\Omega$)."""
+    k = np.stack([M[..., 2, 1], M[..., 0, 2], M[..., 1, 0]], axis=-1)
+    return k, M[..., :3, 3]
+
+
+def join4(k: np.ndarray, u: np.ndarray) -> np.ndarray:
+    r"""The inverse of :func:`split4`: $\begin{pmatrix}\hat k & u\\ -u^T & 0\end{pmatrix}$."""
+    out = np.zeros(np.broadcast_shapes(k.shape, u.shape)[:-1] + (4, 4))
+    out[..., :3, :3] = hat(k)
+    out[..., :3, 3] = u
+    out[..., 3, :3] = -u
+    return out
+
+
+def rotation_to(gamma: np.ndarray) -> np.ndarray:
+    r"""A rotation $g_0\in SO(n)$ with $g_0^T E_n = \gamma$ (last row $=\gamma^T$), $\gamma\in S^{n-1}$:
+    the Householder reflection exchanging $E_n$ and $\gamma$, composed with a reflection in $E_1$
+    (which fixes $E_n$) to make $\det g_0 = +1$; $g_0 = \mathrm{Id}$ when $\gamma = E_n$."""
+    gamma = np.asarray(gamma, dtype=float)
+    n = gamma.shape[-1]
+    e = np.zeros(n)
+    e[-1] = 1.0
+    w = e - gamma
+    nw = np.linalg.norm(w)
+    if nw < 1e-300:
+        return np.eye(n)
+    w = w / nw
+    H = np.eye(n) - 2.0 * np.outer(w, w)  # H e = gamma, H gamma = e, H symmetric
+    D = np.eye(n)
+    D[0, 0] = -1.0
+    return D @ H  # (D H)^T E_n = H D E_n = H E_n = gamma, det = +1
