@@ -66,11 +66,10 @@ class FullField:
             self._omega = self.kernels.require("angular_velocity")
         return self._omega(M, gamma, self.a, self.b)
 
-    def generator(self, y):
-        r"""$-\Omega$, the element of $\mathfrak{so}(n)$ whose action $X\cdot(M, \gamma) = ([X, M], X\gamma)$
-        is the field (for Lie-group integrators); shape ``(count, n, n)``."""
+    def generator(self, M, gamma):
+        r"""$-\Omega(M, \gamma)$, the element of $\mathfrak{so}(n)$ whose action $X\cdot(M, \gamma) =
+        ([X, M], X\gamma)$ is the field (for Lie-group integrators); shape ``(count, n, n)``."""
         self.calls += 1
-        M, gamma = self.unpack(y)[:2]
         return -self.omega(M, gamma)
 
     def __call__(self, t, y):

@@ -38,7 +38,7 @@ def step(field, M, gamma, h):
     with $Q = e^\Theta$ and the four stages $(Q_i, A_i)$ for the reconstruction quadrature."""
     def gen(Q):
         Mi, gi = _act(Q, M, gamma) if Q is not None else (M, gamma)
-        return field.generator(np.concatenate([so.vec(Mi), gi], axis=-1)), Mi, gi
+        return field.generator(Mi, gi), Mi, gi
 
     A1, _, _ = gen(None)
     k1 = h * A1
