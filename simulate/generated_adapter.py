@@ -1,12 +1,95 @@
-"""Adapter from the kernels of :mod:`generated` to the matrix interface of :mod:`simulate.kernels`."""
+r"""Adapter from the kernels of :mod:`generated` to the matrix interface of :mod:`simulate.kernels`.
+
+:mod:`generated.axisym` holds component kernels for $n = 3, 4$ ($M$, $\Omega$, $\zeta$ as ``vec``
+coordinates, entries $i<j$ in lexicographic order — the order of :func:`simulate.so.vec`) and
+coefficient kernels for every $n$. The assembly of the coefficient kernels into $n\times n$
+matrices for $n \ge 5$ belongs to the kernels' runtime package; until it exists, kernels for
+$n \ge 5$ raise :class:`simulate.kernels.KernelMissing` naming what is missing. Nothing here
+computes a derived formula: it only reshapes arguments and results.
+"""
 
 from __future__ import annotations
 
-from simulate.kernels import Kernels
+import importlib
 
-__all__ = ["bind"]
+import numpy as np
+
+from simulate import so
+from simulate.kernels import KernelMissing, Kernels
+
+__all__ = ["bind", "RUNTIME_MODULES"]
+
+#: Where the runtime assembly of the coefficient kernels (any n) may live, first match wins.
+RUNTIME_MODULES = ("kernels.axisym", "generated.runtime", "generated.axisym_runtime")
+
+
+def _module(name):
+    try:
+        return importlib.import_module(name)
+    except ImportError:
+        return None
+
+
+def _runtime():
+    for name in RUNTIME_MODULES:
+        mod = _module(name)
+        if mod is not None:
+            return mod
+    return None
+
+
+def _component(gen, stem, n):
+    fn = getattr(gen, f"{stem}_{n}d", None) if gen is not None else None
+    return fn
+
+
+def _missing(what, n):
+    raise KernelMissing(f"{what} for n = {n}: generated/ has component kernels for n = 3, 4 only "
+                        f"and no runtime assembly for other n ({', '.join(RUNTIME_MODULES)})")
 
 
 def bind() -> Kernels:
     """The kernels :mod:`generated` provides today, in the matrix interface."""
-    return Kernels(name="generated", note="generated/ has no axisymmetric kernels yet")
+    gen = _module("generated.axisym")
+    runtime = _runtime()
+    if gen is None and runtime is None:
+        return Kernels(name="generated", note="generated/axisym.py does not exist yet")
+
+    def angular_velocity(M, gamma, a, b):
+        r"""$\Omega = L_\gamma^{-1}(M)$ (P:inversion)."""
+        n = gamma.shape[-1]
+        fn = _component(gen, "angular_velocity_axisym", n)
+        if fn is not None:
+            return so.unvec(fn(so.vec(M), gamma, a, b), n)
+        if runtime is not None and hasattr(runtime, "angular_velocity"):
+            return runtime.angular_velocity(M, gamma, a, b)
+        _missing("L_gamma^{-1}", n)
+
+    def L_gamma(Omega, gamma, a, b):
+        r"""$M = L_\gamma(\Omega)$ (eq:M-O-axi-symm)."""
+        n = gamma.shape[-1]
+        fn = _component(gen, "L_matrix_axisym", n)
+        if fn is not None:
+            return so.unvec(np.einsum("...ij,...j->...i", fn(gamma, a, b), so.vec(Omega)), n)
+        if runtime is not None and hasattr(runtime, "L_gamma"):
+            return runtime.L_gamma(Omega, gamma, a, b)
+        _missing("L_gamma", n)
+
+    def zeta(M0, gamma0, a, b):
+        r"""$\zeta$ of Th:Re for $(M_0, \gamma_0)\in\mathcal V$."""
+        n = gamma0.shape[-1]
+        fn = _component(gen, "zeta", n)
+        if fn is not None:
+            return so.unvec(fn(so.vec(M0), gamma0, a, b), n)
+        if runtime is not None and hasattr(runtime, "zeta"):
+            return runtime.zeta(M0, gamma0, a, b)
+        _missing("zeta", n)
+
+    red = _module("generated.reduced")
+    reduced_field = getattr(red, "reduced_field", None) if red is not None else None
+    reduced_integrals = getattr(red, "reduced_integrals", None) if red is not None else None
+    horizontal = getattr(red, "horizontal_solution", None) if red is not None else None
+    return Kernels(name="generated", L_gamma=L_gamma, angular_velocity=angular_velocity,
+                   zeta=zeta, reduced_field=reduced_field, reduced_integrals=reduced_integrals,
+                   horizontal=horizontal,
+                   note="generated/axisym.py" + (f" + {runtime.__name__}" if runtime else ""))

@@ -39,7 +39,7 @@ def p_coefficients(M: np.ndarray, gamma: np.ndarray) -> np.ndarray:
     flatg = gamma.reshape(-1, n)
     out = np.empty((flatM.shape[0], n + 1, 2))
     sign = (-1.0) ** n
-    for i, (Mi, gi) in enumerate(zip(flatM, flatg)):
+    for i, (Mi, gi) in enumerate(zip(flatM, flatg, strict=True)):
         c0 = np.real(np.poly(Mi))
         c1 = np.real(np.poly(Mi + np.outer(gi, gi)))
         out[i, :, 0] = sign * c0[::-1]

@@ -89,7 +89,7 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
                        "asks for an integrator of the full system")
         return make("full", f"integrator {scene.method} requested")
     vertical = all(families.claim_residual("vertical", M, g) <= tol
-                   for M, g in zip(scene.M0, scene.gamma0))
+                   for M, g in zip(scene.M0, scene.gamma0, strict=True))
     if scene.a == 0.0:
         return make("constant-Omega", "a = 0: spherical inertia, Omega is constant "
                     "(Section 4, after eq:M-O-axi-symm); M(t) = exp(-Omega0 t) M0 exp(Omega0 t)")
@@ -104,7 +104,7 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
     reduced_only = wants <= REDUCED_OUTPUTS and scene.n == 4
     needs = ["reduced_integrals"] if "integrals" in wants else []
     if reduced_only and all(families.claim_residual("horizontal", M, g) <= tol
-                            for M, g in zip(scene.M0, scene.gamma0)):
+                            for M, g in zip(scene.M0, scene.gamma0, strict=True)):
         if k.has("horizontal") and all(k.has(x) for x in needs):
             return make("horizontal-4D", "n = 4, horizontal momentum and only reduced outputs: "
                         "the linear system for (x, G) (S5:H-linear)")

@@ -122,7 +122,7 @@ def _integrate(f, y0, t, plan, scene, progress=True):
     bar = Progress(t[-1], f"{plan.model} {plan.method}") if progress else None
     try:
         if plan.method == "dop853":
-            rtol = max(scene.target / 10, 2.3e-14)
+            rtol = max(scene.target / 100, 2.3e-14)  # global error ~ 10-100 x rtol (bench)
             return dop853.integrate(f, y0, t, rtol=rtol, atol=rtol, progress=bar)
         if plan.method == "lie":
             return lie.integrate(f, y0, t, h=scene.step, progress=bar)

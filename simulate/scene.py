@@ -36,11 +36,11 @@ naming the field and the fix.
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+import tomllib
 
 from simulate import families
 
@@ -170,7 +170,7 @@ def loads(text: str, source: str = "<scene>") -> Scene:
         skew = np.linalg.norm(X + X.T) / max(1.0, np.linalg.norm(X))
         if skew > tol:
             fail(f"initial.{name}", f"not skew-symmetric (|X + X^T|/|X| = {skew:.3g})",
-                 f"give X with X[j][i] = -X[i][j] and zero diagonal")
+                 "give X with X[j][i] = -X[i][j] and zero diagonal")
         norm = np.linalg.norm(gamma0)
         if abs(norm - 1.0) > tol:
             fail("initial.gamma", f"|gamma| = {norm!r} is not 1 within {tol:g}",
@@ -204,7 +204,7 @@ def loads(text: str, source: str = "<scene>") -> Scene:
              "remove 'reduced' or set n = 4")
     if "zeta" in want and family not in ("vertical",) and not (
             family == "explicit" and all(
-                families.claim_residual("vertical", M, g) <= tol for M, g in zip(M0, gamma0))):
+                families.claim_residual("vertical", M, g) <= tol for M, g in zip(M0, gamma0, strict=True))):
         fail("outputs.want", "zeta (Th:Re) is defined for vertical momentum only",
              "remove 'zeta' or use a vertical initial condition (M0 gamma0 = 0)")
 

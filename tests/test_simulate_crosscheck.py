@@ -97,7 +97,7 @@ def test_failed_write_leaves_the_old_output(tmp_path):
     out = tmp_path / "o"
     write(out, {"t": np.arange(3.0), "x": np.zeros((3, 1))}, "first", plots=False)
     bad = {"t": np.arange(3.0), "x": np.zeros((3, 1)), "M": np.array([object()] * 3)}
-    with pytest.raises(Exception):
+    with pytest.raises(TypeError):
         write(out, bad, "second", plots=False)
     assert (out / "summary.txt").read_text() == "first\n"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["o"]

@@ -66,12 +66,12 @@ def _L_inverse(fx, gamma, a, b, n):
     gm = mpmath.matrix(g)
     rows, cols = np.triu_indices(n, 1)
     L = mpmath.matrix(len(rows), len(rows))
-    for c, (i, j) in enumerate(zip(rows, cols)):
+    for c, (i, j) in enumerate(zip(rows, cols, strict=True)):
         B = mpmath.zeros(n, n)
         B[i, j], B[j, i] = 1, -1
         Bg = B * gm
         W = J * B + B * J + b * (Bg * gm.T - gm * Bg.T)
-        for r, (p, q) in enumerate(zip(rows, cols)):
+        for r, (p, q) in enumerate(zip(rows, cols, strict=True)):
             L[r, c] = W[p, q]
     Linv = mpmath.inverse(L)
     return np.array([[fx.of(Linv[r, c]) for c in range(len(rows))] for r in range(len(rows))],
@@ -113,8 +113,8 @@ def _series(fx, M, gamma, g, c, a, b, r, n, p):
 
 
 def _div(x, q):
-    return np.vectorize(lambda v: (v + q // 2) // q if v >= 0 else -((-v + q // 2) // q),
-                        otypes=[object])(x)
+    """Fixed-point ``x / q`` rounded to nearest (elementwise on integer object arrays)."""
+    return (x + q // 2) // q
 
 
 def _horner(fx, series, H):
@@ -154,7 +154,7 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, dps: int = 30, order: int | 
                                          for v in np.ravel(s)) / fx.one)
                     # a coefficient below the working precision is bounded by it, not taken as 0
                     hs = [(eps * scale / max(m / fx.one, floor)) ** (1.0 / k)
-                          for m, k in zip(size, (p - 1, p) * len(coeffs))]
+                          for m, k in zip(size, (p - 1, p) * len(coeffs), strict=True)]
                     H = min(fx.of(0.9 * min(hs)), T_next - T)
                     new = [_horner(fx, cs, H) for cs in coeffs]
                     state = new + ([] if field.reconstruct else [None, None])
