@@ -23,7 +23,8 @@ import sympy as sp
 from symbolic.algebra import skew_symbols, wedge
 from symbolic.axisymmetric import E_n, L_gamma_axisym, a, b, x
 
-__all__ = ["ansatz_terms", "inverse_coefficients", "inverse_closed_form", "TERM_NAMES"]
+__all__ = ["ansatz_terms", "inverse_coefficients", "inverse_closed_form", "inverse_denominator",
+           "inverse_numerator", "TERM_NAMES"]
 
 #: LaTeX names of the ansatz terms, in order.
 TERM_NAMES = (r"M", r"(M\gamma)\wedge\gamma", r"(ME_n)\wedge E_n", r"(M\gamma)\wedge E_n",
@@ -80,3 +81,28 @@ def inverse_closed_form(M: sp.Matrix, gamma: sp.Matrix, a_=a, b_=b) -> sp.Matrix
     coeffs = [c.subs(sub, simultaneous=True) for c in inverse_coefficients()]
     terms = ansatz_terms(M, gamma)
     return sum((c * T for c, T in zip(coeffs, terms)), sp.zeros(M.rows, M.rows))
+
+
+def inverse_denominator(a_=a, b_=b, x_=x) -> sp.Expr:
+    r"""$D = 2\Delta(x)(2+a+b)$: a common denominator of the coefficients $c_k$ (P:inversion)."""
+    from symbolic.axisymmetric import Delta
+
+    return 2 * Delta(x_, a_, b_) * (2 + a_ + b_)
+
+
+@lru_cache(maxsize=1)
+def _numerator_coefficients() -> tuple[sp.Expr, ...]:
+    D = inverse_denominator()
+    out = tuple(sp.factor(sp.cancel(c * D)) for c in inverse_coefficients())
+    for c in out:
+        sp.Poly(c, a, b, x)  # raises PolynomialError unless D cleared every denominator
+    return out
+
+
+def inverse_numerator(M: sp.Matrix, gamma: sp.Matrix, a_=a, b_=b) -> sp.Matrix:
+    r"""$D\,L_\gamma^{-1}(M) = \sum_k (D c_k)\, T_k(M)$ with $D$ of :func:`inverse_denominator` at
+    $x = \gamma_n$: polynomial in $M, \gamma, a, b$ (for fast exact identities, P:inversion)."""
+    sub = {a: a_, b: b_, x: gamma[gamma.rows - 1]}
+    coeffs = [sp.expand(c.subs(sub, simultaneous=True)) for c in _numerator_coefficients()]
+    terms = ansatz_terms(M, gamma)
+    return sum((c * T for c, T in zip(coeffs, terms)), sp.zeros(M.rows, M.rows)).applyfunc(sp.expand)

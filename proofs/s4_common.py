@@ -1,0 +1,135 @@
+r"""Shared machinery of the Section 4 proofs (registers no ledger row).
+
+* symbolic points: generic $M \in \mathfrak{so}(n)$, $\gamma$ with symbolic entries (identities are
+  proved modulo $\lVert\gamma\rVert^2 = 1$), generic points of $\mathcal{V}$ ($M = PAP$);
+* seeded exact rational points: $\gamma \in S^{n-1}$ by inverse stereographic projection,
+  $a \in [-1, 1]$, $b > 0$;
+* :func:`combine` — several :class:`~symbolic.exact.Check` s as one (holds iff all hold).
+
+The reduction argument used by most Section 4 rows
+---------------------------------------------------
+Every formula of Section 4 is built from $M$ (or $\Omega$), $\gamma$, $E_n$ with matrix-vector
+products, $u \wedge v$, inner products and scalar functions of $x = \langle\gamma, E_n\rangle$. Such
+a formula $F$ is *natural*: for a linear isometry $\iota: \mathbb{R}^k \to \mathbb{R}^n$ with
+$\iota E_k = E_n$, $F(\iota M' \iota^T, \iota\gamma') = \iota F(M', \gamma')\iota^T$, and $F(M, \gamma)$
+lies in $\Lambda^2 S$ when $M \in \Lambda^2 S$ and $S \ni \gamma, E_n$. An identity $F \equiv 0$ that
+is *linear* in $M$ needs checking only on $M = u\wedge v$ for $u, v$ in an orthonormal basis
+(of $\mathbb{R}^n$, or of $\gamma^\perp$ for identities on $\mathcal{V} = \Lambda^2\gamma^\perp$); then
+$S = \operatorname{span}\{E_n, \gamma, u, v\}$ has dimension $\le 4$, and (enlarging $S$ to dimension
+4 when $n \ge 4$) the identity in $\mathbb{R}^n$ is the pull-back of the same identity in
+$\mathbb{R}^4$ at $(M', \gamma')$. Hence **the exact symbolic check for $n = 4$ (every $M$, every
+$\gamma \in S^3$) proves a linear identity for every $n \ge 4$**, and $n = 3$ is checked on its own.
+Bilinear identities need $\dim S \le 6$, i.e. the symbolic check at $n = 6$.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Sequence
+
+import sympy as sp
+
+from symbolic import points
+from symbolic.algebra import skew_symbols, vector_symbols
+from symbolic.axisymmetric import a, b
+from symbolic.exact import Check, rational_identity, zero_at_points
+from symbolic.vertical import vertical_point
+
+__all__ = [
+    "a", "b", "SAMPLERS", "gamma_symbols", "generic", "generic_vertical", "sym_checks",
+    "random_point", "random_vertical_point", "point_checks", "combine", "fact", "REDUCTION",
+]
+
+#: Counterexample samplers keeping the paper's domain $a \in [-1, 1]$, $b > 0$.
+SAMPLERS = {a: lambda r: points.rational(r, -1, 1, 8, nonzero=True),
+            b: lambda r: points.rational(r, 0, 4, 8, open_lo=True)}
+
+REDUCTION = ("reduction argument (linear in M; operators act on span{E_n, gamma, u, v}, "
+             "proofs/s4_common.py) covering all n >= 4 from the symbolic n = 4 check")
+
+
+def gamma_symbols(n: int) -> sp.Matrix:
+    r"""$\gamma = (g_1, \dots, g_n)^T$ with real symbols; identities are taken modulo $\sum g_i^2 = 1$."""
+    return vector_symbols("g", n)
+
+
+def generic(n: int) -> tuple[sp.Matrix, sp.Matrix]:
+    r"""A generic $M \in \mathfrak{so}(n)$ (symbols ``m..``) and $\gamma$ (symbols ``g..``)."""
+    return skew_symbols("m", n), gamma_symbols(n)
+
+
+def generic_vertical(n: int) -> tuple[sp.Matrix, sp.Matrix]:
+    r"""A generic point of $\mathcal{V}$: $M_0 = PAP$ (:func:`~symbolic.vertical.vertical_point`) and $\gamma_0$."""
+    g = gamma_symbols(n)
+    return vertical_point(skew_symbols("A", n), g).applyfunc(sp.expand), g
+
+
+def sym_checks(residual: Callable[[int], object], ns: Sequence[int], *, sphere: bool = True,
+               label: str) -> Check:
+    r"""``rational_identity(residual(n))`` modulo $\lVert\gamma\rVert^2 = 1$ for each $n$ in ``ns``
+    (a square matrix residual on its entries $i \le j$, see :func:`_upper`)."""
+    checks = []
+    for n in ns:
+        sph = tuple(gamma_symbols(n)) if sphere else None
+        chk = rational_identity(_upper(residual(n)), sphere=sph, samplers=SAMPLERS,
+                                label=f"{label}-n{n}")
+        checks.append((n, chk))
+    return combine([c for _, c in checks],
+                   method=f"exact symbolic identity for n in {{{', '.join(str(n) for n in ns)}}}"
+                          + (" modulo ||gamma||^2 = 1" if sphere else ""))
+
+
+def _upper(residual):
+    """A square matrix residual in so(n) is checked on its entries i <= j (both sides are skew by
+    construction; the seeded point checks compare full matrices)."""
+    if isinstance(residual, sp.MatrixBase) and residual.is_square and residual.rows > 1:
+        n = residual.rows
+        return [residual[i, j] for i in range(n) for j in range(i, n)]
+    return residual
+
+
+def random_point(rng, n: int, *, vertical: bool = False) -> dict:
+    r"""Exact rational point: $a \in [-1,1]$, $b > 0$, $\gamma \in S^{n-1}$, $M \in \mathfrak{so}(n)$
+    (in $\mathcal{V}$ when ``vertical``)."""
+    pt = points.axisymmetric_parameters(rng)
+    gamma = points.sphere_point(rng, n)
+    M = points.skew_matrix(rng, n)
+    if vertical:
+        M = vertical_point(M, gamma)
+    pt.update({"n": n, "gamma": gamma, "M": M})
+    return pt
+
+
+def random_vertical_point(rng, n: int) -> dict:
+    """:func:`random_point` on $\\mathcal{V}$."""
+    return random_point(rng, n, vertical=True)
+
+
+def point_checks(residual: Callable[[dict], object], ns: Iterable[int], *, count: int = 1,
+                 vertical: bool = False, label: str) -> Check:
+    """``zero_at_points`` at ``count`` seeded rational points for each n in ``ns``."""
+    ns = list(ns)
+    checks = []
+    for n in ns:
+        sample = (lambda r, n=n: random_point(r, n, vertical=vertical))
+        checks.append(zero_at_points(residual, sample, count=count, label=f"{label}-n{n}",
+                                     describe="V" if vertical else "so(n) x S^{n-1}"))
+    return combine(checks, method=f"exact at {count} seeded rational point(s) "
+                                  f"{'of V ' if vertical else ''}for each n in "
+                                  f"{min(ns)}..{max(ns)} (seed {points.DEFAULT_SEED})")
+
+
+def combine(checks: Sequence[Check], *, method: str = "") -> Check:
+    """One :class:`Check` that holds iff all do; the first failure's counterexample is kept."""
+    checks = list(checks)
+    seconds = sum(c.seconds for c in checks)
+    how = method or "; ".join(dict.fromkeys(c.method for c in checks))
+    for c in checks:
+        if not c.ok:
+            return Check(False, f"{how} [failed: {c.method}]", c.counterexample, seconds)
+    return Check(True, how, None, seconds)
+
+
+def fact(ok: bool, method: str, counterexample=None) -> Check:
+    """A :class:`Check` from an exact computation done in the proof itself (e.g. an explicit
+    point where a quantity is non-zero)."""
+    return Check(bool(ok), method, counterexample)
