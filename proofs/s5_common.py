@@ -56,7 +56,7 @@ def subs_point(pt: dict) -> dict:
     """The substitution {symbol: value} of a phase point for the symbols of :mod:`symbolic.fourd`."""
     sub = {a: pt["a"], b: pt["b"], x: pt["x"]}
     for name, vec in (("k", k), ("u", u), ("q", q)):
-        sub.update(zip(vec, pt[name]))
+        sub.update(zip(vec, pt[name], strict=False))
     return sub
 
 

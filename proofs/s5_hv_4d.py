@@ -56,7 +56,7 @@ def _invariance(constraints, point, label):
     def residual(pt):
         sub = subs_point(pt)
         X = [f.xreplace(sub) for f in field]
-        return [sp.expand(sum(g.xreplace(sub) * Xz for g, Xz in zip(row, X))) for row in grads]
+        return [sp.expand(sum(g.xreplace(sub) * Xz for g, Xz in zip(row, X, strict=False))) for row in grads]
     return zero_at_points(residual, point, count=6, label=label, describe="the set, x != 0")
 
 

@@ -37,7 +37,7 @@ _Z = (*R["k"], *R["u"], *R["q"], R["x"])
 
 def lie(f, field):
     r"""$X(f)$ for ring elements: $\sum_z \partial_z f\, X_z$ (``field`` = numerators $D X$)."""
-    return sum(f.diff(z) * Xz for z, Xz in zip(_Z, field))
+    return sum(f.diff(z) * Xz for z, Xz in zip(_Z, field, strict=False))
 
 
 def conserved(f, label):
@@ -89,7 +89,7 @@ def s5_h4d() -> Verdict:
     Nxi, Neta = fourd.xi_eta_numerators()
     shown = fourd.RING(sp.expand(2 * printed.H(k, u, xi, eta)))  # printed H, linear in (xi, eta)
     R_ = fourd.RV
-    sub = dict(zip((*R_["xi"], *R_["eta"]), (*Nxi, *Neta)))
+    sub = dict(zip((*R_["xi"], *R_["eta"]), (*Nxi, *Neta), strict=False))
     shown_D = shown.compose(list(sub.items()))                  # 2 D H with the derived inverse
     H2D = fourd.energy()
     kd, ud, qd, xd = fourd.field_numerators()

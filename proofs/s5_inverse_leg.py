@@ -48,7 +48,7 @@ def _six_by_six(pt):
 def inverse_leg() -> Verdict:
     Nxi, Neta = fourd.xi_eta_numerators()
     kk, uu = fourd.L_blocks(Neta, Nxi)
-    residues = [p - fourd.D * v for p, v in zip(kk + uu, R["k"] + R["u"])]
+    residues = [p - fourd.D * v for p, v in zip(kk + uu, R["k"] + R["u"], strict=False)]
     checks = [ring_on_P(r, f"inverse-Leg L(inv) {i}") for i, r in enumerate(residues)]
     inverts = next((c for c in checks if not c), checks[0])
     Dx = fourd.D.as_expr()

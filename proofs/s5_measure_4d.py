@@ -39,7 +39,7 @@ def divergence_residual(rho):
     r"""Numerator of $\operatorname{div}(\rho X)$ for a density $\rho(x)$, as a ring element."""
     kd, ud, qd, xd = fourd.field_numerators()
     N = (*kd, *ud, *qd, xd)
-    divN = sum(Nz.diff(z) for z, Nz in zip(_Z, N))
+    divN = sum(Nz.diff(z) for z, Nz in zip(_Z, N, strict=False))
     f = rho / fourd.D.as_expr()
     num, den = sp.fraction(sp.cancel(sp.diff(f, x) / f))
     return fourd.RING(sp.expand(den)) * divN + fourd.RING(sp.expand(num)) * xd

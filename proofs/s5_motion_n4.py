@@ -43,7 +43,7 @@ def motion_n4() -> Verdict:
     shown = printed.motion_n4(k, u, q, x, xi, eta)
     names = ("k_dot", "u_dot", "q_dot", "x_dot")
     checks = [(n, exact(sp.Matrix([p - d]) if not isinstance(p, sp.MatrixBase) else p - d,
-                        f"motion-n4 {n}")) for n, p, d in zip(names, shown, derived)]
+                        f"motion-n4 {n}")) for n, p, d in zip(names, shown, derived, strict=False)]
     return Verdict.all_of(checks, n_values=(4,), method="exact polynomial identity in "
                           "(k, u, q, x, xi, eta) against [M, Omega] and -Omega gamma in 4x4 blocks")
 

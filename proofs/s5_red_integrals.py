@@ -46,7 +46,7 @@ DET = ri.det_Lambda().as_expr()
 
 
 def _lie(f, X):
-    return sum(sp.diff(f, c) * X[n] for n, c in zip(reduced.COORDS, COORDS))
+    return sum(sp.diff(f, c) * X[n] for n, c in zip(reduced.COORDS, COORDS, strict=False))
 
 
 def _independent() -> Verdict:
@@ -83,7 +83,7 @@ def chart_residual(f):
     sheet of $\mathcal{R}$, with $\partial_y\delta = \partial_y\det\Lambda/(2\delta)$."""
     X = reduced.field()
     total = sp.Integer(0)
-    for n, y in zip(reduced.COORDS, COORDS):
+    for n, y in zip(reduced.COORDS, COORDS, strict=False):
         if n == "delta":
             continue
         F = f * X[n] / delta

@@ -45,12 +45,12 @@ def _generator_checks():
         e = tuple(one if j == i else zero for j in range(3))
         Y = {}
         for name in ("k", "u", "q"):
-            Y.update(zip(R[name], fourd.cross(e, R[name])))
+            Y.update(zip(R[name], fourd.cross(e, R[name]), strict=False))
 
-        def d(f):
+        def d(f, Y=Y):
             return sum(f.diff(z) * Yz for z, Yz in Y.items())
         for vec in (Nxi, Neta, kd, ud, qd):
-            residues += [d(c) - r for c, r in zip(vec, fourd.cross(e, vec))]
+            residues += [d(c) - r for c, r in zip(vec, fourd.cross(e, vec), strict=False)]
         residues.append(d(xd))
     bad = [r for r in residues if r]
     return Check(not bad, "exact sparse-polynomial identities dN[Y_e] = e x N for the generators "

@@ -27,7 +27,7 @@ $D = 2(2+a+b)\Delta(x)$, $\Delta(x) = (2+a)(2+b) - abx^2$ (eq:Delta).
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 
 import sympy as sp
 from sympy import QQ
@@ -71,7 +71,7 @@ def dot(p, r):
 
 
 def _add(*vs):
-    return tuple(sum(c) for c in zip(*vs))
+    return tuple(sum(c) for c in zip(*vs, strict=False))
 
 
 def _scale(c, v):
@@ -145,7 +145,7 @@ def _L_algebra():
     return [[(2 + b * s, -b, 0), (0, 0, b * x)], [(0, 0, -b * x), (2 + a + b * x**2, b, 0)]]
 
 
-@lru_cache(maxsize=None)
+@cache
 def inverse_coefficients(on_sphere: bool = True):
     r"""The exact inverse of $L_\gamma$ ($n = 4$, eq:M-O-axi-symm) in the algebra basis:
     ``C[i][j] = (c0, c1, c2)`` with $(\eta, \xi)^T = C\,(k, u)^T$ and each block
@@ -157,8 +157,8 @@ def inverse_coefficients(on_sphere: bool = True):
     eqs = []
     for i in range(2):
         for j in range(2):
-            prod = [p + r for p, r in zip(_amul(L[i][0], X[0][j]), _amul(L[i][1], X[1][j]))]
-            eqs += [sp.expand(p - t) for p, t in zip(prod, (int(i == j), 0, 0))]
+            prod = [p + r for p, r in zip(_amul(L[i][0], X[0][j]), _amul(L[i][1], X[1][j]), strict=False)]
+            eqs += [sp.expand(p - t) for p, t in zip(prod, (int(i == j), 0, 0), strict=False)]
     sol = sp.solve(eqs, cs, dict=True)
     if len(sol) != 1:
         raise ArithmeticError("the inverse ansatz has no unique solution")
@@ -171,7 +171,7 @@ def _to_ring(expr):
     return RING(sp.expand(expr))
 
 
-@lru_cache(maxsize=None)
+@cache
 def _inverse_ring():
     """Coefficients of :func:`inverse_coefficients` (on the sphere) times D, as ring elements."""
     Dexpr = 2 * (2 + a + b) * ((2 + a) * (2 + b) - a * b * x**2)
@@ -275,7 +275,7 @@ def velocity_form_numerators():
     kd, ud, qd, xd = motion_blocks(kM, uM, _eta, _xi)
     Om = block(_eta, _xi)
     g, gd = [*_q, _x], [*qd, xd]
-    W = [[_b * (p + r) for p, r in zip(r1, r2)]
-         for r1, r2 in zip(_wedge(_mv(Om, gd), g), _wedge(_mv(Om, g), gd))]
+    W = [[_b * (p + r) for p, r in zip(r1, r2, strict=False)]
+         for r1, r2 in zip(_wedge(_mv(Om, gd), g), _wedge(_mv(Om, g), gd), strict=False)]
     wk, wu = unblock(W)
     return inverse_apply(_add(kd, _scale(-1, wk)), _add(ud, _scale(-1, wu)))

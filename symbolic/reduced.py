@@ -27,13 +27,13 @@ density on $\mathbb{R}^7$ preserved by the normal-form field.
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 
 import sympy as sp
 
 from symbolic import fourd
 from symbolic import reduced_invariants as ri
-from symbolic.reduced_invariants import A, B, E, F1, G, delta
+from symbolic.reduced_invariants import F1, A, B, E, G, delta
 
 __all__ = [
     "COORDS", "field_numerators", "field", "integrals", "measure_density_ambient",
@@ -50,7 +50,7 @@ Delta = (2 + a) * (2 + b) - a * b * x**2
 D = 2 * S * Delta
 
 
-@lru_cache(maxsize=None)
+@cache
 def field_numerators():
     r"""$D\cdot\dot f$ for $f$ in :data:`COORDS`, derived, as elements of
     :data:`symbolic.reduced_invariants.INV_RING` (normal form, linear in $\delta$). eq:red-system."""
@@ -71,7 +71,7 @@ def field():
     return {n: p.as_expr() / D for n, p in field_numerators().items()}
 
 
-@lru_cache(maxsize=None)
+@cache
 def _integral_numerators():
     F3 = ri.in_invariants(fourd.F3())
     H2D = ri.in_invariants(fourd.energy())  # 2 D H

@@ -25,11 +25,10 @@ consistency of the system is checked (an inconsistent system raises: $N$ is not 
 
 from __future__ import annotations
 
+import sympy as sp
 from sympy import QQ
 from sympy.polys.matrices import DomainMatrix
 from sympy.polys.rings import ring
-
-import sympy as sp
 
 from symbolic import fourd
 
@@ -80,7 +79,7 @@ def _monomials(d: int, e: int):
 
 def _expand(mon, inv):
     p = fourd.RING(1)
-    for name, ex in zip(_ORDER, mon):
+    for name, ex in zip(_ORDER, mon, strict=False):
         if ex:
             p *= inv[name] ** ex
     return p
@@ -140,7 +139,7 @@ def to_phase_space(P):
     out = fourd.RING(0)
     for mon, c in P.terms():
         t = fourd.RING(c)
-        for img, ex in zip(images, mon):
+        for img, ex in zip(images, mon, strict=False):
             if ex:
                 t *= img**ex
         out += t
@@ -154,7 +153,7 @@ def reduce_delta(P):
     for mon, c in P.terms():
         e = mon[8]
         t = INV_RING(c) * dL**(e // 2) * _delta**(e % 2)
-        for g, ex in zip(_IG[:8], mon[:8]):
+        for g, ex in zip(_IG[:8], mon[:8], strict=False):
             if ex:
                 t *= g**ex
         out += t
