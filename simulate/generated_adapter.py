@@ -39,8 +39,33 @@ def _runtime():
 
 
 def _component(gen, stem, n):
+    """The public component kernel ``{stem}_{n}d``, wrapped with a fast path for one point.
+
+    A single integration calls the kernel on one point thousands of times; the public kernel's
+    batching costs ~50 us there, while the same generated block evaluated on Python floats costs
+    ~5 us. For a batch of one we therefore call the generated block ``_{stem}_{n}d_block``
+    (same expressions, same file) on floats; any other batch goes through the public kernel."""
     fn = getattr(gen, f"{stem}_{n}d", None) if gen is not None else None
-    return fn
+    block = getattr(gen, f"_{stem}_{n}d_block", None) if gen is not None else None
+    if fn is None or block is None:
+        return fn
+
+    def call(*args):
+        *arrays, a, b = args
+        if all(np.ndim(v) <= 2 and np.size(v) == np.shape(v)[-1] for v in arrays):
+            flat = [float(c) for v in arrays for c in np.ravel(v)]
+            out = [0.0] * _SIZES[(stem, n)]
+            block(*flat, float(a), float(b), out)
+            shape = np.shape(arrays[0])[:-1]
+            return np.array(out).reshape(shape + _SHAPES[(stem, n)])
+        return fn(*args)
+    return call
+
+
+_SHAPES = {("angular_velocity_axisym", 3): (3,), ("angular_velocity_axisym", 4): (6,),
+           ("zeta", 3): (3,), ("zeta", 4): (6,),
+           ("L_matrix_axisym", 3): (3, 3), ("L_matrix_axisym", 4): (6, 6)}
+_SIZES = {k: int(np.prod(v)) for k, v in _SHAPES.items()}
 
 
 def _missing(what, n):

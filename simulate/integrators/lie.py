@@ -42,18 +42,18 @@ def step(field, M, gamma, h):
 
     A1, _, _ = gen(None)
     k1 = h * A1
-    Q2 = so.expm(0.5 * k1)
+    Q2 = so.expm_small(0.5 * k1)
     A2, M2, g2 = gen(Q2)
     k2 = h * A2
-    Q3 = so.expm(0.5 * k2 - 0.125 * so.commutator(k1, k2))
+    Q3 = so.expm_small(0.5 * k2 - 0.125 * so.commutator(k1, k2))
     A3, M3, g3 = gen(Q3)
     k3 = h * A3
-    Q4 = so.expm(k3)
+    Q4 = so.expm_small(k3)
     A4, M4, g4 = gen(Q4)
     k4 = h * A4
     theta = (k1 + 2.0 * k2 + 2.0 * k3 + k4) / 6.0 - so.commutator(k1, k4) / 12.0
     stages = ((h / 6, None, A1, gamma), (h / 3, Q2, A2, g2), (h / 3, Q3, A3, g3), (h / 6, Q4, A4, g4))
-    return so.expm(theta), stages
+    return so.expm_small(theta), stages
 
 
 def integrate(field, y0: np.ndarray, t: np.ndarray, h: float = 0.01, progress=None) -> Solution:
