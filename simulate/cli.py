@@ -7,8 +7,6 @@ import sys
 import time
 from pathlib import Path
 
-import numpy as np
-
 from simulate.kernels import KernelMissing
 from simulate.outputs import collect, max_drift, write
 from simulate.planner import plan
@@ -72,5 +70,4 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":  # pragma: no cover
-    np.seterr(all="raise")
     sys.exit(main())

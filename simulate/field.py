@@ -5,13 +5,25 @@ Full system (eq:motion-general with $\Omega = L_\gamma^{-1}(M)$ from :mod:`gener
 .. math::
     \dot M = [M, \Omega], \qquad \dot\gamma = -\Omega\gamma,
 
-optionally with the reconstruction (derived in :mod:`simulate.reconstruction`):
+optionally with the reconstruction
 
 .. math::
     \dot g = g\,\Omega, \qquad \dot c = r\, g\,\Omega\gamma,
 
-$g\in SO(n)$ the orientation (body to space, $\gamma = g^T E_n$) and $c$ the centre of the sphere,
-whose first $n-1$ coordinates are the contact point on the plane.
+$g\in SO(n)$ the orientation (body coordinates to space coordinates) and $c$ the centre of the
+sphere, whose first $n-1$ coordinates are those of the contact point on the plane.
+
+Derivation (our convention, consistent with eq:motion-general). Let the plane be
+$\{X_n = 0\}$ with unit normal $E_n$ pointing to the sphere, and $\gamma = g^TE_n$ its body
+coordinates. (i) $\dot g = g\Omega$ gives $\dot\gamma = \dot g^TE_n = -\Omega g^TE_n = -\Omega\gamma$
+(the second equation of eq:motion-general) and $\tfrac{d}{dt}(gMg^T) = g(\dot M - [M, \Omega])g^T = 0$
+(the space momentum is constant, Section 2.2); $\Omega$ is the body angular velocity and
+$\omega = g\Omega g^T$ the space one. (ii) The material point at the contact, $c - rE_n$, has
+velocity $\dot c + \omega(-rE_n)$; rolling without slipping sets it to 0:
+$\dot c = r\,\omega E_n = r\,g\Omega\gamma$. Its last coordinate is $E_n^Tg\Omega\gamma =
+\gamma^T\Omega\gamma = 0$, so the centre stays at height $r$ (we set $c_n(0) = 0$). With the opposite
+sign of $\gamma$ the path is mirrored; $r$ (``radius``) is not fixed by $a, b$ ($b = mr^2$) and
+only scales the path. Initial orientation: :func:`simulate.so.rotation_to`.
 
 Reduced system (n = 4): eq:red-system on $r = (A, B, F_1, E, G, x, \delta)$, from :mod:`generated`.
 
