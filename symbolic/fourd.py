@@ -37,7 +37,8 @@ __all__ = [
     "a", "b", "x", "s", "k", "u", "q", "eta", "xi", "RING", "GENS", "RV", "Delta", "D",
     "cross", "dot", "block", "unblock", "L_blocks", "motion_blocks", "inverse_coefficients",
     "inverse_apply", "xi_eta_numerators", "xi_eta", "field_numerators", "field",
-    "charpoly", "F1", "F2", "F3", "energy", "sphere_normal_form", "velocity_form_numerators",
+    "charpoly", "F1", "F2", "F3", "energy", "integrals", "measure_density",
+    "sphere_normal_form", "velocity_form_numerators",
 ]
 
 #: Parameters, $x = \gamma_4$ and $s = \lVert q\rVert^2$ (used off the sphere only).
@@ -264,6 +265,20 @@ def energy():
     Nxi, Neta = xi_eta_numerators()
     MO = _mm(block(_k, _u), block(Neta, Nxi))
     return -sum(MO[i][i] for i in range(4)) / 2  # -(1/4) tr(M D Omega) * 2
+
+
+def integrals():
+    r"""The first integrals of the 4D field as SymPy expressions in $a, b, k, u, q, x$ (S5:F123, S5:H4D,
+    derived): ``F1``, ``F2``, ``F3`` ($= -[\lambda\sigma]p$) and the energy ``H`` (rational, on $S^3$)."""
+    return {"F1": F1().as_expr(), "F2": F2().as_expr(), "F3": F3().as_expr(),
+            "H": energy().as_expr() / (2 * D.as_expr())}
+
+
+def measure_density():
+    r"""$1/\Delta(x)$: density of the invariant measure of the 4D field with respect to
+    $dk\,du\,d\sigma_{S^3}$ ($d\sigma$ the round measure; S5:measure4D, proved). In the chart
+    $(k, u, q)$ of $x > 0$ the density is $1/(\Delta(x)\,x)$."""
+    return 1 / Delta.as_expr()
 
 
 def velocity_form_numerators():
