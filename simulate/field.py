@@ -25,7 +25,7 @@ $\dot c = r\,\omega E_n = r\,g\Omega\gamma$. Its last coordinate is $E_n^Tg\Omeg
 sign of $\gamma$ the path is mirrored; $r$ (``radius``) is not fixed by $a, b$ ($b = mr^2$) and
 only scales the path. Initial orientation: :func:`simulate.so.rotation_to`.
 
-Reduced system (n = 4): eq:red-system on $r = (A, B, F_1, E, G, x, \delta)$, from :mod:`generated`.
+Reduced system (n = 4): eq:red-system on $r = (A, B, E, G, F_1, x, \delta)$, from :mod:`generated`.
 
 A state is an array of shape ``(count, dim)``; :class:`FullField` packs $(\mathrm{vec}\,M, \gamma[, g, c])$.
 Every field counts its evaluations (``calls``; one call evaluates the whole ensemble).
@@ -101,10 +101,10 @@ class FullField:
 
 
 class ReducedField:
-    r"""eq:red-system on $r = (A, B, F_1, E, G, x, \delta)$ ($n = 4$; generated kernel)."""
+    r"""eq:red-system on $r = (A, B, E, G, F_1, x, \delta)$ ($n = 4$; generated kernel)."""
 
     dim = 7
-    names = ("A", "B", "F1", "E", "G", "x", "delta")
+    names = ("A", "B", "E", "G", "F1", "x", "delta")  # the order of eq:red-system
 
     def __init__(self, a: float, b: float, kernels: Kernels | None = None):
         self.a, self.b = a, b

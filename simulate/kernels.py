@@ -8,7 +8,7 @@ $a, b$: floats):
 * ``L_gamma(Omega, gamma, a, b) -> M``        — eq:M-O-axi-symm (forward map, a definition);
 * ``angular_velocity(M, gamma, a, b) -> Omega`` — $L_\gamma^{-1}$ (P:inversion, derived);
 * ``zeta(M0, gamma0, a, b) -> zeta``          — the velocity of Th:Re (derived), optional;
-* ``reduced_field(r, a, b) -> rdot``          — eq:red-system on $r = (A, B, F_1, E, G, x, \delta)$,
+* ``reduced_field(r, a, b) -> rdot``          — eq:red-system on $r = (A, B, E, G, F_1, x, \delta)$,
   optional;
 * ``reduced_integrals(r, a, b) -> (F1, F2, F3, H)`` — S5:red-integrals, optional;
 * ``horizontal(x0, G0, F2, H, a, b, t) -> (x, G)`` — S5:H-linear solution, optional.

@@ -4,7 +4,7 @@ Output arrays (``S`` samples, ``count`` initial conditions):
 
 * ``M``, ``Omega``, ``orientation`` ($g$): ``(S, count, n, n)``; ``gamma``: ``(S, count, n)``;
 * ``x`` $= \gamma_n$: ``(S, count)``; ``zeta`` (Th:Re): ``(count, n, n)``;
-* ``reduced`` $= (A, B, F_1, E, G, x, \delta)$ (Section 5): ``(S, count, 7)``;
+* ``reduced`` $= (A, B, E, G, F_1, x, \delta)$ (Section 5): ``(S, count, 7)``;
 * ``contact_path``: the first $n-1$ coordinates of the centre $c$ (= the contact point), ``(S, count, n-1)``;
 * ``integrals``: energy $H = \tfrac12\langle M, \Omega\rangle_\kappa$ (S2.2:energy), the coefficients of
   $p(\lambda, \sigma)$ (eq:pol-first-integrals), $\|\gamma\|^2$; or, from the reduced model,

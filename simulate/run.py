@@ -2,7 +2,7 @@ r"""Execute a plan: produce the trajectory of a scene with the model the planner
 
 The result is a :class:`Trajectory`: sample times and, as the model provides them,
 $M, \Omega$ ``(S, count, n, n)``, $\gamma$ ``(S, count, n)``, $g$, $c$ (reconstruction),
-the reduced invariants $r = (A, B, F_1, E, G, x, \delta)$ ``(S, count, 7)`` and $\zeta$ ``(count, n, n)``;
+the reduced invariants $r = (A, B, E, G, F_1, x, \delta)$ ``(S, count, 7)`` and $\zeta$ ``(count, n, n)``;
 plus the cost (steps, right-hand-side calls, seconds).
 """
 
@@ -64,13 +64,13 @@ class Progress:
 
 
 def reduced_invariants(M: np.ndarray, gamma: np.ndarray) -> np.ndarray:
-    r"""$r = (A, B, F_1, E, G, x, \delta)$ with $A = \|k\|^2$, $B = \|u\|^2$, $F_1 = \langle k, u\rangle$,
+    r"""$r = (A, B, E, G, F_1, x, \delta)$ with $A = \|k\|^2$, $B = \|u\|^2$, $F_1 = \langle k, u\rangle$,
     $E = \langle k, q\rangle$, $G = \langle u, q\rangle$, $\delta = \langle q, k\times u\rangle$ — the
     definitions of Section 5 (Reduction by SO(3)); $n = 4$, $M$ ``(..., 4, 4)``, $\gamma = (q, x)$."""
     k, u = so.split4(M)
     q, x = gamma[..., :3], gamma[..., 3]
     dot = lambda p, s: np.einsum("...i,...i->...", p, s)  # noqa: E731
-    return np.stack([dot(k, k), dot(u, u), dot(k, u), dot(k, q), dot(u, q), x,
+    return np.stack([dot(k, k), dot(u, u), dot(k, q), dot(u, q), dot(k, u), x,
                      dot(q, np.cross(k, u))], axis=-1)
 
 

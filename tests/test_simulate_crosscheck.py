@@ -112,3 +112,23 @@ def test_rotation_to_maps_E_n_to_gamma():
             g0 = so.rotation_to(gamma)
             assert np.allclose(g0.T[:, -1], gamma, atol=1e-15)
             assert np.isclose(np.linalg.det(g0), 1.0)
+
+
+def test_reduced_invariants_are_SO3_invariant_and_satisfy_the_syzygy():
+    """r = (A, B, E, G, F1, x, delta) (Section 5, eq:red-system order) is unchanged by
+    h.(k, u, q, x) = (hk, hu, hq, x), and delta^2 = det Lambda."""
+    from simulate import families
+    from simulate.run import reduced_invariants
+
+    M, gamma = families.draw("generic", 4, 0.5, 1.0, seed=8, count=6)
+    r = reduced_invariants(M, gamma)
+    h = np.eye(4)
+    h[:3, :3] = so.expm(so.hat(np.array([0.3, -1.1, 0.7])))
+    r_h = reduced_invariants(h @ M @ h.T, gamma @ h.T)
+    assert np.max(np.abs(r - r_h)) < 1e-14
+    A, B, E, G, F1, x, delta = np.moveaxis(r, -1, 0)
+    Lam = np.stack([np.stack([A, F1, E], -1), np.stack([F1, B, G], -1),
+                    np.stack([E, G, 1 - x**2], -1)], -2)
+    assert np.max(np.abs(delta**2 - np.linalg.det(Lam))) < 1e-14
+    k, u = so.split4(M)
+    assert np.allclose(A, np.sum(k * k, -1)) and np.allclose(F1, np.sum(k * u, -1))
