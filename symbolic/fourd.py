@@ -62,12 +62,12 @@ D = 2 * (2 + _a + _b) * Delta
 
 
 def cross(p, r):
-    """$p \\times r$ for 3-tuples of ring elements (or any commutative entries)."""
+    """$p \\times r$ for 3-tuples of ring elements or expressions (utility of S:4D, eq:motion-n4)."""
     return (p[1] * r[2] - p[2] * r[1], p[2] * r[0] - p[0] * r[2], p[0] * r[1] - p[1] * r[0])
 
 
 def dot(p, r):
-    """$\\langle p, r\\rangle$ for 3-tuples."""
+    """$\\langle p, r\\rangle$ for 3-tuples (utility of S:4D)."""
     return p[0] * r[0] + p[1] * r[1] + p[2] * r[2]
 
 
@@ -194,6 +194,7 @@ def inverse_apply(kv, uv, q_=_q):
     return N_xi, N_eta
 
 
+@cache
 def xi_eta_numerators():
     r"""$(D\xi, D\eta)$ as functions of $(k, u, q, x)$ on $S^3$ (eq:inverse-Leg derived), ring elements."""
     return inverse_apply(_k, _u)
@@ -207,6 +208,7 @@ def xi_eta():
     return (sp.Matrix([c.as_expr() / Dx for c in Nxi]), sp.Matrix([c.as_expr() / Dx for c in Neta]))
 
 
+@cache
 def field_numerators():
     r"""$D\cdot(\dot k, \dot u, \dot q, \dot x)$: the explicit 4D field (eq:motion-n4 with eq:inverse-Leg,
     both derived) as ring elements in $a, b, k, u, q, x$; valid on $S^3$."""
@@ -251,6 +253,7 @@ def F2():
     return dot(_k, _k) + dot(_u, _u)
 
 
+@cache
 def F3():
     r"""$F_3 := -[\lambda\sigma]\,p(\lambda,\sigma)$, read off from the determinant (S5:F123, derived):
     ring element in $k, u, q, x$ (any $\gamma$)."""
@@ -259,6 +262,7 @@ def F3():
     return -_to_ring(coeff)
 
 
+@cache
 def energy():
     r"""$(2D)\cdot H$ with $H = \tfrac12\langle M, \Omega\rangle_\kappa = -\tfrac14\operatorname{tr}(M\Omega)$
     (S2.2:energy, $n = 4$) and $\Omega = L_\gamma^{-1}M$ derived; ring element, valid on $S^3$."""
@@ -281,6 +285,7 @@ def measure_density():
     return 1 / Delta.as_expr()
 
 
+@cache
 def velocity_form_numerators():
     r"""$D\cdot(\dot\xi, \dot\eta)$ as functions of $(\xi, \eta, q, x)$ on $S^3$ (derives
     eq:Motion-Velocity): from $\dot M = L_\gamma(\dot\Omega) + b(\Omega\dot\gamma)\wedge\gamma +

@@ -47,7 +47,8 @@ _ORDER = ("A", "B", "F1", "E", "G", "s", "delta")
 
 
 def invariant_polys():
-    """The invariants as elements of :data:`symbolic.fourd.RING` (polynomials in k, u, q)."""
+    """The generators of the invariant ring of S5:SO3-action ($A, B, F_1, E, G, s = \\lVert q\\rVert^2,
+    \\delta$) as elements of :data:`symbolic.fourd.RING` (polynomials in k, u, q; any point)."""
     dot, cross = fourd.dot, fourd.cross
     return {"A": dot(_k, _k), "B": dot(_u, _u), "F1": dot(_k, _u), "E": dot(_k, _q),
             "G": dot(_u, _q), "s": dot(_q, _q), "delta": dot(_q, cross(_k, _u))}
