@@ -22,8 +22,11 @@ def summary(scene, p, traj, arrays, seconds, diffs=None, out=None) -> str:
              f"{scene.count} initial condition{'s' if scene.count > 1 else ''}, "
              f"t in [{scene.t[0]:g}, {scene.t[-1]:g}], {len(scene.t)} samples)",
              p.describe(),
-             f"cost    {traj.steps} steps, {traj.calls} right-hand-side calls, "
-             f"{traj.seconds:.3f} s integrating, {seconds:.3f} s in all",
+             (f"cost    closed form: {traj.calls} kernel evaluation(s) and matrix exponentials "
+              f"at {len(scene.t)} samples, {traj.seconds:.3f} s; {seconds:.3f} s in all"
+              if traj.method == "closed form" else
+              f"cost    {traj.steps} steps, {traj.calls} right-hand-side calls, "
+              f"{traj.seconds:.3f} s integrating, {seconds:.3f} s in all"),
              f"outputs {', '.join(scene.outputs)}"]
     drift = max_drift(arrays)
     if drift:

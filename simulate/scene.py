@@ -287,8 +287,9 @@ def _times(times, fail):
     if "t" in times:
         if "t_end" in times or "samples" in times:
             fail("times", "both t and t_end/samples are given", "give one of them")
-        t = _array(times["t"], (len(times["t"]),) if isinstance(times["t"], list) else (-1,),
-                   "times.t", fail)
+        if not isinstance(times["t"], list):
+            fail("times.t", "not a list", "e.g. t = [0.0, 1.0, 2.0]")
+        t = _array(times["t"], (len(times["t"]),), "times.t", fail)
         if t.size < 2 or t[0] < 0 or np.any(np.diff(t) <= 0):
             fail("times.t", "not an increasing list of >= 2 times starting at t >= 0",
                  "e.g. t = [0.0, 1.0, 2.0]")
