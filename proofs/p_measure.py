@@ -39,9 +39,11 @@ import sympy as sp
 from sympy.polys.matrices import DomainMatrix
 
 from proofs.ledger import Verdict, claim
-from proofs.s4_common import a, b, combine, fact, gamma_symbols, point_checks, sym_checks
+from proofs.s4_common import a, b, combine, fact, point_checks, sym_checks, sym_gamma
 from symbolic.algebra import vec, vector_symbols, wedge
-from symbolic.axisymmetric import E_n, L_gamma_axisym, L_matrix_axisym, Delta, block_C, det_L_axisym, frame_coefficients, mass_tensor, x
+from symbolic.axisymmetric import (
+    E_n, L_gamma_axisym, L_matrix_axisym, block_C, det_L_axisym, frame_coefficients, mass_tensor, x,
+)
 from symbolic.exact import rational_identity
 from symbolic.measure import chaplygin_divergence_at
 from symbolic.printed import section4 as printed
@@ -57,7 +59,7 @@ def _w(v: sp.Matrix, g: sp.Matrix) -> sp.Matrix:
 
 
 def _images_residual(n: int) -> list:
-    g = gamma_symbols(n)
+    g = sym_gamma(n)
     wi, wj = _w(vector_symbols("u", n), g), _w(vector_symbols("v", n), g)
     out = []
     for name, (arg, image) in printed.images_of_basis(g, wi, wj, a, b).items():
@@ -102,7 +104,7 @@ def _block_form_residual(p: dict):
 
 
 def _det_symbolic(n: int):
-    g = gamma_symbols(n)
+    g = sym_gamma(n)
     D = DomainMatrix.from_Matrix(L_matrix_axisym(g)).to_field().det()
     return sp.expand(D.as_expr() if hasattr(D, "as_expr") else D) - printed.det_L(n, g[n - 1], a, b)
 

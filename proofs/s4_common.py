@@ -20,6 +20,12 @@ $S = \operatorname{span}\{E_n, \gamma, u, v\}$ has dimension $\le 4$, and (enlar
 $\mathbb{R}^4$ at $(M', \gamma')$. Hence **the exact symbolic check for $n = 4$ (every $M$, every
 $\gamma \in S^3$) proves a linear identity for every $n \ge 4$**, and $n = 3$ is checked on its own.
 Bilinear identities need $\dim S \le 6$, i.e. the symbolic check at $n = 6$.
+
+The frame. The same naturality, with $h \in SO(n-1)$ ($hE_n = E_n$), moves any $\gamma$ to
+$(0, \dots, 0, s, x)$ with $s \ge 0$; an identity in $M$ holding for all $M$ at every such
+$\gamma$ holds at every $\gamma$. So for $n \ge 4$ the symbolic checks take $\gamma$ in this frame
+(modulo $s^2 + x^2 = 1$), which keeps them fast; $n = 3$ uses a fully generic $\gamma$. The
+equivariance itself (eq:action) is proved with fully generic $\gamma$.
 """
 
 from __future__ import annotations
@@ -29,19 +35,23 @@ from collections.abc import Callable, Iterable, Sequence
 import sympy as sp
 
 from symbolic import points
-from symbolic.algebra import skew_symbols, vector_symbols
+from symbolic.algebra import skew_symbols, vector_symbols, wedge
 from symbolic.axisymmetric import a, b
 from symbolic.exact import Check, rational_identity, zero_at_points
 from symbolic.vertical import vertical_point
 
 __all__ = [
-    "a", "b", "SAMPLERS", "gamma_symbols", "generic", "generic_vertical", "sym_checks",
+    "a", "b", "SAMPLERS", "FRAME", "gamma_symbols", "frame_gamma", "sphere_symbols", "generic",
+    "generic_vertical", "sym_gamma", "sym_checks",
     "random_point", "random_vertical_point", "point_checks", "combine", "fact", "REDUCTION",
 ]
 
 #: Counterexample samplers keeping the paper's domain $a \in [-1, 1]$, $b > 0$.
 SAMPLERS = {a: lambda r: points.rational(r, -1, 1, 8, nonzero=True),
             b: lambda r: points.rational(r, 0, 4, 8, open_lo=True)}
+
+FRAME = (" (generic gamma for n = 3; for n >= 4 gamma = (0,..,0,s,x), no loss by "
+         "SO(n-1)-naturality)")
 
 REDUCTION = ("reduction argument (linear in M; operators act on span{E_n, gamma, u, v}, "
              "proofs/s4_common.py) covering all n >= 4 from the symbolic n = 4 check")
@@ -52,30 +62,63 @@ def gamma_symbols(n: int) -> sp.Matrix:
     return vector_symbols("g", n)
 
 
+def frame_gamma(n: int) -> sp.Matrix:
+    r"""$\gamma = (0, \dots, 0, g_{n-1}, g_n)^T$: every $\gamma \in \mathbb{R}^n$ is $h$ of such a vector
+    for some $h \in SO(n-1)$ ($hE_n = E_n$), so natural identities need only this frame."""
+    g = gamma_symbols(n)
+    return sp.Matrix([0] * (n - 2) + [g[n - 2], g[n - 1]])
+
+
+def sphere_symbols(n: int) -> tuple:
+    """The symbols of the gamma used at this n: generic for n = 3, the frame for n >= 4."""
+    g = gamma_symbols(n)
+    return tuple(g) if n == 3 else (g[n - 2], g[n - 1])
+
+
 def generic(n: int) -> tuple[sp.Matrix, sp.Matrix]:
-    r"""A generic $M \in \mathfrak{so}(n)$ (symbols ``m..``) and $\gamma$ (symbols ``g..``)."""
-    return skew_symbols("m", n), gamma_symbols(n)
+    r"""A generic $M \in \mathfrak{so}(n)$ (symbols ``m..``) and $\gamma$: fully generic for $n = 3$,
+    :func:`frame_gamma` for $n \ge 4$ (see FRAME)."""
+    return skew_symbols("m", n), (gamma_symbols(n) if n == 3 else frame_gamma(n))
+
+
+def sym_gamma(n: int) -> sp.Matrix:
+    """The symbolic gamma of :func:`sym_checks` at this n (generic for n = 3, the frame for n >= 4)."""
+    return gamma_symbols(n) if n == 3 else frame_gamma(n)
 
 
 def generic_vertical(n: int) -> tuple[sp.Matrix, sp.Matrix]:
-    r"""A generic point of $\mathcal{V}$: $M_0 = PAP$ (:func:`~symbolic.vertical.vertical_point`) and $\gamma_0$."""
-    g = gamma_symbols(n)
-    return vertical_point(skew_symbols("A", n), g).applyfunc(sp.expand), g
+    r"""A generic point of $\mathcal{V} = \Lambda^2\gamma^\perp$: for $n = 3$, $M_0 = PAP$
+    (:func:`~symbolic.vertical.vertical_point`) with generic $\gamma$; for $n \ge 4$, with $\gamma$ in
+    the frame, $M_0 = \sum_{i<j} A_{ij} f_i\wedge f_j$ over the basis $f = (E_1, \dots, E_{n-2},
+    (0, \dots, 0, g_n, -g_{n-1}))$ of $\gamma^\perp$."""
+    if n == 3:
+        g = gamma_symbols(n)
+        return vertical_point(skew_symbols("A", n), g).applyfunc(sp.expand), g
+    g = frame_gamma(n)
+    f = [sp.eye(n)[:, i] for i in range(n - 2)]
+    f.append(sp.Matrix([0] * (n - 2) + [g[n - 1], -g[n - 2]]))
+    A = skew_symbols("A", n - 1)
+    M0 = sp.zeros(n, n)
+    for i in range(n - 1):
+        for j in range(i + 1, n - 1):
+            M0 += A[i, j] * wedge(f[i], f[j])
+    return M0, g
 
 
 def sym_checks(residual: Callable[[int], object], ns: Sequence[int], *, sphere: bool = True,
-               label: str) -> Check:
+               label: str, uses_gamma: bool | None = None) -> Check:
     r"""``rational_identity(residual(n))`` modulo $\lVert\gamma\rVert^2 = 1$ for each $n$ in ``ns``
     (a square matrix residual on its entries $i \le j$, see :func:`_upper`)."""
     checks = []
     for n in ns:
-        sph = tuple(gamma_symbols(n)) if sphere else None
+        sph = sphere_symbols(n) if sphere else None
         chk = rational_identity(_upper(residual(n)), sphere=sph, samplers=SAMPLERS,
                                 label=f"{label}-n{n}")
         checks.append((n, chk))
     return combine([c for _, c in checks],
                    method=f"exact symbolic identity for n in {{{', '.join(str(n) for n in ns)}}}"
-                          + (" modulo ||gamma||^2 = 1" if sphere else ""))
+                          + (" modulo ||gamma||^2 = 1" if sphere else "")
+                          + (FRAME if (sphere if uses_gamma is None else uses_gamma) else ""))
 
 
 def _upper(residual):
