@@ -31,12 +31,15 @@ def L_gamma_matrix_3d() -> sp.Matrix:
 
 @lru_cache(maxsize=None)
 def angular_velocity_3d() -> sp.Matrix:
-    r"""$\Omega = L_\gamma^{-1} M$ solved exactly from eq:mom3D (Cramer's rule, each entry a
-    cancelled rational function of $M, \gamma, \mathbb{I}, b$); valid where $\det L_\gamma \neq 0$,
-    in particular on $\lVert\gamma\rVert = 1$ with $I_j, b > 0$ (S2.1:detL3D)."""
+    r"""$\Omega = L_\gamma^{-1} M$ solved exactly from eq:mom3D (Cramer's rule: expanded adjugate
+    times $M$ over the expanded determinant); valid where $\det L_\gamma \neq 0$, in particular on
+    $\lVert\gamma\rVert = 1$ with $I_j, b > 0$ (S2.1:detL3D).
+
+    No ``factor()``: multivariate factorisation here took from 3 s to 9 min depending on the
+    process's hash seed (Wang's algorithm), which made ``make generate`` slow and unpredictable."""
     L = L_gamma_matrix_3d()
-    adj, det = L.adjugate(), sp.factor(L.det())
-    return column([sp.factor(sp.expand((adj * column(M_))[i])) / det for i in range(3)])
+    adj, det = L.adjugate(), sp.expand(L.det())
+    return column([sp.expand((adj * column(M_))[i]) / det for i in range(3)])
 
 
 def kernels() -> list[Kernel]:
@@ -45,6 +48,8 @@ def kernels() -> list[Kernel]:
     inertia, b = Argument("inertia", I_), Argument("b", (b_,), scalar=True)
     Omega = angular_velocity_3d()
     Mdot, gdot = motion3d(column(M_), column(G_), Omega)
+    Mv, gv = column(M_), column(G_)
+    integrals = [(Mv.T * gv)[0], (Mv.T * Mv)[0], (Mv.T * Omega)[0] / 2]
     return [
         Kernel("L_gamma_3d", ("eq:mom3D",),
                "Matrix of L_gamma (eq:mom3D): M = L_gamma @ Omega; any gamma, inertia = diag(I).",
@@ -57,4 +62,12 @@ def kernels() -> list[Kernel]:
                "(dM/dt, dgamma/dt) = (M x Omega, gamma x Omega), Omega = L_gamma^{-1} M (eq:motion3D);\n"
                "    returns shape (..., 6). Domain as angular_velocity_3d.",
                (M, gamma, inertia, b), sp.Matrix.vstack(Mdot, gdot), (6,)),
+        Kernel("det_L_gamma_3d", ("eq:mom3D", "S2.1:detL3D"),
+               "det L_gamma (derived determinant of eq:mom3D, expanded); any gamma. Positive on\n"
+               "    |gamma| = 1 with I_j, b > 0 (S2.1:detL3D); the measure density is det^(-1/2).",
+               (gamma, inertia, b), sp.Matrix([sp.expand(L_gamma_matrix_3d().det())]), (1,)),
+        Kernel("integrals_3d", ("S2.1:integrals3D", "eq:mom3D"),
+               "(f1, f2, H) = (<M, gamma>, |M|^2, 1/2 <M, Omega>), Omega = L_gamma^{-1} M derived from\n"
+               "    eq:mom3D (S2.1:integrals3D). Domain as angular_velocity_3d.",
+               (M, gamma, inertia, b), sp.Matrix(integrals), (3,)),
     ]
