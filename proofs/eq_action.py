@@ -13,7 +13,9 @@ $L_\gamma^{-1}$, and therefore map solutions to solutions.
 
 What is proved. (i) $L_{h\gamma}(h\Omega h^{-1}) = hL_\gamma(\Omega)h^{-1}$ exactly for a *symbolic*
 $h$ — the Cayley transform $h = (I - S)^{-1}(I + S)$ of a generic $S \in \mathfrak{so}(n-1)$ (which
-covers every rotation without eigenvalue $-1$, a dense set) — for $n = 3, 4$, and for every $n$ by
+covers every rotation without eigenvalue $-1$, a dense set) — for $n = 3$; its infinitesimal form
+$L_\gamma([S, \Omega]) + \partial_\gamma L_\gamma(S\gamma)(\Omega) = [S, L_\gamma(\Omega)]$ for generic
+$S \in \mathfrak{so}(n-1)$ (which integrates to the connected group) for $n = 3, 4, 5$; and for every $n$ by
 naturality (each term of $L_\gamma$ is built from $\Omega$, $\gamma$, $E_n$ with products and wedges,
 and $hE_n = E_n$); since $L_\gamma$ is invertible (P:Measure), $L^{-1}_{h\gamma}(hMh^{-1}) =
 hL^{-1}_\gamma(M)h^{-1}$. (ii) The same for the derived closed form of $L_\gamma^{-1}$ and for the
@@ -86,6 +88,18 @@ def _L_equivariance(n: int):
     return L_gamma_axisym(h * Omega * h.T, h * g) - h * L_gamma_axisym(Omega, g) * h.T
 
 
+def _L_infinitesimal(n: int):
+    r"""$\frac{d}{dt}\big|_0 \big(L_{e^{tS}\gamma}(e^{tS}\Omega e^{-tS}) - e^{tS}L_\gamma(\Omega)e^{-tS}\big)$
+    for a generic $S \in \mathfrak{so}(n-1)$: zero for all $S$ iff $L$ is equivariant under the
+    connected group $SO(n-1)$."""
+    S = sp.zeros(n, n)
+    S[: n - 1, : n - 1] = skew_symbols("s", n - 1)
+    Omega, g = skew_symbols("w", n), gamma_symbols(n)
+    t = sp.Symbol("t")
+    moved = L_gamma_axisym(Omega + t * commutator(S, Omega), g + t * S * g)
+    return (moved.diff(t).subs(t, 0) - commutator(S, L_gamma_axisym(Omega, g))).applyfunc(sp.expand)
+
+
 def _inverse_equivariance(p: dict):
     h, M, g, av, bv = p["h"], p["M"], p["gamma"], p["a"], p["b"]
     hM, hg = printed.action(h, M, g)
@@ -103,7 +117,10 @@ def _field_equivariance(p: dict):
 @claim("eq:action", uses=("eq:SOnminus1", "eq:M-O-axi-symm", "P:Measure", "P:inversion",
                           "eq:motion-general"))
 def eq_action() -> Verdict:
-    L_eq = sym_checks(_L_equivariance, (3, 4), sphere=False, label="L-equiv")
+    L_eq = combine([sym_checks(_L_equivariance, (3,), sphere=False, label="L-equiv"),
+                    sym_checks(_L_infinitesimal, (3, 4, 5), sphere=False, label="L-inf")],
+                   method="exact symbolic: finite (Cayley h of a generic S) for n = 3; "
+                          "infinitesimal (generic S in so(n-1), generic gamma) for n = 3, 4, 5")
     inv_eq = combine([zero_at_points(_inverse_equivariance, lambda r, n=n: _rotation_point(r, n),
                                      count=1, label=f"inv-equiv-{n}") for n in range(3, 13)],
                      method="exact at seeded rational (M, gamma, h in SO(n-1)), n = 3..12")
@@ -111,8 +128,7 @@ def eq_action() -> Verdict:
                                    count=1, label=f"X-equiv-{n}") for n in range(3, 13)],
                    method="exact at seeded rational (M, gamma, h in SO(n-1)), n = 3..12")
     return Verdict.of_parts([
-        Verdict.decide(L_eq, method=L_eq.method + " with h the Cayley transform of a generic "
-                       "symbolic S in so(n-1); naturality covers all n").as_part(
+        Verdict.decide(L_eq, method=L_eq.method + "; naturality covers all n").as_part(
             "L_gamma is SO(n-1)-equivariant"),
         Verdict.decide(inv_eq).as_part("Omega -> h Omega h^{-1}"),
         Verdict.decide(X_eq).as_part("eq:motion-general is equivariant"),

@@ -53,6 +53,8 @@ SAMPLERS = {a: lambda r: points.rational(r, -1, 1, 8, nonzero=True),
 FRAME = (" (generic gamma for n = 3; for n >= 4 gamma = (0,..,0,s,x), no loss by "
          "SO(n-1)-naturality)")
 
+FRAME_ALL = " (gamma = (0,..,0,s,x), no loss by SO(n-1)-naturality)"
+
 REDUCTION = ("reduction argument (linear in M; operators act on span{E_n, gamma, u, v}, "
              "proofs/s4_common.py) covering all n >= 4 from the symbolic n = 4 check")
 
@@ -86,12 +88,12 @@ def sym_gamma(n: int) -> sp.Matrix:
     return gamma_symbols(n) if n == 3 else frame_gamma(n)
 
 
-def generic_vertical(n: int) -> tuple[sp.Matrix, sp.Matrix]:
+def generic_vertical(n: int, frame: bool = False) -> tuple[sp.Matrix, sp.Matrix]:
     r"""A generic point of $\mathcal{V} = \Lambda^2\gamma^\perp$: for $n = 3$, $M_0 = PAP$
     (:func:`~symbolic.vertical.vertical_point`) with generic $\gamma$; for $n \ge 4$, with $\gamma$ in
     the frame, $M_0 = \sum_{i<j} A_{ij} f_i\wedge f_j$ over the basis $f = (E_1, \dots, E_{n-2},
-    (0, \dots, 0, g_n, -g_{n-1}))$ of $\gamma^\perp$."""
-    if n == 3:
+    (0, \dots, 0, g_n, -g_{n-1}))$ of $\gamma^\perp$ (also for $n = 3$ when ``frame``)."""
+    if n == 3 and not frame:
         g = gamma_symbols(n)
         return vertical_point(skew_symbols("A", n), g).applyfunc(sp.expand), g
     g = frame_gamma(n)
@@ -106,19 +108,22 @@ def generic_vertical(n: int) -> tuple[sp.Matrix, sp.Matrix]:
 
 
 def sym_checks(residual: Callable[[int], object], ns: Sequence[int], *, sphere: bool = True,
-               label: str, uses_gamma: bool | None = None) -> Check:
+               label: str, uses_gamma: bool | None = None, frame_n3: bool = False) -> Check:
     r"""``rational_identity(residual(n))`` modulo $\lVert\gamma\rVert^2 = 1$ for each $n$ in ``ns``
-    (a square matrix residual on its entries $i \le j$, see :func:`_upper`)."""
+    (a square matrix residual on its entries $i \le j$, see :func:`_upper`). ``frame_n3``: the
+    residual uses the frame $\gamma$ also for $n = 3$."""
     checks = []
     for n in ns:
-        sph = sphere_symbols(n) if sphere else None
+        sph = (sphere_symbols(n) if not (frame_n3 and n == 3) else tuple(frame_gamma(3)[1:])) \
+            if sphere else None
         chk = rational_identity(_upper(residual(n)), sphere=sph, samplers=SAMPLERS,
                                 label=f"{label}-n{n}")
         checks.append((n, chk))
     return combine([c for _, c in checks],
                    method=f"exact symbolic identity for n in {{{', '.join(str(n) for n in ns)}}}"
                           + (" modulo ||gamma||^2 = 1" if sphere else "")
-                          + (FRAME if (sphere if uses_gamma is None else uses_gamma) else ""))
+                          + ((FRAME_ALL if frame_n3 else FRAME)
+                             if (sphere if uses_gamma is None else uses_gamma) else ""))
 
 
 def _upper(residual):

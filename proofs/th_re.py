@@ -32,13 +32,11 @@ Uses: eq:def-H-V, P:inversion, eq:action, eq:V-velocity, eq:aux-inversion.
 
 from __future__ import annotations
 
-import sympy as sp
-
 from proofs.ledger import Verdict, claim
 from proofs.s4_common import REDUCTION, a, b, combine, generic_vertical, point_checks, sym_checks
-from symbolic.algebra import commutator
+from symbolic.algebra import commutator, wedge
 from symbolic.axisym_inverse import inverse_closed_form
-from symbolic.axisymmetric import E_n
+from symbolic.axisymmetric import E_n, L_gamma_axisym
 from symbolic.printed import section4 as printed
 from symbolic.vertical import zeta
 
@@ -118,21 +116,27 @@ def th_re() -> Verdict:
     return Verdict.of_parts(parts, n_values=(3, 4, 12))
 
 
-def _corollary_residual(p: dict):
-    M0, g, av, bv = p["M"], p["gamma"], p["a"], p["b"]
+def _corollary(M0, g, av, bv):
+    r"""$L_\gamma([\zeta, \Omega_0]) + b(\Omega_0\zeta\gamma_0)\wedge\gamma_0 + b(\Omega_0\gamma_0)\wedge\zeta\gamma_0
+    - [\zeta, M_0]$: zero iff $D\Omega\cdot([\zeta, M_0], \zeta\gamma_0) = [\zeta, \Omega_0]$ (differentiate
+    $M = L_\gamma(\Omega)$ along the curve)."""
     z = zeta(M0, g, av, bv)
-    eps = sp.Symbol("epsilon")
-    moved = inverse_closed_form(M0 + eps * commutator(z, M0), g + eps * z * g, av, bv)
-    dOmega = moved.diff(eps).subs(eps, 0)
-    return dOmega - commutator(z, inverse_closed_form(M0, g, av, bv))
+    Om = inverse_closed_form(M0, g, av, bv)
+    zg = z * g
+    return (L_gamma_axisym(commutator(z, Om), g, av, bv) + bv * wedge(Om * zg, g)
+            + bv * wedge(Om * g, zg) - commutator(z, M0))
 
 
 @claim("Th:Re-corollary", uses=("Th:Re", "eq:action"))
 def th_re_corollary() -> Verdict:
-    inf = point_checks(_corollary_residual, range(3, 9), vertical=True, label="cor")
-    return Verdict.decide(inf, n_values=(3, 8), method=inf.method + " (infinitesimal form d/dt "
-                          "Omega(M(t), gamma(t)) = [zeta, Omega] at t = 0); for all t and all n: "
-                          "Omega -> h Omega h^{-1} under SO(n-1) (eq:action) with h = exp(zeta t)")
+    sym = sym_checks(lambda n: _corollary(*generic_vertical(n, frame=True), a, b), (3, 4),
+                     label="cor", frame_n3=True)
+    inf = combine([sym, point_checks(lambda p: _corollary(p["M"], p["gamma"], p["a"], p["b"]),
+                                     range(5, 13), vertical=True, label="cor")])
+    return Verdict.decide(inf, n_values=(3, 4, 12), method=inf.method + " (infinitesimal form: "
+                          "d/dt Omega(M(t), gamma(t)) = [zeta, Omega] at t = 0)" + LINEAR + "; for all t "
+                          "it is the equivariance Omega -> h Omega h^{-1} (eq:action) with "
+                          "h = exp(zeta t) in SO(n-1)")
 
 
 @claim("eq:xiVnD", uses=("Th:Re", "eq:M-O-axi-symm", "eq:V-velocity"))
