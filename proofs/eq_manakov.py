@@ -3,7 +3,7 @@ r"""eq:Manakov, eq:itildendim and eq:solManakov — the $n$-dimensional rigid bo
 Claims (Section 4.4, lines 683-745):
 
 .. math::
-    \tilde{\mathbb{I}}(\dot\Omega) = [\tilde{\mathbb{I}}(\Omega), \Omega],\ \dot\gamma = -\Omega\gamma,\ 
+    \tilde{\mathbb{I}}(\dot\Omega) = [\tilde{\mathbb{I}}(\Omega), \Omega],\; \dot\gamma = -\Omega\gamma,\;
     \tilde{\mathbb{I}} = \mathbb{I} + b\,\mathrm{Id}\ \text{(eq:Manakov)};\quad
     \tilde{\mathbb{I}}(\Omega) = (2+b)\Omega + a(\Omega E_n)\wedge E_n\ \text{(eq:itildendim)};
 
@@ -35,7 +35,15 @@ import sympy as sp
 
 from proofs.ledger import Verdict, claim
 from proofs.s4_common import (
-    REDUCTION, a, b, combine, frame_gamma, generic_vertical, point_checks, sym_checks, sym_gamma,
+    REDUCTION,
+    a,
+    b,
+    combine,
+    frame_gamma,
+    generic_vertical,
+    point_checks,
+    sym_checks,
+    sym_gamma,
 )
 from symbolic.algebra import commutator, skew_symbols
 from symbolic.axisym_inverse import inverse_closed_form

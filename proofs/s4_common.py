@@ -158,7 +158,9 @@ def point_checks(residual: Callable[[dict], object], ns: Iterable[int], *, count
     ns = list(ns)
     checks = []
     for n in ns:
-        sample = (lambda r, n=n: random_point(r, n, vertical=vertical))
+        def sample(r, n=n):
+            return random_point(r, n, vertical=vertical)
+
         checks.append(zero_at_points(residual, sample, count=count, label=f"{label}-n{n}",
                                      describe="V" if vertical else "so(n) x S^{n-1}"))
     return combine(checks, method=f"exact at {count} seeded rational point(s) "

@@ -39,7 +39,7 @@ def _explicit_point(n: int):
     pairs = [(i, j) for i in range(n - 1) for j in range(i + 1, n - 1)]
     for coeffs in itertools.product((0, 1, 2), repeat=len(pairs)):
         M0 = sp.zeros(n, n)
-        for c, (i, j) in zip(coeffs, pairs):
+        for c, (i, j) in zip(coeffs, pairs, strict=True):
             M0 += c * wedge(f[i], f[j])
         if M0 == sp.zeros(n, n):
             continue
@@ -76,7 +76,7 @@ def s4_zeta_vs_chi() -> Verdict:
     return Verdict.of_parts([
         Verdict.decide(same3).as_part("n = 3: zeta = chi on V"),
         *[Verdict.decide(p).as_part(f"n = {n}: [chi - zeta, Omega_0] != 0 at an explicit point of V")
-          for n, p in zip((4, 5, 6), points)],
+          for n, p in zip((4, 5, 6), points, strict=True)],
     ], n_values=(3, 4, 5, 6))
 
 

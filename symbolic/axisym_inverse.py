@@ -49,7 +49,7 @@ def inverse_coefficients() -> tuple[sp.Expr, ...]:
     M = skew_symbols("m", n)
     gamma = sp.Matrix([0, 0, s, x])
     cs = sp.symbols("c0:6")
-    Omega = sum((c * T for c, T in zip(cs, ansatz_terms(M, gamma))), sp.zeros(n, n))
+    Omega = sum((c * T for c, T in zip(cs, ansatz_terms(M, gamma), strict=True)), sp.zeros(n, n))
     residual = L_gamma_axisym(Omega, gamma, a, b) - M
     m_syms = sorted(M.free_symbols, key=sp.default_sort_key)
     equations = []
@@ -80,7 +80,7 @@ def inverse_closed_form(M: sp.Matrix, gamma: sp.Matrix, a_=a, b_=b) -> sp.Matrix
     sub = {a: a_, b: b_, x: xval}
     coeffs = [c.subs(sub, simultaneous=True) for c in inverse_coefficients()]
     terms = ansatz_terms(M, gamma)
-    return sum((c * T for c, T in zip(coeffs, terms)), sp.zeros(M.rows, M.rows))
+    return sum((c * T for c, T in zip(coeffs, terms, strict=True)), sp.zeros(M.rows, M.rows))
 
 
 def inverse_denominator(a_=a, b_=b, x_=x) -> sp.Expr:
@@ -105,4 +105,4 @@ def inverse_numerator(M: sp.Matrix, gamma: sp.Matrix, a_=a, b_=b) -> sp.Matrix:
     sub = {a: a_, b: b_, x: gamma[gamma.rows - 1]}
     coeffs = [sp.expand(c.subs(sub, simultaneous=True)) for c in _numerator_coefficients()]
     terms = ansatz_terms(M, gamma)
-    return sum((c * T for c, T in zip(coeffs, terms)), sp.zeros(M.rows, M.rows)).applyfunc(sp.expand)
+    return sum((c * T for c, T in zip(coeffs, terms, strict=True)), sp.zeros(M.rows, M.rows)).applyfunc(sp.expand)

@@ -66,7 +66,7 @@ def L_matrix_axisym(gamma: sp.Matrix, a=a, b=b) -> sp.Matrix:
 def _coords_in(target: sp.Matrix, spanning: list[sp.Matrix], reduce_rule: dict) -> list[sp.Expr]:
     """Coefficients c with target = sum c_k spanning_k (exact linear solve on the entries)."""
     cs = sp.symbols(f"c0:{len(spanning)}")
-    eqs = [sp.expand((target - sum((c * S for c, S in zip(cs, spanning)), sp.zeros(*target.shape)))[i])
+    eqs = [sp.expand((target - sum((c * S for c, S in zip(cs, spanning, strict=True)), sp.zeros(*target.shape)))[i])
            for i in range(len(target))]
     eqs = [sp.expand(e.subs(reduce_rule)) for e in eqs]
     sol = sp.solve([e for e in eqs if e != 0], cs, dict=True)

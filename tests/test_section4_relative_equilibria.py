@@ -65,11 +65,10 @@ def _integrate(n: int, a, b, g, M, T):
 
     def skew(coords):
         S = mp.matrix(n, n)
-        for c, (i, j) in zip(coords, pairs):
+        for c, (i, j) in zip(coords, pairs, strict=True):
             S[i, j], S[j, i] = c, -c
         return S
 
-    E = mp.matrix([0] * (n - 1) + [1])
     basis = [skew([1 if k == m else 0 for k in range(len(pairs))]) for m in range(len(pairs))]
 
     def wedge(u, v):
