@@ -47,7 +47,7 @@ def test_taylor_reference_converges_in_precision():
     t = np.array([0.0, 2.5, 5.0])
     r30 = taylor.integrate(f, y0, t, dps=30)
     r40 = taylor.integrate(f, y0, t, dps=40)
-    diff = max(abs(x - y) for x, y in zip(r30.y_high.ravel(), r40.y_high.ravel()))
+    diff = max(abs(x - y) for x, y in zip(r30.y_high.ravel(), r40.y_high.ravel(), strict=True))
     assert diff < 1e-28
     d = dop853.integrate(f, y0, t, rtol=1e-13, atol=1e-13)
     assert np.max(np.abs(d.y - r30.y)) < 1e-11
