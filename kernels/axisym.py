@@ -66,7 +66,7 @@ def L_gamma(Omega, gamma, a, b) -> np.ndarray:
 
 
 def _terms_apply(c: np.ndarray, M: np.ndarray, gamma: np.ndarray) -> np.ndarray:
-    """$\sum_k c_k T_k(M)$ with the six ansatz terms of symbolic.axisym_inverse (broadcast)."""
+    r"""$\sum_k c_k T_k(M)$ with the six ansatz terms of symbolic.axisym_inverse (broadcast)."""
     n = M.shape[-1]
     e = np.zeros(n)
     e[-1] = 1.0
