@@ -35,7 +35,14 @@ import sympy as sp
 
 from proofs.ledger import Verdict, claim
 from proofs.s4_common import (
-    REDUCTION, a, b, combine, frame_gamma, generic, point_checks, sym_checks,
+    REDUCTION,
+    a,
+    b,
+    combine,
+    frame_gamma,
+    generic,
+    point_checks,
+    sym_checks,
 )
 from symbolic.algebra import commutator, skew_symbols, wedge
 from symbolic.axisym_inverse import inverse_closed_form

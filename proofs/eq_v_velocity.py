@@ -28,13 +28,12 @@ from __future__ import annotations
 import sympy as sp
 
 from proofs.ledger import Verdict, claim
-from proofs.s4_common import REDUCTION, a, b, combine, random_point, sym_gamma, sym_checks
+from proofs.s4_common import REDUCTION, a, b, combine, random_point, sym_checks, sym_gamma
 from symbolic.algebra import skew_symbols
 from symbolic.axisym_inverse import inverse_closed_form
 from symbolic.axisymmetric import E_n, L_gamma_axisym
 from symbolic.exact import zero_at_points
 from symbolic.printed import section4 as printed
-from symbolic.vertical import vertical_point
 
 
 def _identity(n: int):

@@ -39,10 +39,17 @@ import sympy as sp
 from sympy.polys.matrices import DomainMatrix
 
 from proofs.ledger import Verdict, claim
-from proofs.s4_common import a, b, combine, fact, point_checks, sym_checks, sym_gamma
+from proofs.s4_common import a, b, combine, point_checks, sym_checks, sym_gamma
 from symbolic.algebra import vec, vector_symbols, wedge
 from symbolic.axisymmetric import (
-    E_n, L_gamma_axisym, L_matrix_axisym, block_C, det_L_axisym, frame_coefficients, mass_tensor, x,
+    E_n,
+    L_gamma_axisym,
+    L_matrix_axisym,
+    block_C,
+    det_L_axisym,
+    frame_coefficients,
+    mass_tensor,
+    x,
 )
 from symbolic.exact import rational_identity
 from symbolic.measure import chaplygin_divergence_at

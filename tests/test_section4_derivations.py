@@ -16,7 +16,14 @@ from symbolic import points
 from symbolic.algebra import commutator, unvec, vec
 from symbolic.axisym_inverse import inverse_closed_form, inverse_denominator, inverse_numerator
 from symbolic.axisymmetric import (
-    E_n, L_gamma_axisym, L_matrix_axisym, Delta, block_C, det_L_axisym, mass_tensor, x,
+    Delta,
+    E_n,
+    L_gamma_axisym,
+    L_matrix_axisym,
+    block_C,
+    det_L_axisym,
+    mass_tensor,
+    x,
 )
 from symbolic.model import angular_velocity
 from symbolic.vertical import chi, inertia_tilde, vertical_point, zeta
