@@ -1,0 +1,72 @@
+"""The code generator: a hand edit of generated/ is caught, and output is deterministic.
+
+The stale check is :func:`symbolic.codegen.stale_report`, called by ``make verify``
+(``python -m proofs --check-generated``). These tests edit a *temporary copy* of generated/, never
+the real files.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from symbolic import codegen
+
+
+@pytest.fixture(scope="module")
+def fresh(tmp_path_factory) -> Path:
+    """generated/ regenerated once into a temporary folder."""
+    out = tmp_path_factory.mktemp("fresh")
+    codegen.write(out)
+    return out
+
+
+def test_checked_in_generated_is_current(fresh):
+    """generated/ in the repository equals what symbolic/ produces now (else: `make generate`)."""
+    assert codegen.diff_report(codegen.GENERATED, fresh) == ""
+
+
+def test_hand_edit_is_detected_with_diff_and_fix(fresh, tmp_path):
+    """Editing one generated line makes the stale report non-empty, show the line and the fix."""
+    copy = tmp_path / "generated"
+    shutil.copytree(codegen.GENERATED, copy)
+    target = copy / "axisym.py"
+    text = target.read_text()
+    line = next(li for li in text.splitlines() if li.strip().startswith("out[0] = "))
+    target.write_text(text.replace(line, line + " * 1.0000001", 1))
+    report = codegen.stale_report(copy)
+    assert "generated/ is stale" in report
+    shown = report.splitlines()
+    assert "-" + line + " * 1.0000001" in shown and "+" + line in shown  # the edit, and what is due
+    assert "make generate" in report
+    # a deleted file and an extra file are stale too
+    target.write_text(text)  # restored: no difference (diff_report is stale_report's comparison)
+    assert codegen.diff_report(copy, fresh) == ""
+    (copy / "reduced.py").unlink()
+    assert "reduced.py" in codegen.diff_report(copy, fresh)
+
+
+def test_banner(fresh):
+    """Every generated module names its producer, claims, input hash, 'do not edit' and op counts,
+    and imports NumPy only."""
+    for stem, producer in codegen.MODULES:
+        text = (fresh / f"{stem}.py").read_text()
+        head = text[:3000]
+        assert producer in head and "DO NOT EDIT" in head and "Source hash (sha256" in head
+        assert "Operation counts after CSE:" in head and "Claims:" in head
+        imports = {li.strip() for li in text.splitlines() if li.startswith(("import ", "from "))}
+        assert imports == {"import numpy", "import numpy as np"}
+
+
+def test_deterministic_across_hash_seeds(fresh, tmp_path):
+    """Same input => byte-identical files, whatever PYTHONHASHSEED the generating process has."""
+    out = tmp_path / "seeded"
+    code = f"from pathlib import Path; from symbolic.codegen import write; write(Path({str(out)!r}))"
+    env = dict(os.environ, PYTHONHASHSEED="12345")
+    subprocess.run([sys.executable, "-c", code], check=True, env=env, cwd=codegen.ROOT, timeout=120)
+    assert codegen.diff_report(out, fresh) == ""
