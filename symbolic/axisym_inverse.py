@@ -32,7 +32,8 @@ TERM_NAMES = (r"M", r"(M\gamma)\wedge\gamma", r"(ME_n)\wedge E_n", r"(M\gamma)\w
 
 
 def ansatz_terms(M: sp.Matrix, gamma: sp.Matrix) -> list[sp.Matrix]:
-    r"""The six equivariant maps $T_0(M), \dots, T_5(M)$ above; $M \in \mathfrak{so}(n)$, $\gamma \in \mathbb{R}^n$."""
+    r"""The six equivariant maps $T_0(M), \dots, T_5(M)$ of the ansatz for $L_\gamma^{-1}$ (P:inversion);
+    $M \in \mathfrak{so}(n)$, $\gamma \in \mathbb{R}^n$, any $n \ge 3$."""
     e = E_n(M.rows)
     Mg, Me = M * gamma, M * e
     return [M, wedge(Mg, gamma), wedge(Me, e), wedge(Mg, e), wedge(Me, gamma),
