@@ -20,6 +20,12 @@ $g\Omega\gamma = g_0e^{Wt}\Omega_0e^{-Xt}e^{Xt}\gamma_0 = g_0e^{Wt}\Omega_0\gamm
 $g(t)^TE_n = \gamma(t)$ needs $W\gamma_0 = 0$: true for $X = -\Omega_0$, and for $X = \zeta$ by Th:Re
 ($\zeta\gamma_0 = -\Omega_0\gamma_0$). For $X = -\Omega_0$: $W = 0$, $g = g_0e^{\Omega_0t}$ and the contact
 point moves on a straight line, $c(t) = c_0 + rt\,g_0\Omega_0\gamma_0$.
+
+Horizontal momentum, $n = 4$, reduced invariants only (S5:H-linear, corrected; eq:A-on-J;
+S5:H-SO3): $(x(t), G(t))$ and $A(x, G; h)$ come from :mod:`generated` (with $F_2, H$ from the
+reduced integrals at $t = 0$); the remaining invariants follow from the equations that define
+$\mathcal H/SO(3)$ (row S5:H-SO3, verdict holds) and from $F_2 = A + B$ (S5:red-integrals):
+$E = F_1 = 0$, $\delta = -xA$, $B = F_2 - A$.
 """
 
 from __future__ import annotations
@@ -27,8 +33,9 @@ from __future__ import annotations
 import numpy as np
 
 from simulate import so
+from simulate.kernels import active
 
-__all__ = ["relative_equilibrium"]
+__all__ = ["relative_equilibrium", "horizontal"]
 
 
 def relative_equilibrium(X: np.ndarray, M0: np.ndarray, gamma0: np.ndarray, Omega0: np.ndarray,
@@ -39,11 +46,25 @@ def relative_equilibrium(X: np.ndarray, M0: np.ndarray, gamma0: np.ndarray, Omeg
     Returns arrays ``M, Omega (S, n, n)``, ``gamma (S, n)``, and with ``g0`` also
     ``g (S, n, n)``, ``c (S, n)`` ($c_0 = 0$). Domain: $X\gamma_0 = -\Omega_0\gamma_0$, $X E_n = 0$
     or $X = -\Omega_0$ (not checked here: the planner only calls it on such points)."""
-    E = so.expm(X[None] * t[:, None, None])
+    E = so.expm_skew_t(X, t)
     Et = np.swapaxes(E, -1, -2)
     out = {"M": E @ M0 @ Et, "gamma": E @ gamma0, "Omega": E @ Omega0 @ Et}
     if g0 is not None:
         W = Omega0 + X
-        out["g"] = g0 @ so.expm(W[None] * t[:, None, None]) @ Et
+        out["g"] = g0 @ so.expm_skew_t(W, t) @ Et
         out["c"] = radius * (so.expm_integral(W, Omega0 @ gamma0, t) @ g0.T)
     return out
+
+
+def horizontal(r0: np.ndarray, a: float, b: float, t: np.ndarray) -> np.ndarray:
+    r"""$r(t) = (A, B, E, G, F_1, x, \delta)(t)$ on $\mathcal H/SO(3)$ from $r_0$ (``(count, 7)``), sampled at
+    ``t``; shape ``(S, count, 7)``. Domain: $n = 4$, $(M_0, \gamma_0)\in\mathcal H$, $|x| < 1$ along
+    the motion (S5:H-linear, eq:A-on-J, S5:H-SO3; see the module docstring)."""
+    k = active()
+    F = k.require("reduced_integrals")(r0, a, b)
+    F2, H = F[..., 1], F[..., 3]
+    xG = k.require("horizontal")(r0[..., 5], r0[..., 3], F2, H, a, b, t[:, None])
+    x, G = xG[..., 0], xG[..., 1]
+    A = k.require("horizontal_A")(x, G, H, a, b)[..., 0]
+    zero = np.zeros_like(x)
+    return np.stack([A, F2 - A, zero, G, zero, x, -x * A], axis=-1)

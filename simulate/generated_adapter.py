@@ -23,10 +23,16 @@ __all__ = ["bind", "RUNTIME_MODULES"]
 RUNTIME_MODULES = ("kernels.axisym", "generated.runtime", "generated.axisym_runtime")
 
 
+_BROKEN: dict[str, str] = {}
+
+
 def _module(name):
     try:
         return importlib.import_module(name)
     except ImportError:
+        return None
+    except SyntaxError as exc:  # e.g. an invalid escape under -W error: report, do not crash
+        _BROKEN[name] = f"{name} does not import ({exc.msg}, {exc.filename}:{exc.lineno})"
         return None
 
 
@@ -69,8 +75,10 @@ _SIZES = {k: int(np.prod(v)) for k, v in _SHAPES.items()}
 
 
 def _missing(what, n):
+    broken = "; ".join(_BROKEN.values())
     raise KernelMissing(f"{what} for n = {n}: generated/ has component kernels for n = 3, 4 only "
-                        f"and no runtime assembly for other n ({', '.join(RUNTIME_MODULES)})")
+                        f"and no runtime assembly for other n ({', '.join(RUNTIME_MODULES)})"
+                        + (f"; {broken}" if broken else ""))
 
 
 def bind() -> Kernels:
@@ -117,4 +125,5 @@ def bind() -> Kernels:
     return Kernels(name="generated", L_gamma=L_gamma, angular_velocity=angular_velocity,
                    zeta=zeta, reduced_field=reduced_field, reduced_integrals=reduced_integrals,
                    horizontal=horizontal,
+                   horizontal_A=getattr(red, "horizontal_A", None) if red is not None else None,
                    note="generated/axisym.py" + (f" + {runtime.__name__}" if runtime else ""))

@@ -11,7 +11,8 @@ $a, b$: floats):
 * ``reduced_field(r, a, b) -> rdot``          — eq:red-system on $r = (A, B, E, G, F_1, x, \delta)$,
   optional;
 * ``reduced_integrals(r, a, b) -> (F1, F2, F3, H)`` — S5:red-integrals, optional;
-* ``horizontal(x0, G0, F2, H, a, b, t) -> (x, G)`` — S5:H-linear solution, optional.
+* ``horizontal(x0, G0, F2, H, a, b, t) -> (x, G)`` — S5:H-linear solution (corrected), optional;
+* ``horizontal_A(x, G, h, a, b) -> A`` — eq:A-on-J, $A$ on $\mathcal H/SO(3)\cap\{H = h\}$, optional.
 
 A missing optional kernel is reported by :meth:`Kernels.missing`; the planner then falls back to a
 model that does not need it and says so. :func:`active` returns the kernels in use (by default those
@@ -28,7 +29,7 @@ from dataclasses import dataclass, fields
 
 __all__ = ["Kernels", "KernelMissing", "active", "use", "from_generated", "OPTIONAL"]
 
-OPTIONAL = ("zeta", "reduced_field", "reduced_integrals", "horizontal")
+OPTIONAL = ("zeta", "reduced_field", "reduced_integrals", "horizontal", "horizontal_A")
 
 
 class KernelMissing(RuntimeError):
@@ -46,6 +47,7 @@ class Kernels:
     reduced_field: Callable | None = None
     reduced_integrals: Callable | None = None
     horizontal: Callable | None = None
+    horizontal_A: Callable | None = None
     note: str = ""
 
     def missing(self) -> tuple[str, ...]:

@@ -105,10 +105,10 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
     needs = ["reduced_integrals"] if "integrals" in wants else []
     if reduced_only and all(families.claim_residual("horizontal", M, g) <= tol
                             for M, g in zip(scene.M0, scene.gamma0, strict=True)):
-        if k.has("horizontal") and all(k.has(x) for x in needs):
+        if all(k.has(x) for x in ("horizontal", "horizontal_A", "reduced_integrals")):
             return make("horizontal-4D", "n = 4, horizontal momentum and only reduced outputs: "
                         "the linear system for (x, G) (S5:H-linear)")
-        skipped.append("horizontal closed form (S5:H-linear): its kernel is not in generated/")
+        skipped.append("horizontal closed form (S5:H-linear): its kernels are not in generated/")
     if reduced_only:
         missing = [x for x in ["reduced_field"] + needs if not k.has(x)]
         if not missing:

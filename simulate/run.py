@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from simulate import so
-from simulate.closed_forms import relative_equilibrium
+from simulate.closed_forms import horizontal, relative_equilibrium
 from simulate.field import FullField, ReducedField
 from simulate.integrators import dop853, lie, taylor
 from simulate.kernels import active
@@ -93,10 +93,9 @@ def execute(scene: Scene, plan: Plan, progress: bool = True) -> Trajectory:
             traj.data[key] = np.stack([p[key] for p in parts], axis=1)
         traj.calls = 1
     elif plan.model == "horizontal-4D":
-        r = active().require("horizontal")(reduced_invariants(scene.M0, scene.gamma0),
-                                           scene.a, scene.b, t)
-        traj.data["reduced"] = r
-        traj.calls = 1
+        traj.data["reduced"] = horizontal(reduced_invariants(scene.M0, scene.gamma0),
+                                          scene.a, scene.b, t)
+        traj.calls = 3
     elif plan.model == "reduced-7D":
         f = ReducedField(scene.a, scene.b)
         r0 = reduced_invariants(scene.M0, scene.gamma0)

@@ -8,7 +8,7 @@ Definitions only (no derived formula lives here):
 * coordinates ``vec``/``unvec`` in the basis $E_i\wedge E_j$, $i<j$ (as :mod:`symbolic.algebra`);
 * the 4D blocks $M = \begin{pmatrix}\hat k & u\\ -u^T & 0\end{pmatrix}$, $\gamma = (q, x)$
   (Section 5, before eq:motion-n4), with $\hat w v = w\times v$;
-* the exponential of skew matrices and $\int_0^t e^{Ws}\,ds\,v$ (Van Loan block exponential).
+* the exponential of skew matrices, $e^{Xt}$ on a time grid and $\int_0^t e^{Ws}\,ds\,v$.
 """
 
 from __future__ import annotations
@@ -17,10 +17,9 @@ import math
 from functools import cache
 
 import numpy as np
-from scipy.linalg import expm as _expm
 
 __all__ = [
-    "so_dim", "pairs", "vec", "unvec", "wedge", "commutator", "killing", "expm", "expm_integral",
+    "so_dim", "pairs", "vec", "unvec", "wedge", "commutator", "killing", "expm_skew_t", "expm_integral",
     "hat", "split4", "join4", "rotation_to", "expm_small",
 ]
 
@@ -77,12 +76,21 @@ def killing(A: np.ndarray, B: np.ndarray) -> np.ndarray:
     return -0.5 * np.einsum("...ij,...ji->...", A, B)
 
 
-def expm(X: np.ndarray) -> np.ndarray:
-    r"""$\exp X$ for square ``X`` of shape ``(..., n, n)`` (SciPy Padé, batched); in $SO(n)$ for skew $X$."""
-    X = np.asarray(X, dtype=float)
-    if X.ndim == 2:
-        return _expm(X)
-    return _expm(X.reshape((-1,) + X.shape[-2:])).reshape(X.shape)
+def _spectral(X: np.ndarray):
+    r"""$iX = V\Lambda V^*$ (Hermitian eigendecomposition) of one real skew matrix."""
+    lam, V = np.linalg.eigh(1j * np.asarray(X, dtype=float))
+    return lam, V
+
+
+def expm_skew_t(X: np.ndarray, t: np.ndarray) -> np.ndarray:
+    r"""$e^{Xt}$ for one skew ``X`` (``(n, n)``) at every time of ``t``; shape ``(len(t), n, n)``.
+
+    From one Hermitian eigendecomposition $iX = V\Lambda V^*$: $e^{Xt} = Ve^{-i\Lambda t}V^*$,
+    orthogonal to rounding for every $t$ (no scaling and squaring, so no error growth with
+    $\|Xt\|$ beyond the phase error $\varepsilon\,|\lambda| t$ inherent in $t$)."""
+    lam, V = _spectral(X)
+    phase = np.exp(-1j * np.outer(np.asarray(t, dtype=float), lam))
+    return np.real(np.einsum("ik,tk,jk->tij", V, phase, V.conj()))
 
 
 def expm_small(X: np.ndarray) -> np.ndarray:
@@ -90,7 +98,7 @@ def expm_small(X: np.ndarray) -> np.ndarray:
 
     Meant for the small arguments of one integrator step: after scaling to $\|Y\|_1 \le 1/4$ the
     degree $d$ is the least with $\|Y\|^{d+1}/(d+1)! < 2^{-60}$ (at most 12), so for skew $X$ the
-    result is orthogonal to rounding. Several times cheaper than :func:`expm` on tiny matrices."""
+    result is orthogonal to rounding. Several times cheaper than SciPy's ``expm`` on tiny matrices."""
     X = np.asarray(X, dtype=float)
     norm = float(np.max(np.sum(np.abs(X), axis=-2))) if X.size else 0.0
     s = max(0, math.ceil(math.log2(norm / 0.25))) if norm > 0.25 else 0
@@ -110,15 +118,14 @@ def expm_small(X: np.ndarray) -> np.ndarray:
 
 
 def expm_integral(W: np.ndarray, v: np.ndarray, t: np.ndarray) -> np.ndarray:
-    r"""$\int_0^{t} e^{Ws}\,ds\; v$ for each time in ``t`` (Van Loan: the top-right block of
-    $\exp\begin{pmatrix}W & v\\ 0 & 0\end{pmatrix}t$). ``W`` is ``(n, n)``, ``v`` is ``(n,)``;
-    returns ``(len(t), n)``."""
-    n = W.shape[-1]
-    big = np.zeros((n + 1, n + 1))
-    big[:n, :n] = W
-    big[:n, n] = v
+    r"""$\int_0^{t} e^{Ws}\,ds\; v$ for one skew ``W`` (``(n, n)``), ``v`` (``(n,)``), at each time of
+    ``t``; returns ``(len(t), n)``. With $iW = V\Lambda V^*$: $\int_0^te^{-i\lambda s}ds =
+    t\,e^{-i\lambda t/2}\operatorname{sinc}(\lambda t/2\pi)$ (no $0/0$ at $\lambda = 0$)."""
+    lam, V = _spectral(W)
     t = np.asarray(t, dtype=float)
-    return expm(big[None] * t[:, None, None])[:, :n, n]
+    lt = np.outer(t, lam)
+    weight = t[:, None] * np.exp(-0.5j * lt) * np.sinc(lt / (2 * np.pi))
+    return np.real(np.einsum("ik,tk,jk,j->ti", V, weight, V.conj(), v))
 
 
 def hat(w: np.ndarray) -> np.ndarray:

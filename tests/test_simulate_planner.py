@@ -21,7 +21,8 @@ def _expected(stem: str) -> str:
         "vertical5d": "vertical" if k.has("zeta") else "full",
         "steady4d": "constant-Omega",   # P:steady-rot
         "spherical6d": "constant-Omega",  # a = 0
-        "horizontal4d": "horizontal-4D" if k.has("horizontal") else reduced,
+        "horizontal4d": "horizontal-4D" if k.has("horizontal") and k.has("horizontal_A")
+        and k.has("reduced_integrals") else reduced,
         "reduced4d": reduced,
         "ensemble3d": "full",
         "long4d": "full",               # method = "lie" asks for the full system
