@@ -58,12 +58,12 @@ def _component(gen, stem, n):
 
     def call(*args):
         *arrays, a, b = args
-        if all(np.ndim(v) <= 2 and np.size(v) == np.shape(v)[-1] for v in arrays):
-            flat = [float(c) for v in arrays for c in np.ravel(v)]
+        arrays = [np.asarray(v, dtype=float) for v in arrays]
+        if all(v.ndim <= 2 and v.size == v.shape[-1] for v in arrays):
+            flat = [c for v in arrays for c in v.ravel().tolist()]
             out = [0.0] * _SIZES[(stem, n)]
             block(*flat, float(a), float(b), out)
-            shape = np.shape(arrays[0])[:-1]
-            return np.array(out).reshape(shape + _SHAPES[(stem, n)])
+            return np.array(out).reshape(arrays[0].shape[:-1] + _SHAPES[(stem, n)])
         return fn(*args)
     return call
 

@@ -100,7 +100,7 @@ def expm_small(X: np.ndarray) -> np.ndarray:
     degree $d$ is the least with $\|Y\|^{d+1}/(d+1)! < 2^{-60}$ (at most 12), so for skew $X$ the
     result is orthogonal to rounding. Several times cheaper than SciPy's ``expm`` on tiny matrices."""
     X = np.asarray(X, dtype=float)
-    norm = float(np.max(np.sum(np.abs(X), axis=-2))) if X.size else 0.0
+    norm = float(np.abs(X).sum(axis=-2).max()) if X.size else 0.0
     s = max(0, math.ceil(math.log2(norm / 0.25))) if norm > 0.25 else 0
     Y = X / (2.0 ** s) if s else X
     r = norm / 2.0 ** s

@@ -30,7 +30,7 @@ __all__ = ["integrate", "step"]
 
 
 def _act(Q, M, gamma):
-    return Q @ M @ np.swapaxes(Q, -1, -2), np.einsum("...ij,...j->...i", Q, gamma)
+    return Q @ M @ np.swapaxes(Q, -1, -2), (Q @ gamma[..., None])[..., 0]
 
 
 def step(field, M, gamma, h):
