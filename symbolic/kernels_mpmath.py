@@ -89,3 +89,59 @@ def mp_abs_eval(exprs: Sequence[sp.Expr], values: Mapping[sp.Symbol, object]) ->
     vals = {s: to_mpf(v) if not isinstance(v, mpmath.mpf) else v for s, v in values.items()}
     memo: dict = {}
     return [_walk(sp.sympify(e), vals, True, memo) for e in exprs]
+
+
+# ---------------------------------------------------------------------------------------------
+# Independent references from the definitions (no derived formula): L_gamma by eq:M-O with
+# J = Id + a E_n E_n^T (eq:axisymm), Omega by an mpmath LU solve, block notation of S:4D.
+# ---------------------------------------------------------------------------------------------
+
+def mp_pairs(n: int) -> list[tuple[int, int]]:
+    """Index pairs i < j (lexicographic): the coordinates ``vec`` of symbolic.algebra."""
+    return [(i, j) for i in range(n) for j in range(i + 1, n)]
+
+
+def mp_unvec(v, n: int) -> mpmath.matrix:
+    """The skew n x n mpmath matrix with coordinates ``v``."""
+    A = mpmath.zeros(n, n)
+    for (i, j), c in zip(mp_pairs(n), v):
+        A[i, j], A[j, i] = c, -c
+    return A
+
+
+def mp_vec(A, n: int) -> list:
+    """Coordinates A_ij, i < j."""
+    return [A[i, j] for i, j in mp_pairs(n)]
+
+
+def mp_L_matrix(gamma, a, b) -> mpmath.matrix:
+    r"""Matrix of $L_\gamma(\Omega) = \mathbb{J}\Omega + \Omega\mathbb{J} + b(\Omega\gamma)\wedge\gamma$,
+    $\mathbb{J} = \mathrm{Id} + aE_nE_n^T$ (eq:M-O, eq:axisymm), in the basis $E_i\wedge E_j$; any $\gamma$."""
+    n = len(gamma)
+    J = [mpmath.mpf(1)] * (n - 1) + [1 + mpmath.mpf(a)]
+    pairs = mp_pairs(n)
+    L = mpmath.zeros(len(pairs), len(pairs))
+    for c, (p, r) in enumerate(pairs):
+        Om = mp_unvec([1 if q == c else 0 for q in range(len(pairs))], n)
+        Og = [mpmath.fsum(Om[i, k] * gamma[k] for k in range(n)) for i in range(n)]
+        for row, (i, j) in enumerate(pairs):
+            L[row, c] = (J[i] + J[j]) * Om[i, j] + b * (Og[i] * gamma[j] - gamma[i] * Og[j])
+    return L
+
+
+def mp_Omega(M, gamma, a, b) -> mpmath.matrix:
+    r"""$\Omega = L_\gamma^{-1}M$ by an mpmath LU solve of :func:`mp_L_matrix` (``M`` an n x n matrix)."""
+    n = len(gamma)
+    sol = mpmath.lu_solve(mp_L_matrix(gamma, a, b), mpmath.matrix(mp_vec(M, n)))
+    return mp_unvec([sol[i] for i in range(sol.rows)], n)
+
+
+def mp_block(v, w) -> mpmath.matrix:
+    r"""$\begin{pmatrix}\hat v & w\\ -w^T & 0\end{pmatrix}$ (S:4D notation)."""
+    return mpmath.matrix([[0, -v[2], v[1], w[0]], [v[2], 0, -v[0], w[1]],
+                          [-v[1], v[0], 0, w[2]], [-w[0], -w[1], -w[2], 0]])
+
+
+def mp_unblock(W) -> tuple[list, list]:
+    """$(v, w)$ with ``W`` = :func:`mp_block` (v, w)."""
+    return [W[2, 1], W[0, 2], W[1, 0]], [W[0, 3], W[1, 3], W[2, 3]]
