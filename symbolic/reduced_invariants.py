@@ -88,6 +88,7 @@ def _expand(mon, inv):
 
 def in_invariants(N):
     r"""The normal form (linear in $\delta$, $s \to 1 - x^2$) of an $SO(3)$-invariant polynomial ``N``
+    (the step that derives eq:red-system and S5:red-integrals from the 4D field)
     in :data:`symbolic.fourd.RING` (generators $a, b, x, k, u, q$; no $\eta, \xi$), as an element of
     :data:`INV_RING`. Raises ``ValueError`` if ``N`` is not invariant."""
     inv = invariant_polys()
@@ -148,7 +149,8 @@ def to_phase_space(P):
 
 
 def reduce_delta(P):
-    r"""Replace $\delta^2$ by $\det\Lambda$ in ``P`` $\in$ :data:`INV_RING` (normal form linear in $\delta$)."""
+    r"""Replace $\delta^2$ by $\det\Lambda$ (eq:PrincMinors) in ``P`` $\in$ :data:`INV_RING`: the normal
+    form linear in $\delta$, unique on the reduced space $\mathcal{R}$."""
     dL = det_Lambda()
     out = INV_RING(0)
     for mon, c in P.terms():
