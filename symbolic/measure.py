@@ -28,7 +28,7 @@ from sympy.polys.domains import QQ
 from sympy.polys.matrices import DomainMatrix
 
 from symbolic.algebra import commutator, so_basis, unvec, vec
-from symbolic.model import L_matrix, L_matrix_derivative
+from symbolic.model import L_matrix_qq
 
 __all__ = ["divergence", "measure_residual", "chaplygin_divergence_at"]
 
@@ -72,7 +72,7 @@ def chaplygin_divergence_at(M: sp.Matrix, gamma: sp.Matrix, J: sp.Matrix, b) -> 
     """
     n = gamma.rows
     basis = so_basis(n)
-    L = _dm(L_matrix(gamma, J, b))
+    L = L_matrix_qq(gamma, J, b)
     L_inv = L.inv()
     Omega = unvec((L_inv * _dm(vec(M))).to_Matrix(), n)
     L_inv_sp = L_inv.to_Matrix()
@@ -82,12 +82,15 @@ def chaplygin_divergence_at(M: sp.Matrix, gamma: sp.Matrix, J: sp.Matrix, b) -> 
         dOmega = unvec(L_inv_sp[:, a], n)
         div_M += vec(commutator(B, Omega) + commutator(M, dOmega))[a]
     vec_Omega = _dm(vec(Omega))
+    L_inv_rows = L_inv.to_list()
     div_gamma = sp.Integer(0)
     dlogdet = []
     for k in range(n):
-        dL = _dm(L_matrix_derivative(gamma, b, k))
+        dL = L_matrix_qq(gamma, J, b, derivative=k)
         dOmega = unvec((-(L_inv * (dL * vec_Omega))).to_Matrix(), n)
         div_gamma -= (dOmega * gamma)[k] + Omega[k, k]
-        dlogdet.append(sp.Rational((L_inv * dL).to_Matrix().trace()))
+        # tr(L^{-1} dL) from the non-zero entries of the sparse dL only.
+        trace = sum((L_inv_rows[i][j] * v for (j, i), v in dL.to_dok().items()), QQ.zero)
+        dlogdet.append(QQ.to_sympy(trace))
     return {"div": sp.Rational(div_M + div_gamma), "gamma_dot": -Omega * gamma,
             "Omega": Omega, "dlogdet": dlogdet}
