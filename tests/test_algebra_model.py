@@ -1,0 +1,60 @@
+"""so(n) algebra and the general model against their definitions."""
+
+import pytest
+import sympy as sp
+
+from symbolic import points
+from symbolic.algebra import commutator, hat, killing, skew_symbols, so_basis, unhat, unvec, vec, \
+    vector_symbols, wedge
+from symbolic.measure import chaplygin_divergence_at
+from symbolic.model import L_gamma, L_matrix, L_matrix_derivative, L_matrix_qq, angular_velocity, \
+    mass_tensor_symbols
+
+
+def test_hat_is_a_lie_algebra_isomorphism():
+    u, v = vector_symbols("u", 3), vector_symbols("v", 3)
+    assert (hat(u) * v - u.cross(v)).expand() == sp.zeros(3, 1)
+    assert (commutator(hat(u), hat(v)) - hat(u.cross(v))).expand() == sp.zeros(3, 3)
+    assert unhat(hat(u)) == u
+    assert (wedge(u, v) - hat(v.cross(u))).expand() == sp.zeros(3, 3)
+
+
+@pytest.mark.parametrize("n", [3, 4, 5])
+def test_killing_metric_and_coordinates(n):
+    A, B = skew_symbols("A", n), skew_symbols("B", n)
+    assert sp.expand(killing(A, B) - (vec(A).T * vec(B))[0]) == 0
+    assert unvec(vec(A), n) == A
+    basis = so_basis(n)
+    assert all(killing(X, Y) == (1 if i == j else 0)
+               for i, X in enumerate(basis) for j, Y in enumerate(basis))
+
+
+@pytest.mark.parametrize("n", [3, 4])
+def test_L_matrix_is_the_matrix_of_L_gamma(n):
+    gamma, J, b = vector_symbols("g", n), mass_tensor_symbols(n), sp.Symbol("b")
+    direct = sp.Matrix.hstack(*[vec(L_gamma(B, gamma, J, b)) for B in so_basis(n)])
+    assert (direct - L_matrix(gamma, J, b)).expand() == sp.zeros(*direct.shape)
+    for k in range(n):
+        assert (L_matrix(gamma, J, b).diff(gamma[k]) - L_matrix_derivative(gamma, b, k)).expand() \
+            == sp.zeros(*direct.shape)
+
+
+def test_exact_solve_and_qq_assembly_agree():
+    rng = points.generator(5, "solve")
+    n = 6
+    gamma, M = points.sphere_point(rng, n), points.skew_matrix(rng, n)
+    J, b = sp.diag(*range(1, n + 1)), sp.Rational(3, 4)
+    Omega = angular_velocity(M, gamma, J, b)
+    assert L_gamma(Omega, gamma, J, b) == M
+    assert L_matrix_qq(gamma, J, b).to_Matrix() == L_matrix(gamma, J, b)
+    assert L_matrix_qq(gamma, J, b, derivative=2).to_Matrix() == L_matrix_derivative(gamma, b, 2)
+
+
+def test_divergence_at_point_detects_a_wrong_density():
+    rng = points.generator(9, "div")
+    n = 4
+    gamma, M = points.sphere_point(rng, n), points.skew_matrix(rng, n)
+    d = chaplygin_divergence_at(M, gamma, sp.diag(1, 2, 3, 5), sp.Rational(2))
+    transport = sum(g * l for g, l in zip(d["gamma_dot"], d["dlogdet"]))
+    assert d["div"] - transport / 2 == 0          # (det L)^(-1/2): invariant
+    assert d["div"] - transport != 0              # (det L)^(-1): not invariant here

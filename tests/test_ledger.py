@@ -1,0 +1,97 @@
+"""The ledger covers the paper, verdicts are computed honestly, and the layout rules hold."""
+
+import re
+from pathlib import Path
+
+import pytest
+import sympy as sp
+
+from proofs.catalog import CLAIMS_PATH, PAPER_PATH, ROOT, all_rows, claims_rows, discover, \
+    paper_labels
+from proofs.ledger import Verdict, registry
+from symbolic.exact import rational_identity
+
+x = sp.Symbol("x")
+SECTIONING = re.compile(r"^S{1,2}:")
+
+
+@pytest.fixture(scope="module")
+def rows():
+    discover()
+    return all_rows()
+
+
+def test_every_claims_id_is_a_ledger_row(rows):
+    ids = {r.id for r in rows}
+    assert [r.id for r in claims_rows() if r.id not in ids] == []
+
+
+def test_every_paper_label_has_a_row(rows):
+    ids = {r.id for r in rows}
+    missing = [lab for lab in paper_labels() if not SECTIONING.match(lab) and lab not in ids]
+    assert missing == [], f"paper labels without a ledger row: {missing}"
+
+
+def test_every_row_names_a_label_or_a_section_object(rows):
+    labels = set(paper_labels())
+    registered_additions = {i for i, spec in registry().items() if spec.adds}
+    for r in rows:
+        if r.id in labels or r.id in registered_additions:
+            continue
+        assert re.match(r"^S\d(\.\d)?:\S+$", r.id) or any(
+            r.id.startswith(lab + "-") for lab in labels), f"row {r.id} points nowhere"
+
+
+def test_registered_proofs_are_ledger_rows(rows):
+    ids = {r.id for r in rows}
+    assert sorted(set(registry()) - ids) == []
+
+
+def test_paper_copies_match_shared_originals():
+    shared = ROOT.parent / "shared"
+    if not shared.exists():  # CI puts shared/ beside the clone; a bare clone has only the copies
+        assert PAPER_PATH.exists() and CLAIMS_PATH.exists()
+        return
+    assert PAPER_PATH.read_bytes() == (shared / "paper" / PAPER_PATH.name).read_bytes()
+    assert CLAIMS_PATH.read_bytes() == (shared / "CLAIMS.md").read_bytes()
+
+
+def test_decide_is_computed_from_the_checks():
+    true, false = rational_identity(x - x), rational_identity(x - 1)
+    assert Verdict.decide(true).verdict == "holds"
+    fixed = Verdict.decide(false, corrected=true, correction_latex="x = 1")
+    assert fixed.verdict == "corrected" and "x = " in fixed.counterexample
+    assert Verdict.decide(false, corrected=false, correction_latex="x = 2").verdict == "fails"
+    assert Verdict.decide(false).verdict == "fails"
+
+
+def test_parts_take_the_worst_verdict():
+    true, false = rational_identity(x - x), rational_identity(x - 1)
+    parts = [Verdict.decide(true).as_part("a"), Verdict.decide(false).as_part("b")]
+    assert Verdict.of_parts(parts).verdict == "fails"
+    assert Verdict.of_parts(parts[:1]).verdict == "holds"
+
+
+def test_open_needs_a_reason():
+    with pytest.raises(ValueError):
+        Verdict.open("  ")
+    assert Verdict.open("issue #3").verdict == "open"
+
+
+def _imports(path: Path) -> set[str]:
+    text = path.read_text(encoding="utf-8")
+    return set(re.findall(r"^\s*(?:from|import)\s+([\w.]+)", text, re.M))
+
+
+def test_derivations_never_import_printed_formulas():
+    offenders = [str(p.relative_to(ROOT)) for p in (ROOT / "symbolic").rglob("*.py")
+                 if "printed" not in p.parts and any(m.startswith("symbolic.printed")
+                                                     for m in _imports(p))]
+    assert offenders == []
+
+
+@pytest.mark.parametrize("package", ["generated", "simulate"])
+def test_numeric_packages_import_no_sympy(package):
+    offenders = [str(p.relative_to(ROOT)) for p in (ROOT / package).rglob("*.py")
+                 if any(m == "sympy" or m.startswith(("sympy.", "symbolic")) for m in _imports(p))]
+    assert offenders == []
