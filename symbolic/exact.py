@@ -144,7 +144,8 @@ def rational_identity(residual, *, sphere: Sequence[sp.Symbol] | None = None,
         symbols |= set(sphere)
     gens = _ordered_gens(symbols, sphere)
     where_sphere = f" modulo ||{','.join(map(str, sphere))}||^2 = 1" if sphere else ""
-    method = f"exact rational-function identity in {len(gens)} variables{where_sphere}"
+    method = (f"exact rational-function identity in {len(gens)} variables{where_sphere}" if gens
+              else "exact: the residual expands to zero")
     for where, e in entries:
         if not gens:
             if sp.expand(e) != 0:
