@@ -199,3 +199,32 @@ def test_report_hard_case_errors():
     for (key, kind), ws in sorted(rows.items()):
         print(f"{key:8s} {kind:12s} worst {max(ws):.2f} ulps")
     assert all(max(ws) <= BOUND_ULPS[key] for (key, _), ws in rows.items())
+
+
+@pytest.mark.parametrize("n", [3, 4, 5])
+@pytest.mark.parametrize("a", [0.0, 1e-12, 0.5, -1.0])
+def test_vertical_solution_against_mpmath_expm(n, a):
+    r"""Th:Re closed form (kernels.vertical_solution: generated zeta, then exp by K:rodrigues for
+    n = 4, a plane rotation for n = 3, eigh for n = 5) against mpmath.expm(zeta t) at 50 digits
+    applied to M0, gamma0: within 8 n eps (|M0| + 1). At a = 0, zeta = 0 and Rodrigues'
+    printed form sin(theta)/theta, (1 - cos theta)/theta^2 is 0/0 = nan; the kernel is exact there."""
+    mpmath.mp.dps = 50
+    b, t = 1.3, 2.5
+    rng = np.random.default_rng([n, int(abs(a) * 1e3) + 17])
+    gm, gf, M, _, _ = _point(rng, n, ("generic", None))
+    P = mpmath.eye(n) - mpmath.matrix(gm) * mpmath.matrix(gm).T
+    M0 = P * _unvec_mp([mpmath.mpf(float(c)) for c in M], n) * P
+    M0f = np.array(M0.tolist(), dtype=float)
+    Z = _unvec_mp([mpmath.mpf(float(c)) for c in kernels.vec(kernels.zeta(M0f, gf, a, b))], n)
+    R = mpmath.expm(Z * t)
+    Mt_ref, gt_ref = R * mpmath.matrix(M0f.tolist()) * R.T, R * mpmath.matrix(gf.tolist())
+    Mt, gt = kernels.vertical_solution(M0f, gf, t, a, b)
+    scale = 1 + float(mpmath.norm(M0))
+    err = max(max(float(abs(mpmath.mpf(float(Mt[i, j])) - Mt_ref[i, j])) for i in range(n) for j in range(n)),
+              max(float(abs(mpmath.mpf(float(gt[i])) - gt_ref[i])) for i in range(n)))
+    assert err <= 8 * n * EPS * scale, err / (EPS * scale)
+    if a == 0.0 and n == 4:
+        theta = 0.0
+        with np.errstate(invalid="ignore"):
+            assert np.isnan(np.sin(theta) / np.float64(theta))  # the unrewritten coefficient
+        assert np.array_equal(Mt, M0f)  # zeta = 0 exactly: the kernel returns M0 itself
