@@ -53,17 +53,23 @@ def _component(gen, stem, n):
     (same expressions, same file) on floats; any other batch goes through the public kernel."""
     fn = getattr(gen, f"{stem}_{n}d", None) if gen is not None else None
     block = getattr(gen, f"_{stem}_{n}d_block", None) if gen is not None else None
+    return _fast(fn, block, _SHAPES[(stem, n)])
+
+
+def _fast(fn, block, shape):
+    """``fn(*arrays, a, b)`` with the one-point fast path through ``block`` (see :func:`_component`)."""
     if fn is None or block is None:
         return fn
+    size = int(np.prod(shape))
 
     def call(*args):
         *arrays, a, b = args
         arrays = [np.asarray(v, dtype=float) for v in arrays]
         if all(v.ndim <= 2 and v.size == v.shape[-1] for v in arrays):
             flat = [c for v in arrays for c in v.ravel().tolist()]
-            out = [0.0] * _SIZES[(stem, n)]
+            out = [0.0] * size
             block(*flat, float(a), float(b), out)
-            return np.array(out).reshape(arrays[0].shape[:-1] + _SHAPES[(stem, n)])
+            return np.array(out).reshape(arrays[0].shape[:-1] + shape)
         return fn(*args)
     return call
 
@@ -71,7 +77,6 @@ def _component(gen, stem, n):
 _SHAPES = {("angular_velocity_axisym", 3): (3,), ("angular_velocity_axisym", 4): (6,),
            ("zeta", 3): (3,), ("zeta", 4): (6,),
            ("L_matrix_axisym", 3): (3, 3), ("L_matrix_axisym", 4): (6, 6)}
-_SIZES = {k: int(np.prod(v)) for k, v in _SHAPES.items()}
 
 
 def _missing(what, n):
@@ -119,11 +124,14 @@ def bind() -> Kernels:
         _missing("zeta", n)
 
     red = _module("generated.reduced")
-    reduced_field = getattr(red, "reduced_field", None) if red is not None else None
-    reduced_integrals = getattr(red, "reduced_integrals", None) if red is not None else None
+    reduced_field = _fast(getattr(red, "reduced_field", None),
+                          getattr(red, "_reduced_field_block", None), (7,))
+    reduced_integrals = _fast(getattr(red, "reduced_integrals", None),
+                              getattr(red, "_reduced_integrals_block", None), (4,))
     horizontal = getattr(red, "horizontal_solution", None) if red is not None else None
     return Kernels(name="generated", L_gamma=L_gamma, angular_velocity=angular_velocity,
                    zeta=zeta, reduced_field=reduced_field, reduced_integrals=reduced_integrals,
                    horizontal=horizontal,
                    horizontal_A=getattr(red, "horizontal_A", None) if red is not None else None,
-                   note="generated/axisym.py" + (f" + {runtime.__name__}" if runtime else ""))
+                   note="generated/axisym.py" + (f" + {runtime.__name__}" if runtime else "")
+                   + (" + generated/reduced.py" if red is not None else ""))
