@@ -53,12 +53,12 @@ def _component(gen, stem, n):
     (same expressions, same file) on floats; any other batch goes through the public kernel."""
     fn = getattr(gen, f"{stem}_{n}d", None) if gen is not None else None
     block = getattr(gen, f"_{stem}_{n}d_block", None) if gen is not None else None
-    return _fast(fn, block, _SHAPES[(stem, n)])
+    return _fast(fn, block, _SHAPES.get((stem, n)))
 
 
 def _fast(fn, block, shape):
     """``fn(*arrays, a, b)`` with the one-point fast path through ``block`` (see :func:`_component`)."""
-    if fn is None or block is None:
+    if fn is None or block is None or shape is None:
         return fn
     size = int(np.prod(shape))
 
