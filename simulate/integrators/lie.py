@@ -2,8 +2,9 @@ r"""A Lie-group (Runge–Kutta–Munthe-Kaas) integrator of order 4 on the $SO(n
 
 The field of eq:motion-general is an infinitesimal action: $(\dot M, \dot\gamma) = A\cdot(M, \gamma)$
 with $A = -\Omega(M, \gamma) \in \mathfrak{so}(n)$ and $X\cdot(M, \gamma) = ([X, M], X\gamma)$; the group
-acts by $Q\cdot(M, \gamma) = (QMQ^T, Q\gamma)$. With $k_i = hA(\cdot)$ (RKMK4, Munthe-Kaas,
-BIT 39 (1999); Iserles et al., Acta Numerica 9 (2000) §5):
+acts by $Q\cdot(M, \gamma) = (QMQ^T, Q\gamma)$. With $k_i = hA(\cdot)$ (the commutator-reduced
+RKMK4 of Munthe-Kaas, Appl. Numer. Math. 29 (1999); see Iserles, Munthe-Kaas, Nørsett, Zanna,
+Acta Numerica 9 (2000); its order 4 is checked in tests/test_simulate_integrators.py):
 
 .. math::
     k_1 = hA(y),\ k_2 = hA(e^{k_1/2}y),\ k_3 = hA(e^{k_2/2 - [k_1,k_2]/8}y),\ k_4 = hA(e^{k_3}y),\\
