@@ -1,8 +1,8 @@
 r"""Kernels of the classical 3D Chaplygin sphere with a general diagonal inertia $\mathbb{I}$ (Section 2.1).
 
-Every expression is *derived* here from the definition eq:mom3D (an exact symbolic solve of the
-3x3 linear system $M = L_\gamma\Omega$), never taken from the printed inverse eq:invL3D; the ledger
-row ``eq:invL3D`` proves the two agree on $\lVert\gamma\rVert = 1$.
+Every expression comes from :mod:`symbolic.sphere3d` (derived from the definition eq:mom3D by an
+exact solve), the same derivation the ledger rows eq:invL3D, S2.1:detL3D and S2.1:integrals3D
+compare with the paper; never from the printed inverse.
 """
 
 from __future__ import annotations
@@ -13,6 +13,7 @@ import sympy as sp
 
 from symbolic.algebra import column
 from symbolic.codegen import Argument, Kernel
+from symbolic import sphere3d
 from symbolic.model import motion3d
 
 M_ = sp.symbols("M1:4", real=True)
@@ -22,38 +23,27 @@ b_ = sp.Symbol("b", positive=True)
 
 
 @lru_cache(maxsize=None)
-def L_gamma_matrix_3d() -> sp.Matrix:
-    r"""The 3x3 matrix of $L_\gamma: \Omega \mapsto \mathbb{I}\Omega + b\gamma\times(\Omega\times\gamma)$
-    (eq:mom3D), i.e. $\mathbb{I} + b(\lVert\gamma\rVert^2\,\mathrm{Id} - \gamma\gamma^T)$; any $\gamma$."""
-    gamma = column(G_)
-    return sp.diag(*I_) + b_ * ((gamma.T * gamma)[0] * sp.eye(3) - gamma * gamma.T)
+def _L_gamma() -> sp.Matrix:
+    return sphere3d.L_gamma_matrix_3d(column(G_), sp.diag(*I_), b_)
 
 
 @lru_cache(maxsize=None)
-def angular_velocity_3d() -> sp.Matrix:
-    r"""$\Omega = L_\gamma^{-1} M$ solved exactly from eq:mom3D (Cramer's rule: expanded adjugate
-    times $M$ over the expanded determinant); valid where $\det L_\gamma \neq 0$, in particular on
-    $\lVert\gamma\rVert = 1$ with $I_j, b > 0$ (S2.1:detL3D).
-
-    No ``factor()``: multivariate factorisation here took from 3 s to 9 min depending on the
-    process's hash seed (Wang's algorithm), which made ``make generate`` slow and unpredictable."""
-    L = L_gamma_matrix_3d()
-    adj, det = L.adjugate(), sp.expand(L.det())
-    return column([sp.expand((adj * column(M_))[i]) / det for i in range(3)])
+def _Omega() -> sp.Matrix:
+    return sphere3d.angular_velocity_3d(column(M_), column(G_), sp.diag(*I_), b_)
 
 
 def kernels() -> list[Kernel]:
     """The kernel list of ``generated/sphere3d.py``."""
     M, gamma = Argument("M", M_), Argument("gamma", G_)
     inertia, b = Argument("inertia", I_), Argument("b", (b_,), scalar=True)
-    Omega = angular_velocity_3d()
+    Omega = _Omega()
     Mdot, gdot = motion3d(column(M_), column(G_), Omega)
     Mv, gv = column(M_), column(G_)
     integrals = [(Mv.T * gv)[0], (Mv.T * Mv)[0], (Mv.T * Omega)[0] / 2]
     return [
         Kernel("L_gamma_3d", ("eq:mom3D",),
                "Matrix of L_gamma (eq:mom3D): M = L_gamma @ Omega; any gamma, inertia = diag(I).",
-               (gamma, inertia, b), L_gamma_matrix_3d(), (3, 3)),
+               (gamma, inertia, b), _L_gamma(), (3, 3)),
         Kernel("angular_velocity_3d", ("eq:mom3D", "eq:invL3D"),
                "Omega = L_gamma^{-1} M (derived from eq:mom3D; equals eq:invL3D on |gamma| = 1).\n"
                "    Domain: det L_gamma != 0, e.g. |gamma| = 1 and I_j, b > 0.",
@@ -65,7 +55,7 @@ def kernels() -> list[Kernel]:
         Kernel("det_L_gamma_3d", ("eq:mom3D", "S2.1:detL3D"),
                "det L_gamma (derived determinant of eq:mom3D, expanded); any gamma. Positive on\n"
                "    |gamma| = 1 with I_j, b > 0 (S2.1:detL3D); the measure density is det^(-1/2).",
-               (gamma, inertia, b), sp.Matrix([sp.expand(L_gamma_matrix_3d().det())]), (1,)),
+               (gamma, inertia, b), sp.Matrix([sp.expand(_L_gamma().det())]), (1,)),
         Kernel("integrals_3d", ("S2.1:integrals3D", "eq:mom3D"),
                "(f1, f2, H) = (<M, gamma>, |M|^2, 1/2 <M, Omega>), Omega = L_gamma^{-1} M derived from\n"
                "    eq:mom3D (S2.1:integrals3D). Domain as angular_velocity_3d.",

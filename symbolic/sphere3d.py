@@ -22,10 +22,15 @@ def L_gamma_matrix_3d(gamma: sp.Matrix, inertia: sp.Matrix, b) -> sp.Matrix:
 
 
 def angular_velocity_3d(M: sp.Matrix, gamma: sp.Matrix, inertia: sp.Matrix, b) -> sp.Matrix:
-    r"""$\Omega = L_\gamma^{-1}M = \operatorname{adj}(L_\gamma)M/\det L_\gamma$ (inverse of eq:mom3D);
-    defined where $\det L_\gamma \ne 0$ (on $S^2$ with $I_j, b > 0$, see S2.1:detL3D)."""
+    r"""$\Omega = L_\gamma^{-1}M = \operatorname{adj}(L_\gamma)M/\det L_\gamma$ (inverse of eq:mom3D),
+    each entry an expanded polynomial over the expanded determinant; defined where
+    $\det L_\gamma \ne 0$ (on $S^2$ with $I_j, b > 0$, see S2.1:detL3D).
+
+    No ``factor()``: multivariate factorisation here took from 3 s to 9 min depending on the
+    process's hash seed, which made ``make generate`` slow and unpredictable."""
     L = L_gamma_matrix_3d(gamma, inertia, b)
-    return L.adjugate() * M / L.det()
+    adj, det = L.adjugate(), sp.expand(L.det())
+    return sp.Matrix([sp.expand((adj * M)[i]) / det for i in range(3)])
 
 
 def velocity_field_3d(Omega: sp.Matrix, gamma: sp.Matrix, inertia: sp.Matrix, b):
