@@ -87,7 +87,10 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
     if scene.method != "auto":
         skipped.append(f"closed forms and reduced models: accuracy.method = {scene.method!r} "
                        "asks for an integrator of the full system")
-        return make("full", f"integrator {scene.method} requested")
+        detail = {"lie": f"step h <= {scene.step:g}; accuracy.target is not used",
+                  "reference": f"{scene.dps} digits",
+                  "dop853": f"rtol = target/100 = {max(scene.target / 100, 2.3e-14):g}"}
+        return make("full", f"integrator {scene.method} requested ({detail[scene.method]})")
     vertical = all(families.claim_residual("vertical", M, g) <= tol
                    for M, g in zip(scene.M0, scene.gamma0, strict=True))
     if scene.a == 0.0:
