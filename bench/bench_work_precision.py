@@ -266,10 +266,15 @@ def _figure(path, rows, title):
     import matplotlib.ticker
 
     fig, ax = plt.subplots(figsize=(7.5, 5))
-    for method in dict.fromkeys(r.method for r in rows):
-        rs = [r for r in rows if r.method == method]
+    several = len({r.scene for r in rows}) > 1
+
+    def key(r):
+        return f"{r.scene.split()[0]}: {r.method}" if several else r.method
+
+    for label in dict.fromkeys(key(r) for r in rows):
+        rs = [r for r in rows if key(r) == label]
         ax.loglog([max(r.seconds, 1e-6) for r in rs], [max(r.error, 1e-40) for r in rs], "o-",
-                  label=method)
+                  label=label)
         for r in rs:
             ax.annotate(f"{r.setting} ({r.calls} calls)", (max(r.seconds, 1e-6), max(r.error, 1e-40)),
                         fontsize=6, xytext=(3, 3), textcoords="offset points")
