@@ -2,7 +2,7 @@ r"""The planner: the cheapest model that is exact for a scene, and why.
 
 Models, cheapest first (each applies to every initial condition of the scene):
 
-1. ``constant-Omega`` — $a = 0$ (spherical inertia: $\dot\Omega = 0$, Section 4 after
+1. ``constant-Omega`` — $a = 0$ (spherical inertia: $\dot\Omega = 0$, part of row eq:M-O-axi-symm, after
    eq:M-O-axi-symm), or $n = 4$ and $\eta_0\times\xi_0 = 0$ (P:steady-rot):
    $M(t) = e^{-\Omega_0t}M_0e^{\Omega_0t}$, $\gamma(t) = e^{-\Omega_0t}\gamma_0$;
 2. ``vertical`` — $M_0\gamma_0 = 0$ (eq:def-H-V), Th:Re with $\zeta$ from :mod:`generated`;
@@ -95,7 +95,7 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
                    for M, g in zip(scene.M0, scene.gamma0, strict=True))
     if scene.a == 0.0:
         return make("constant-Omega", "a = 0: spherical inertia, Omega is constant "
-                    "(Section 4, after eq:M-O-axi-symm); M(t) = exp(-Omega0 t) M0 exp(Omega0 t)")
+                    "(eq:M-O-axi-symm: a = 0 implies dOmega/dt = 0); M(t) = exp(-Omega0 t) M0 exp(Omega0 t)")
     if scene.n == 4 and all(families.steady_residual(O) <= tol for O in Omega0):
         return make("constant-Omega", "n = 4 and eta0 x xi0 = 0: steady rotation (P:steady-rot), "
                     "M(t) = exp(-Omega0 t) M0 exp(Omega0 t), gamma(t) = exp(-Omega0 t) gamma0")
