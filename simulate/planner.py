@@ -2,8 +2,8 @@ r"""The planner: the cheapest model that is exact for a scene, and why.
 
 Models, cheapest first (each applies to every initial condition of the scene):
 
-1. ``constant-Omega`` — $a = 0$ (spherical inertia: $\dot\Omega = 0$, part of row eq:M-O-axi-symm, after
-   eq:M-O-axi-symm), or $n = 4$ and $\eta_0\times\xi_0 = 0$ (P:steady-rot):
+1. ``constant-Omega`` — $a = 0$ (spherical inertia: $\dot\Omega = 0$, stated after
+   eq:M-O-axi-symm and proved in that ledger row), or $n = 4$ and $\eta_0\times\xi_0 = 0$ (P:steady-rot):
    $M(t) = e^{-\Omega_0t}M_0e^{\Omega_0t}$, $\gamma(t) = e^{-\Omega_0t}\gamma_0$;
 2. ``vertical`` — $M_0\gamma_0 = 0$ (eq:def-H-V), Th:Re with $\zeta$ from :mod:`generated`;
 3. ``horizontal-4D`` — $n = 4$, $M_0 = (M_0\gamma_0)\wedge\gamma_0$ and only reduced outputs
