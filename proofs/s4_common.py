@@ -108,21 +108,30 @@ def generic_vertical(n: int, frame: bool = False) -> tuple[sp.Matrix, sp.Matrix]
 
 
 def sym_checks(residual: Callable[[int], object], ns: Sequence[int], *, sphere: bool = True,
-               label: str, uses_gamma: bool | None = None, frame_n3: bool = False) -> Check:
+               label: str, uses_gamma: bool | None = None, frame_n3: bool = False,
+               generic_gamma: bool = False) -> Check:
     r"""``rational_identity(residual(n))`` modulo $\lVert\gamma\rVert^2 = 1$ for each $n$ in ``ns``
     (a square matrix residual on its entries $i \le j$, see :func:`_upper`). ``frame_n3``: the
-    residual uses the frame $\gamma$ also for $n = 3$."""
+    residual uses the frame $\gamma$ also for $n = 3$; ``generic_gamma``: it uses the fully generic
+    :func:`gamma_symbols` for every $n$."""
     checks = []
     for n in ns:
-        sph = (sphere_symbols(n) if not (frame_n3 and n == 3) else tuple(frame_gamma(3)[1:])) \
-            if sphere else None
+        if not sphere:
+            sph = None
+        elif generic_gamma:
+            sph = tuple(gamma_symbols(n))
+        elif frame_n3 and n == 3:
+            sph = tuple(frame_gamma(3)[1:])
+        else:
+            sph = sphere_symbols(n)
         chk = rational_identity(_upper(residual(n)), sphere=sph, samplers=SAMPLERS,
                                 label=f"{label}-n{n}")
         checks.append((n, chk))
     return combine([c for _, c in checks],
                    method=f"exact symbolic identity for n in {{{', '.join(str(n) for n in ns)}}}"
                           + (" modulo ||gamma||^2 = 1" if sphere else "")
-                          + ((FRAME_ALL if frame_n3 else FRAME)
+                          + (" (fully generic gamma)" if generic_gamma else
+                             (FRAME_ALL if frame_n3 else FRAME)
                              if (sphere if uses_gamma is None else uses_gamma) else ""))
 
 
