@@ -86,7 +86,7 @@ def _complement_basis(g: sp.Matrix) -> list[sp.Matrix]:
     ws = []
     for i in range(n):
         w = _w(sp.eye(n)[:, i], g)
-        if sp.Matrix.hstack(*(ws + [w])).rank() == len(ws) + 1:
+        if _qq(sp.Matrix.hstack(*(ws + [w]))).rank() == len(ws) + 1:
             ws.append(w)
         if len(ws) == n - 2:
             return ws
@@ -108,10 +108,14 @@ def _block_form_residual(p: dict):
         for j in range(i + 1, len(ws)):
             basis.append(wedge(ws[i], ws[j]))
             blocks.append(sp.Matrix([[2]]))
-    B = sp.Matrix.hstack(*[vec(Bk) for Bk in basis])
-    if B.rank() != B.rows:
+    B = _qq(sp.Matrix.hstack(*[vec(Bk) for Bk in basis]))
+    if B.rank() != B.shape[0]:
         raise ArithmeticError("the printed basis is not a basis at this point")
-    return L_matrix_axisym(g, av, bv) * B - B * sp.diag(*blocks)
+    return (_qq(L_matrix_axisym(g, av, bv)) * B - B * _qq(sp.diag(*blocks))).to_Matrix()
+
+
+def _qq(matrix: sp.Matrix) -> DomainMatrix:
+    return DomainMatrix.from_Matrix(matrix).convert_to(sp.QQ)
 
 
 def _det_symbolic(n: int):
