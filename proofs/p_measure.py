@@ -194,7 +194,8 @@ def p_measure() -> Verdict:
         method="dM = det(L_gamma) dOmega with the proved det; squares compared (both densities > 0), "
                "exact for n = 3..8",
         notes="Both printed expressions are invariant measures; they differ by a constant factor, "
-              "so the printed '=' is off by (2+a+b) 2^{(n-2)(n-3)/2} (e.g. n = 3: by 2+a+b).")
+              "so the printed '=' is off by (2+a+b) 2^{(n-2)(n-3)/2} (e.g. n = 3: by 2+a+b). "
+              "Component k of the residual list is n = k + 2.")
     return Verdict.of_parts([
         Verdict.decide(images, method=images.method + " with w = (1-x^2) proj(v); reduction "
                        "argument (span{E_n, gamma, w_i, w_j}) covers all n").as_part("the four images"),
@@ -206,4 +207,5 @@ def p_measure() -> Verdict:
         forms.as_part("the two expressions of mu"),
     ], n_values=(3, 4, 8, 12),
         notes="Everything in P:Measure holds except the '=' between the two printed expressions of "
-              "mu, which holds only up to the constant (2+a+b) 2^{(n-2)(n-3)/2}; both are invariant.")
+              "mu, which holds only up to the constant (2+a+b) 2^{(n-2)(n-3)/2}; both are invariant. "
+              "The counterexample's component 1 is n = 3.")
