@@ -64,3 +64,31 @@ def test_generated_inverse_matches_definition(n):
         Omega = active().require("angular_velocity")(M, gamma, a, b)
         assert np.allclose(L_gamma(Omega, gamma, a, b), M, rtol=0, atol=1e-13)
         assert np.allclose(active().require("L_gamma")(Omega, gamma, a, b), M, rtol=0, atol=1e-13)
+
+
+def test_one_point_fast_path_equals_the_public_kernels():
+    """simulate's one-point path (generated blocks on floats) returns what the public, batched
+    generated kernels return, for L_gamma^{-1}, L_gamma, zeta and the reduced field/integrals:
+    the same expressions, so at most rounding-level differences (Python floats vs NumPy)."""
+
+    def same(x, y):
+        return np.allclose(x, y, rtol=1e-15, atol=1e-15)
+
+    import generated.axisym as g
+    import generated.reduced as red
+    from simulate import families
+    from simulate.run import reduced_invariants
+
+    k = active()
+    for n in (3, 4):
+        M, gamma = families.draw("vertical", n, 0.4, 1.3, seed=n)
+        one = k.angular_velocity(M, gamma, 0.4, 1.3)
+        public = getattr(g, f"angular_velocity_axisym_{n}d")(so.vec(M), gamma, 0.4, 1.3)
+        assert same(so.vec(one), public)
+        z = getattr(g, f"zeta_{n}d")(so.vec(M), gamma, 0.4, 1.3)
+        assert same(so.vec(k.zeta(M, gamma, 0.4, 1.3)), z)
+        assert np.allclose(k.L_gamma(one, gamma, 0.4, 1.3), M, rtol=0, atol=1e-14)
+    M, gamma = families.draw("generic", 4, -0.4, 0.7, seed=21)
+    r = reduced_invariants(M, gamma)
+    assert same(k.reduced_field(r, -0.4, 0.7), red.reduced_field(r, -0.4, 0.7))
+    assert same(k.reduced_integrals(r, -0.4, 0.7), red.reduced_integrals(r, -0.4, 0.7))
