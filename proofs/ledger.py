@@ -117,9 +117,8 @@ class Verdict:
         """A definition. Optional ``consistency`` checks (e.g. the nD definition restricts to the 3D
         one); if one fails the row is ``fails``, with its counterexample."""
         checks = list(consistency)
-        for name, c in checks:
-            if not c.ok:
-                return cls.all_of(checks, n_values=n_values, notes=notes)
+        if not all(c.ok for _, c in checks):
+            return cls.all_of(checks, n_values=n_values, notes=notes)
         if checks:
             method = method + "; " + "; ".join(f"{name}: {c.method}" for name, c in checks)
         return cls("definition", method, tuple(n_values), notes=notes)

@@ -29,7 +29,7 @@ $n$-dimensional forms eq:motion-general, eq:M-O (checked in the definition rows 
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 
 import sympy as sp
 
@@ -60,7 +60,7 @@ def _identity(residual, *, sphere=True, label=""):
                              label=label)
 
 
-@lru_cache(maxsize=None)
+@cache
 def _omega_of_M() -> sp.Matrix:
     return angular_velocity_3d(M, gamma, inertia, b)
 

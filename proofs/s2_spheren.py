@@ -37,12 +37,26 @@ from sympy.polys.matrices import DomainMatrix
 
 from proofs.ledger import Verdict, claim
 from symbolic import points
-from symbolic.algebra import basis_vector, commutator, killing, skew_symbols, unvec, vec, \
-    vector_symbols, wedge
+from symbolic.algebra import (
+    basis_vector,
+    commutator,
+    killing,
+    skew_symbols,
+    unvec,
+    vec,
+    vector_symbols,
+    wedge,
+)
 from symbolic.exact import rational_identity, zero_at_points
 from symbolic.measure import chaplygin_divergence_at
-from symbolic.model import L_gamma, L_matrix, angular_velocity, inertia_operator, \
-    mass_tensor_symbols, motion
+from symbolic.model import (
+    L_gamma,
+    L_matrix,
+    angular_velocity,
+    inertia_operator,
+    mass_tensor_symbols,
+    motion,
+)
 from symbolic.printed import section2 as printed
 
 SYMBOLIC_N = (3, 4, 5, 6)

@@ -42,8 +42,7 @@ from sympy.polys.matrices import DomainMatrix
 
 from proofs.ledger import Verdict, claim
 from symbolic import points
-from symbolic.algebra import basis_vector, hat, skew_symbols, so_basis, vec, vector_symbols, \
-    wedge
+from symbolic.algebra import basis_vector, hat, skew_symbols, so_basis, vec, vector_symbols, wedge
 from symbolic.exact import Check, rational_identity, zero_at_points
 from symbolic.model import commutator, cross, mom3d, motion, motion3d
 from symbolic.printed import section2 as printed2
@@ -230,7 +229,7 @@ def _space_forms(n, p):
     M_V = P * S * P                               # a point of V: M gamma = 0
     v = P * S[:, 0]
     M_H = wedge(v, g)                              # a point of H: v perp gamma
-    out = list((R * g - e)) + [R.det() - 1]
+    out = list(R * g - e) + [R.det() - 1]
     for Mp, mask in ((M_V, masks["V"]), (M_H, masks["H"])):
         Ms = R * Mp * R.T
         out += [Ms[i, j] for i in range(n) for j in range(n) if mask[i, j] == 0]

@@ -37,11 +37,11 @@ naming the field and the fix.
 from __future__ import annotations
 
 import math
+import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
-import tomllib
 
 from simulate import families
 

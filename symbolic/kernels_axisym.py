@@ -27,13 +27,13 @@ is *needed*; the row only certifies the form the kernels evaluate.
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 
 import sympy as sp
 
 from symbolic.algebra import killing, skew_symbols, vec
 from symbolic.axisym_inverse import ansatz_terms, inverse_coefficients
-from symbolic.axisymmetric import Delta, E_n, L_matrix_axisym, a, b, x
+from symbolic.axisymmetric import Delta, L_matrix_axisym, a, b, x
 from symbolic.codegen import Argument, Kernel
 from symbolic.model import motion
 from symbolic.vertical import chi, chi_coefficient, inertia_tilde, zeta_coefficient
@@ -76,7 +76,7 @@ def gamma_symbols(n: int) -> tuple[sp.Symbol, ...]:
     return sp.symbols(f"gamma1:{n + 1}", real=True)
 
 
-@lru_cache(maxsize=None)
+@cache
 def p_coefficients(n: int) -> sp.Matrix:
     r"""Coefficients of $p(\lambda, \sigma) = \det(M + \sigma\gamma\gamma^T - \lambda\,\mathrm{Id}_n)$
     (eq:pol-first-integrals) as an $(n+1)\times 2$ matrix: entry $(i, j)$ multiplies

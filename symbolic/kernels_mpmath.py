@@ -121,7 +121,7 @@ def mp_L_matrix(gamma, a, b) -> mpmath.matrix:
     J = [mpmath.mpf(1)] * (n - 1) + [1 + mpmath.mpf(a)]
     pairs = mp_pairs(n)
     L = mpmath.zeros(len(pairs), len(pairs))
-    for c, (p, r) in enumerate(pairs):
+    for c in range(len(pairs)):
         Om = mp_unvec([1 if q == c else 0 for q in range(len(pairs))], n)
         Og = [mpmath.fsum(Om[i, k] * gamma[k] for k in range(n)) for i in range(n)]
         for row, (i, j) in enumerate(pairs):

@@ -7,13 +7,13 @@ compare with the paper; never from the printed inverse.
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 
 import sympy as sp
 
+from symbolic import sphere3d
 from symbolic.algebra import column
 from symbolic.codegen import Argument, Kernel
-from symbolic import sphere3d
 from symbolic.model import motion3d
 
 M_ = sp.symbols("M1:4", real=True)
@@ -22,12 +22,12 @@ I_ = sp.symbols("I1:4", positive=True)
 b_ = sp.Symbol("b", positive=True)
 
 
-@lru_cache(maxsize=None)
+@cache
 def _L_gamma() -> sp.Matrix:
     return sphere3d.L_gamma_matrix_3d(column(G_), sp.diag(*I_), b_)
 
 
-@lru_cache(maxsize=None)
+@cache
 def _Omega() -> sp.Matrix:
     return sphere3d.angular_velocity_3d(column(M_), column(G_), sp.diag(*I_), b_)
 

@@ -4,11 +4,27 @@ import pytest
 import sympy as sp
 
 from symbolic import points
-from symbolic.algebra import commutator, hat, killing, skew_symbols, so_basis, unhat, unvec, vec, \
-    vector_symbols, wedge
+from symbolic.algebra import (
+    commutator,
+    hat,
+    killing,
+    skew_symbols,
+    so_basis,
+    unhat,
+    unvec,
+    vec,
+    vector_symbols,
+    wedge,
+)
 from symbolic.measure import chaplygin_divergence_at
-from symbolic.model import L_gamma, L_matrix, L_matrix_derivative, L_matrix_qq, angular_velocity, \
-    mass_tensor_symbols
+from symbolic.model import (
+    L_gamma,
+    L_matrix,
+    L_matrix_derivative,
+    L_matrix_qq,
+    angular_velocity,
+    mass_tensor_symbols,
+)
 
 
 def test_hat_is_a_lie_algebra_isomorphism():

@@ -102,7 +102,6 @@ HARD = ([("generic", None)] + [("pole", 1), ("pole", -1), ("x", 0)]
 
 
 def _reference(gm, M, a, b):
-    n = len(gm)
     L = _mp_L_matrix(gm, mpmath.mpf(a), mpmath.mpf(b))
     Mv = [mpmath.mpf(float(c)) for c in M]
     Om = mpmath.lu_solve(L, mpmath.matrix(Mv))
@@ -188,17 +187,6 @@ def test_zeta_on_vertical(n, case):
             worst = max(worst, _ulps(fn(kernels.vec(M0f), gf, a, b), _vec_mp(Z, n), scale))
     MEASURED.setdefault((n, case), {})["zeta"] = worst
     assert worst <= BOUND_ULPS["zeta"], worst
-
-
-def test_report_hard_case_errors():
-    """Print the worst measured ulps per kernel family over the hard cases (runs last in this file)."""
-    rows = {}
-    for (n, case), worst in MEASURED.items():
-        for key, w in worst.items():
-            rows.setdefault((key, case[0]), []).append(w)
-    for (key, kind), ws in sorted(rows.items()):
-        print(f"{key:8s} {kind:12s} worst {max(ws):.2f} ulps")
-    assert all(max(ws) <= BOUND_ULPS[key] for (key, _), ws in rows.items())
 
 
 @pytest.mark.parametrize("n", [3, 4, 5])

@@ -6,8 +6,15 @@ from pathlib import Path
 import pytest
 import sympy as sp
 
-from proofs.catalog import CLAIMS_PATH, PAPER_PATH, ROOT, all_rows, claims_rows, discover, \
-    paper_labels
+from proofs.catalog import (
+    CLAIMS_PATH,
+    PAPER_PATH,
+    ROOT,
+    all_rows,
+    claims_rows,
+    discover,
+    paper_labels,
+)
 from proofs.ledger import Verdict, registry
 from symbolic.exact import rational_identity
 

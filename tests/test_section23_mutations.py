@@ -8,7 +8,7 @@ materially different formula and re-runs the ledger row that checks it. The row 
 import pytest
 import sympy as sp
 
-from proofs import s2_spheren, s2_sphere3d, s3_vertical_horizontal
+from proofs import s2_sphere3d, s2_spheren, s3_vertical_horizontal
 from symbolic.algebra import basis_vector, commutator, killing, wedge
 from symbolic.printed import section2, section3
 
