@@ -85,28 +85,8 @@ def reduced_check(residual: sp.Expr, label: str, *, point=phase_point, count: in
                           describe="P pushed to the reduced space")
 
 
-def _ring_point(rng) -> list:
-    """Values for every generator of fourd.RING at an exact phase point (eta, xi random too)."""
-    pt = phase_point(rng)
-    return [pt["a"], pt["b"], pt["x"], *pt["k"], *pt["u"], *pt["q"],
-            *points.rationals(rng, 3), *points.rationals(rng, 3)]
-
-
 def ring_on_P(p, label: str, *, sphere: bool = True) -> Check:
-    r"""Proof that a polynomial ``p`` of :data:`symbolic.fourd.RING` vanishes on $P$: its normal form
-    modulo $\lVert q\rVert^2 + x^2 - 1$ (division by the sphere polynomial, $x^2$ leading — the
-    engine's criterion, done here on sparse polynomials because converting large expressions
-    through SymPy is slow) is zero. Otherwise refuted at exact points of $P$ with physical $a, b$."""
-    import time
-    start = time.perf_counter()
-    nf = fourd.sphere_normal_form(p) if sphere else p
-    where = " modulo |q|^2 + x^2 = 1" if sphere else ""
-    if not nf:
-        return Check(True, f"exact sparse-polynomial identity in {len(fourd.GENS)} variables{where}",
-                     None, time.perf_counter() - start)
-    names = [str(g) for g in fourd.GENS]
-
-    def value(vals):
-        return sp.Rational(p(*vals["v"]))
-    return zero_at_points(value, lambda r: {"v": _ring_point(r), "names": names}, count=4,
-                          label=label, describe="P (refuting a non-zero normal form)")
+    r"""Engine proof that a polynomial ``p`` of :data:`symbolic.fourd.RING` vanishes on $P$ (its
+    remainder modulo $\lVert q\rVert^2 + x^2 - 1$ is zero, computed in the sparse ring), or its
+    refutation at an exact point of $P$ with physical $a, b$."""
+    return rational_identity(p, sphere=SPHERE if sphere else None, samplers=SAMPLERS, label=label)

@@ -32,6 +32,7 @@ from random import Random
 import sympy as sp
 from sympy.polys.fields import field as fraction_field
 from sympy.polys.orderings import lex
+from sympy.polys.rings import PolyElement
 
 from symbolic import points
 
@@ -83,19 +84,23 @@ class Check:
 # Route 1: rational-function identity, optionally modulo ||gamma||^2 = 1.
 # --------------------------------------------------------------------------------------------
 
-def _entries(expr) -> list[tuple[str, sp.Expr]]:
+def _entry(e):
+    return e if isinstance(e, PolyElement) else sp.sympify(e)
+
+
+def _entries(expr) -> list[tuple[str, sp.Expr | PolyElement]]:
     if isinstance(expr, sp.MatrixBase):
         return [(f"entry ({i + 1}, {j + 1})", expr[i, j])
                 for i in range(expr.rows) for j in range(expr.cols)]
     if isinstance(expr, (list, tuple)):
-        return [(f"component {i + 1}", sp.sympify(e)) for i, e in enumerate(expr)]
-    return [("", sp.sympify(expr))]
+        return [(f"component {i + 1}", _entry(e)) for i, e in enumerate(expr)]
+    return [("", _entry(expr))]
 
 
 def _free_symbols(entries: Iterable[tuple[str, sp.Expr]]) -> set[sp.Symbol]:
     out: set[sp.Symbol] = set()
     for _, e in entries:
-        out |= e.free_symbols
+        out |= set(e.ring.symbols) if isinstance(e, PolyElement) else e.free_symbols
     return out
 
 
@@ -132,7 +137,9 @@ def rational_identity(residual, *, sphere: Sequence[sp.Symbol] | None = None,
                       seed: int = points.DEFAULT_SEED, label: str = "") -> Check:
     r"""Prove ``residual == 0`` as an identity of rational functions over $\mathbb{Q}$, or refute it.
 
-    ``residual``: a SymPy expression, a matrix, or a list of expressions.
+    ``residual``: a SymPy expression, a matrix, or a list of expressions or of sparse polynomials
+    (``PolyElement`` of a SymPy ``ring`` over QQ: reduced in their own ring, which is much faster
+    than converting large expanded polynomials through SymPy expressions).
     ``sphere``: symbols $\gamma_1..\gamma_n$ with the identity claimed on $\lVert\gamma\rVert = 1$.
     ``samplers``: for the counterexample search only, how to draw each parameter (e.g. $a \in
     [-1,1]$, $b > 0$); other symbols are drawn from small rationals, sphere symbols on $S^{n-1}$.
@@ -147,6 +154,16 @@ def rational_identity(residual, *, sphere: Sequence[sp.Symbol] | None = None,
     method = (f"exact rational-function identity in {len(gens)} variables{where_sphere}" if gens
               else "exact: the residual expands to zero")
     for where, e in entries:
+        if isinstance(e, PolyElement):
+            # Already a sparse polynomial: reduce it in its own ring. {g} is a Groebner basis of
+            # (g) for every monomial order, so the remainder criterion is the same as above.
+            ring_gens = list(e.ring.symbols)
+            num = e.rem(e.ring(sum(s**2 for s in sphere) - 1)) if sphere else e
+            if num:
+                cx = _counterexample(e, num, e.ring.one, ring_gens, sphere, samplers or {}, seed,
+                                     label, where)
+                return Check(False, method, cx, time.perf_counter() - start)
+            continue
         if not gens:
             if sp.expand(e) != 0:
                 return Check(False, method, Counterexample((), e, where),
@@ -175,7 +192,10 @@ def _counterexample(expr, num, den, gens, sphere, samplers, seed, label, where) 
         args = [values[s] for s in gens]
         if den(*args) == 0 or num(*args) == 0:
             continue
-        value = sp.expand(sp.sympify(expr).xreplace(values))
+        if isinstance(expr, PolyElement):
+            value = sp.Rational(expr.ring.domain.to_sympy(expr(*args)))
+        else:
+            value = sp.expand(sp.sympify(expr).xreplace(values))
         if value == 0:  # the reduced numerator is not zero here but the residual is: impossible
             raise AssertionError("inconsistent reduction; please report")
         pt = tuple((str(s), values[s]) for s in gens)

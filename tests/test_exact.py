@@ -74,3 +74,17 @@ def test_rational_respects_open_ends():
     rng = random.Random(0)
     values = {points.rational(rng, 0, 1, 2, open_lo=True, open_hi=True) for _ in range(50)}
     assert values == {sp.Rational(1, 2)}
+
+
+def test_sparse_polynomials_are_decided_in_their_own_ring():
+    from sympy.polys.rings import ring
+
+    R, X, Y, Z, A = ring("x y z a", sp.QQ)
+    x_, y_, z_, a_ = sp.symbols("x y z a")
+    assert rational_identity([(X**2 + Y**2 + Z**2 - 1) * A], sphere=(x_, y_, z_))
+    check = rational_identity([X**2 + Y**2 - 1], sphere=(x_, y_, z_),
+                              samplers={a_: lambda r: sp.Rational(1, 2)})
+    assert not check
+    point = dict(check.counterexample.point)
+    assert point["x"] ** 2 + point["y"] ** 2 + point["z"] ** 2 == 1
+    assert check.counterexample.residual == point["x"] ** 2 + point["y"] ** 2 - 1 != 0
