@@ -51,7 +51,10 @@ def _run(block, args, comps, shape, names):
     return out.reshape(batch + shape)
 
 
-def _Delta_block(x, a, b, out):
+def Delta_components(x, a, b, out):
+    """Component form of ``Delta``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     out[0] = a*b*(1 - x)*(x + 1) + 2*a + 2*b + 4
 
 
@@ -61,10 +64,13 @@ def Delta(x, a, b):
 
     Claims: eq:Delta, K:Delta. Operations after CSE: 10.
     """
-    return _run(_Delta_block, (x, a, b,), (0, 0, 0,), (1,), 'x, a, b')
+    return _run(Delta_components, (x, a, b,), (0, 0, 0,), (1,), 'x, a, b')
 
 
-def _inverse_coefficients_block(x, a, b, out):
+def inverse_coefficients_components(x, a, b, out):
+    """Component form of ``inverse_coefficients``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = 2*a
     t1 = (1 - x)*(x + 1)
     t2 = 1/(-4*a - b*t0*t1 - 4*b - 8)
@@ -87,10 +93,13 @@ def inverse_coefficients(x, a, b):
 
     Claims: P:inversion, K:Delta. Operations after CSE: 35.
     """
-    return _run(_inverse_coefficients_block, (x, a, b,), (0, 0, 0,), (6,), 'x, a, b')
+    return _run(inverse_coefficients_components, (x, a, b,), (0, 0, 0,), (6,), 'x, a, b')
 
 
-def _vertical_coefficients_block(x, a, b, out):
+def vertical_coefficients_components(x, a, b, out):
+    """Component form of ``vertical_coefficients``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = b + 2
     out[0] = -t0/(-a*b*(1 - x)*(x + 1) - 2*a - 2*b - 4)
     out[1] = 1/(a + t0)
@@ -102,10 +111,13 @@ def vertical_coefficients(x, a, b):
 
     Claims: Th:Re, eq:solManakov, K:Delta. Operations after CSE: 16.
     """
-    return _run(_vertical_coefficients_block, (x, a, b,), (0, 0, 0,), (2,), 'x, a, b')
+    return _run(vertical_coefficients_components, (x, a, b,), (0, 0, 0,), (2,), 'x, a, b')
 
 
-def _L_matrix_axisym_3d_block(gamma1, gamma2, gamma3, a, b, out):
+def L_matrix_axisym_3d_components(gamma1, gamma2, gamma3, a, b, out):
+    """Component form of ``L_matrix_axisym_3d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = gamma1*gamma1
     t1 = gamma2*gamma2
     t2 = b*gamma3
@@ -131,10 +143,13 @@ def L_matrix_axisym_3d(gamma, a, b):
 
     Claims: eq:M-O, eq:axisymm. Operations after CSE: 19.
     """
-    return _run(_L_matrix_axisym_3d_block, (gamma, a, b,), (3, 0, 0,), (3, 3), 'gamma, a, b')
+    return _run(L_matrix_axisym_3d_components, (gamma, a, b,), (3, 0, 0,), (3, 3), 'gamma, a, b')
 
 
-def _angular_velocity_axisym_3d_block(M12, M13, M23, gamma1, gamma2, gamma3, a, b, out):
+def angular_velocity_axisym_3d_components(M12, M13, M23, gamma1, gamma2, gamma3, a, b, out):
+    """Component form of ``angular_velocity_axisym_3d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = 2*a
     t1 = (1 - gamma3)*(gamma3 + 1)
     t2 = 1/(-4*a - b*t0*t1 - 4*b - 8)
@@ -164,10 +179,13 @@ def angular_velocity_axisym_3d(M, gamma, a, b):
 
     Claims: P:inversion, K:Delta. Operations after CSE: 87.
     """
-    return _run(_angular_velocity_axisym_3d_block, (M, gamma, a, b,), (3, 3, 0, 0,), (3,), 'M, gamma, a, b')
+    return _run(angular_velocity_axisym_3d_components, (M, gamma, a, b,), (3, 3, 0, 0,), (3,), 'M, gamma, a, b')
 
 
-def _vector_field_axisym_3d_block(M12, M13, M23, gamma1, gamma2, gamma3, a, b, out):
+def vector_field_axisym_3d_components(M12, M13, M23, gamma1, gamma2, gamma3, a, b, out):
+    """Component form of ``vector_field_axisym_3d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = M12*gamma2 + M13*gamma3
     t1 = -M13*gamma1 - M23*gamma2
     t2 = gamma1*t1
@@ -216,10 +234,13 @@ def vector_field_axisym_3d(M, gamma, a, b):
 
     Claims: eq:motion-general, P:inversion, K:Delta. Operations after CSE: 122.
     """
-    return _run(_vector_field_axisym_3d_block, (M, gamma, a, b,), (3, 3, 0, 0,), (6,), 'M, gamma, a, b')
+    return _run(vector_field_axisym_3d_components, (M, gamma, a, b,), (3, 3, 0, 0,), (6,), 'M, gamma, a, b')
 
 
-def _energy_axisym_3d_block(M12, M13, M23, gamma1, gamma2, gamma3, a, b, out):
+def energy_axisym_3d_components(M12, M13, M23, gamma1, gamma2, gamma3, a, b, out):
+    """Component form of ``energy_axisym_3d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = ((1/2))*M12
     t1 = M13*gamma2 - M23*gamma1
     t2 = 2*a
@@ -259,10 +280,13 @@ def energy_axisym_3d(M, gamma, a, b):
 
     Claims: S2.2:energy, P:inversion, K:Delta. Operations after CSE: 121.
     """
-    return _run(_energy_axisym_3d_block, (M, gamma, a, b,), (3, 3, 0, 0,), (1,), 'M, gamma, a, b')
+    return _run(energy_axisym_3d_components, (M, gamma, a, b,), (3, 3, 0, 0,), (1,), 'M, gamma, a, b')
 
 
-def _p_coefficients_3d_block(M12, M13, M23, gamma1, gamma2, gamma3, out):
+def p_coefficients_3d_components(M12, M13, M23, gamma1, gamma2, gamma3, out):
+    """Component form of ``p_coefficients_3d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = 2*M13*gamma2
     t1 = M12*gamma3
     t2 = M23*gamma1
@@ -288,10 +312,13 @@ def p_coefficients_3d(M, gamma):
 
     Claims: eq:pol-first-integrals. Operations after CSE: 28.
     """
-    return _run(_p_coefficients_3d_block, (M, gamma,), (3, 3,), (4, 2), 'M, gamma')
+    return _run(p_coefficients_3d_components, (M, gamma,), (3, 3,), (4, 2), 'M, gamma')
 
 
-def _zeta_3d_block(M12, M13, M23, gamma1, gamma2, gamma3, a, b, out):
+def zeta_3d_components(M12, M13, M23, gamma1, gamma2, gamma3, a, b, out):
+    """Component form of ``zeta_3d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = a*b
     t1 = (1 - gamma3)*(gamma3 + 1)
     t2 = 2*a
@@ -321,10 +348,13 @@ def zeta_3d(M, gamma, a, b):
 
     Claims: Th:Re, K:Delta. Operations after CSE: 108.
     """
-    return _run(_zeta_3d_block, (M, gamma, a, b,), (3, 3, 0, 0,), (3,), 'M, gamma, a, b')
+    return _run(zeta_3d_components, (M, gamma, a, b,), (3, 3, 0, 0,), (3,), 'M, gamma, a, b')
 
 
-def _chi_3d_block(Omega12, Omega13, Omega23, a, b, out):
+def chi_3d_components(Omega12, Omega13, Omega23, a, b, out):
+    """Component form of ``chi_3d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = 1/(a + b + 2)
     t1 = a + 1
     out[0] = -Omega12 + t0*(Omega12*b + 2*Omega12)
@@ -338,10 +368,13 @@ def chi_3d(Omega, a, b):
 
     Claims: eq:solManakov. Operations after CSE: 21.
     """
-    return _run(_chi_3d_block, (Omega, a, b,), (3, 0, 0,), (3,), 'Omega, a, b')
+    return _run(chi_3d_components, (Omega, a, b,), (3, 0, 0,), (3,), 'Omega, a, b')
 
 
-def _Itilde_3d_block(Omega12, Omega13, Omega23, a, b, out):
+def Itilde_3d_components(Omega12, Omega13, Omega23, a, b, out):
+    """Component form of ``Itilde_3d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = a + 1
     out[0] = Omega12*b + 2*Omega12
     out[1] = Omega13*b + Omega13*t0 + Omega13
@@ -353,10 +386,13 @@ def Itilde_3d(Omega, a, b):
 
     Claims: eq:Manakov, eq:itildendim. Operations after CSE: 12.
     """
-    return _run(_Itilde_3d_block, (Omega, a, b,), (3, 0, 0,), (3,), 'Omega, a, b')
+    return _run(Itilde_3d_components, (Omega, a, b,), (3, 0, 0,), (3,), 'Omega, a, b')
 
 
-def _L_matrix_axisym_4d_block(gamma1, gamma2, gamma3, gamma4, a, b, out):
+def L_matrix_axisym_4d_components(gamma1, gamma2, gamma3, gamma4, a, b, out):
+    """Component form of ``L_matrix_axisym_4d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = gamma1*gamma1
     t1 = gamma2*gamma2
     t2 = b*gamma2
@@ -416,10 +452,13 @@ def L_matrix_axisym_4d(gamma, a, b):
 
     Claims: eq:M-O, eq:axisymm. Operations after CSE: 35.
     """
-    return _run(_L_matrix_axisym_4d_block, (gamma, a, b,), (4, 0, 0,), (6, 6), 'gamma, a, b')
+    return _run(L_matrix_axisym_4d_components, (gamma, a, b,), (4, 0, 0,), (6, 6), 'gamma, a, b')
 
 
-def _angular_velocity_axisym_4d_block(M12, M13, M14, M23, M24, M34, gamma1, gamma2, gamma3, gamma4, a, b, out):
+def angular_velocity_axisym_4d_components(M12, M13, M14, M23, M24, M34, gamma1, gamma2, gamma3, gamma4, a, b, out):
+    """Component form of ``angular_velocity_axisym_4d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = 2*a
     t1 = (1 - gamma4)*(gamma4 + 1)
     t2 = 1/(-4*a - b*t0*t1 - 4*b - 8)
@@ -456,10 +495,13 @@ def angular_velocity_axisym_4d(M, gamma, a, b):
 
     Claims: P:inversion, K:Delta. Operations after CSE: 136.
     """
-    return _run(_angular_velocity_axisym_4d_block, (M, gamma, a, b,), (6, 4, 0, 0,), (6,), 'M, gamma, a, b')
+    return _run(angular_velocity_axisym_4d_components, (M, gamma, a, b,), (6, 4, 0, 0,), (6,), 'M, gamma, a, b')
 
 
-def _vector_field_axisym_4d_block(M12, M13, M14, M23, M24, M34, gamma1, gamma2, gamma3, gamma4, a, b, out):
+def vector_field_axisym_4d_components(M12, M13, M14, M23, M24, M34, gamma1, gamma2, gamma3, gamma4, a, b, out):
+    """Component form of ``vector_field_axisym_4d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = ((1/2))*M13
     t1 = M14*gamma3 - M34*gamma1
     t2 = 2*a
@@ -533,10 +575,13 @@ def vector_field_axisym_4d(M, gamma, a, b):
 
     Claims: eq:motion-general, P:inversion, K:Delta. Operations after CSE: 235.
     """
-    return _run(_vector_field_axisym_4d_block, (M, gamma, a, b,), (6, 4, 0, 0,), (10,), 'M, gamma, a, b')
+    return _run(vector_field_axisym_4d_components, (M, gamma, a, b,), (6, 4, 0, 0,), (10,), 'M, gamma, a, b')
 
 
-def _energy_axisym_4d_block(M12, M13, M14, M23, M24, M34, gamma1, gamma2, gamma3, gamma4, a, b, out):
+def energy_axisym_4d_components(M12, M13, M14, M23, M24, M34, gamma1, gamma2, gamma3, gamma4, a, b, out):
+    """Component form of ``energy_axisym_4d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = ((1/2))*M12
     t1 = M14*gamma2 - M24*gamma1
     t2 = 2*a
@@ -588,10 +633,13 @@ def energy_axisym_4d(M, gamma, a, b):
 
     Claims: S2.2:energy, P:inversion, K:Delta. Operations after CSE: 205.
     """
-    return _run(_energy_axisym_4d_block, (M, gamma, a, b,), (6, 4, 0, 0,), (1,), 'M, gamma, a, b')
+    return _run(energy_axisym_4d_components, (M, gamma, a, b,), (6, 4, 0, 0,), (1,), 'M, gamma, a, b')
 
 
-def _p_coefficients_4d_block(M12, M13, M14, M23, M24, M34, gamma1, gamma2, gamma3, gamma4, out):
+def p_coefficients_4d_components(M12, M13, M14, M23, M24, M34, gamma1, gamma2, gamma3, gamma4, out):
+    """Component form of ``p_coefficients_4d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = M13*M24
     t1 = 2*M12
     t2 = M34*t1
@@ -626,10 +674,13 @@ def p_coefficients_4d(M, gamma):
 
     Claims: eq:pol-first-integrals. Operations after CSE: 114.
     """
-    return _run(_p_coefficients_4d_block, (M, gamma,), (6, 4,), (5, 2), 'M, gamma')
+    return _run(p_coefficients_4d_components, (M, gamma,), (6, 4,), (5, 2), 'M, gamma')
 
 
-def _zeta_4d_block(M12, M13, M14, M23, M24, M34, gamma1, gamma2, gamma3, gamma4, a, b, out):
+def zeta_4d_components(M12, M13, M14, M23, M24, M34, gamma1, gamma2, gamma3, gamma4, a, b, out):
+    """Component form of ``zeta_4d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = a*b
     t1 = (1 - gamma4)*(gamma4 + 1)
     t2 = 2*a
@@ -667,10 +718,13 @@ def zeta_4d(M, gamma, a, b):
 
     Claims: Th:Re, K:Delta. Operations after CSE: 168.
     """
-    return _run(_zeta_4d_block, (M, gamma, a, b,), (6, 4, 0, 0,), (6,), 'M, gamma, a, b')
+    return _run(zeta_4d_components, (M, gamma, a, b,), (6, 4, 0, 0,), (6,), 'M, gamma, a, b')
 
 
-def _chi_4d_block(Omega12, Omega13, Omega14, Omega23, Omega24, Omega34, a, b, out):
+def chi_4d_components(Omega12, Omega13, Omega14, Omega23, Omega24, Omega34, a, b, out):
+    """Component form of ``chi_4d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = 1/(a + b + 2)
     t1 = a + 1
     out[0] = -Omega12 + t0*(Omega12*b + 2*Omega12)
@@ -687,10 +741,13 @@ def chi_4d(Omega, a, b):
 
     Claims: eq:solManakov. Operations after CSE: 37.
     """
-    return _run(_chi_4d_block, (Omega, a, b,), (6, 0, 0,), (6,), 'Omega, a, b')
+    return _run(chi_4d_components, (Omega, a, b,), (6, 0, 0,), (6,), 'Omega, a, b')
 
 
-def _Itilde_4d_block(Omega12, Omega13, Omega14, Omega23, Omega24, Omega34, a, b, out):
+def Itilde_4d_components(Omega12, Omega13, Omega14, Omega23, Omega24, Omega34, a, b, out):
+    """Component form of ``Itilde_4d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = a + 1
     out[0] = Omega12*b + 2*Omega12
     out[1] = Omega13*b + 2*Omega13
@@ -705,4 +762,4 @@ def Itilde_4d(Omega, a, b):
 
     Claims: eq:Manakov, eq:itildendim. Operations after CSE: 22.
     """
-    return _run(_Itilde_4d_block, (Omega, a, b,), (6, 0, 0,), (6,), 'Omega, a, b')
+    return _run(Itilde_4d_components, (Omega, a, b,), (6, 0, 0,), (6,), 'Omega, a, b')

@@ -51,7 +51,10 @@ def _run(block, args, comps, shape, names):
     return out.reshape(batch + shape)
 
 
-def _xi_eta_4d_block(k1, k2, k3, u1, u2, u3, q1, q2, q3, x, a, b, out):
+def xi_eta_4d_components(k1, k2, k3, u1, u2, u3, q1, q2, q3, x, a, b, out):
+    """Component form of ``xi_eta_4d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = b*b
     t1 = 4*b
     t2 = k2*t1
@@ -118,10 +121,13 @@ def xi_eta_4d(k, u, q, x, a, b):
 
     Claims: eq:inverse-Leg, K:Delta. Operations after CSE: 392.
     """
-    return _run(_xi_eta_4d_block, (k, u, q, x, a, b,), (3, 3, 3, 0, 0, 0,), (6,), 'k, u, q, x, a, b')
+    return _run(xi_eta_4d_components, (k, u, q, x, a, b,), (3, 3, 3, 0, 0, 0,), (6,), 'k, u, q, x, a, b')
 
 
-def _field_4d_block(k1, k2, k3, u1, u2, u3, q1, q2, q3, x, a, b, out):
+def field_4d_components(k1, k2, k3, u1, u2, u3, q1, q2, q3, x, a, b, out):
+    """Component form of ``field_4d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = b*b
     t1 = 4*b
     t2 = k1*t1
@@ -217,10 +223,13 @@ def field_4d(k, u, q, x, a, b):
 
     Claims: eq:motion-n4, eq:inverse-Leg, K:Delta. Operations after CSE: 473.
     """
-    return _run(_field_4d_block, (k, u, q, x, a, b,), (3, 3, 3, 0, 0, 0,), (10,), 'k, u, q, x, a, b')
+    return _run(field_4d_components, (k, u, q, x, a, b,), (3, 3, 3, 0, 0, 0,), (10,), 'k, u, q, x, a, b')
 
 
-def _integrals_4d_block(k1, k2, k3, u1, u2, u3, q1, q2, q3, x, a, b, out):
+def integrals_4d_components(k1, k2, k3, u1, u2, u3, q1, q2, q3, x, a, b, out):
+    """Component form of ``integrals_4d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = k1*k1
     t1 = k2*k2
     t2 = k3*k3
@@ -310,10 +319,13 @@ def integrals_4d(k, u, q, x, a, b):
 
     Claims: S5:F123, S5:H4D, K:Delta. Operations after CSE: 483.
     """
-    return _run(_integrals_4d_block, (k, u, q, x, a, b,), (3, 3, 3, 0, 0, 0,), (4,), 'k, u, q, x, a, b')
+    return _run(integrals_4d_components, (k, u, q, x, a, b,), (3, 3, 3, 0, 0, 0,), (4,), 'k, u, q, x, a, b')
 
 
-def _measure_density_4d_block(x, a, b, out):
+def measure_density_4d_components(x, a, b, out):
+    """Component form of ``measure_density_4d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     out[0] = 1/(a*b*(1 - x)*(x + 1) + 2*a + 2*b + 4)
 
 
@@ -322,10 +334,13 @@ def measure_density_4d(x, a, b):
 
     Claims: S5:measure4D, K:Delta. Operations after CSE: 11.
     """
-    return _run(_measure_density_4d_block, (x, a, b,), (0, 0, 0,), (1,), 'x, a, b')
+    return _run(measure_density_4d_components, (x, a, b,), (0, 0, 0,), (1,), 'x, a, b')
 
 
-def _velocity_form_4d_block(xi1, xi2, xi3, eta1, eta2, eta3, q1, q2, q3, x, a, b, out):
+def velocity_form_4d_components(xi1, xi2, xi3, eta1, eta2, eta3, q1, q2, q3, x, a, b, out):
+    """Component form of ``velocity_form_4d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = eta2*xi3
     t1 = 8*a
     t2 = eta3*xi2
@@ -387,4 +402,4 @@ def velocity_form_4d(xi, eta, q, x, a, b):
 
     Claims: eq:Motion-Velocity, K:Delta. Operations after CSE: 397.
     """
-    return _run(_velocity_form_4d_block, (xi, eta, q, x, a, b,), (3, 3, 3, 0, 0, 0,), (6,), 'xi, eta, q, x, a, b')
+    return _run(velocity_form_4d_components, (xi, eta, q, x, a, b,), (3, 3, 3, 0, 0, 0,), (6,), 'xi, eta, q, x, a, b')

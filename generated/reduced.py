@@ -51,7 +51,10 @@ def _run(block, args, comps, shape, names):
     return out.reshape(batch + shape)
 
 
-def _reduced_field_block(A, B, E, G, F1, x, delta, a, b, out):
+def reduced_field_components(A, B, E, G, F1, x, delta, a, b, out):
+    """Component form of ``reduced_field``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = 8*b*delta
     t1 = 8*G
     t2 = A*t1
@@ -107,10 +110,13 @@ def reduced_field(r, a, b):
 
     Claims: eq:red-system, K:Delta. Operations after CSE: 214.
     """
-    return _run(_reduced_field_block, (r, a, b,), (7, 0, 0,), (7,), 'r, a, b')
+    return _run(reduced_field_components, (r, a, b,), (7, 0, 0,), (7,), 'r, a, b')
 
 
-def _reduced_integrals_block(A, B, E, G, F1, x, delta, a, b, out):
+def reduced_integrals_components(A, B, E, G, F1, x, delta, a, b, out):
+    """Component form of ``reduced_integrals``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = E*E
     t1 = delta*x
     t2 = G*G
@@ -138,10 +144,13 @@ def reduced_integrals(r, a, b):
 
     Claims: S5:red-integrals, K:Delta. Operations after CSE: 89.
     """
-    return _run(_reduced_integrals_block, (r, a, b,), (7, 0, 0,), (4,), 'r, a, b')
+    return _run(reduced_integrals_components, (r, a, b,), (7, 0, 0,), (4,), 'r, a, b')
 
 
-def _reduced_measure_density_block(A, B, E, G, F1, x, delta, a, b, out):
+def reduced_measure_density_components(A, B, E, G, F1, x, delta, a, b, out):
+    """Component form of ``reduced_measure_density``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = a*b*(1 - x)*(x + 1) + 2*a + 2*b + 4
     out[0] = 1/(t0*t0)
     out[1] = 1/(t0*abs(delta))
@@ -153,10 +162,13 @@ def reduced_measure_density(r, a, b):
 
     Claims: S5:red-measure, K:Delta. Operations after CSE: 15.
     """
-    return _run(_reduced_measure_density_block, (r, a, b,), (7, 0, 0,), (2,), 'r, a, b')
+    return _run(reduced_measure_density_components, (r, a, b,), (7, 0, 0,), (2,), 'r, a, b')
 
 
-def _horizontal_A_block(x, G, h, a, b, out):
+def horizontal_A_components(x, G, h, a, b, out):
+    """Component form of ``horizontal_A``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = a + 2
     t1 = x*x
     t2 = 2*a
@@ -171,10 +183,13 @@ def horizontal_A(x, G, h, a, b):
 
     Claims: eq:A-on-J. Operations after CSE: 33.
     """
-    return _run(_horizontal_A_block, (x, G, h, a, b,), (0, 0, 0, 0, 0,), (1,), 'x, G, h, a, b')
+    return _run(horizontal_A_components, (x, G, h, a, b,), (0, 0, 0, 0, 0,), (1,), 'x, G, h, a, b')
 
 
-def _horizontal_solution_block(x0, G0, F2, H, a, b, t, out):
+def horizontal_solution_components(x0, G0, F2, H, a, b, t, out):
+    """Component form of ``horizontal_solution``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = a + 2
     t1 = 1/(b + t0)
     t2 = (F2 - 2*H*b)/t0
@@ -191,4 +206,4 @@ def horizontal_solution(x0, G0, F2, H, a, b, t):
 
     Claims: S5:H-linear, K:horizontal-sinc. Operations after CSE: 22.
     """
-    return _run(_horizontal_solution_block, (x0, G0, F2, H, a, b, t,), (0, 0, 0, 0, 0, 0, 0,), (2,), 'x0, G0, F2, H, a, b, t')
+    return _run(horizontal_solution_components, (x0, G0, F2, H, a, b, t,), (0, 0, 0, 0, 0, 0, 0,), (2,), 'x0, G0, F2, H, a, b, t')

@@ -51,7 +51,10 @@ def _run(block, args, comps, shape, names):
     return out.reshape(batch + shape)
 
 
-def _L_gamma_3d_block(gamma1, gamma2, gamma3, I1, I2, I3, b, out):
+def L_gamma_3d_components(gamma1, gamma2, gamma3, I1, I2, I3, b, out):
+    """Component form of ``L_gamma_3d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = gamma2*gamma2
     t1 = gamma3*gamma3
     t2 = b*gamma1
@@ -75,10 +78,13 @@ def L_gamma_3d(gamma, inertia, b):
 
     Claims: eq:mom3D. Operations after CSE: 20.
     """
-    return _run(_L_gamma_3d_block, (gamma, inertia, b,), (3, 3, 0,), (3, 3), 'gamma, inertia, b')
+    return _run(L_gamma_3d_components, (gamma, inertia, b,), (3, 3, 0,), (3, 3), 'gamma, inertia, b')
 
 
-def _angular_velocity_3d_block(M1, M2, M3, gamma1, gamma2, gamma3, I1, I2, I3, b, out):
+def angular_velocity_3d_components(M1, M2, M3, gamma1, gamma2, gamma3, I1, I2, I3, b, out):
+    """Component form of ``angular_velocity_3d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = I2*I3
     t1 = M3*b
     t2 = I2*t1
@@ -136,10 +142,13 @@ def angular_velocity_3d(M, gamma, inertia, b):
 
     Claims: eq:mom3D, eq:invL3D. Operations after CSE: 184.
     """
-    return _run(_angular_velocity_3d_block, (M, gamma, inertia, b,), (3, 3, 3, 0,), (3,), 'M, gamma, inertia, b')
+    return _run(angular_velocity_3d_components, (M, gamma, inertia, b,), (3, 3, 3, 0,), (3,), 'M, gamma, inertia, b')
 
 
-def _vector_field_3d_block(M1, M2, M3, gamma1, gamma2, gamma3, I1, I2, I3, b, out):
+def vector_field_3d_components(M1, M2, M3, gamma1, gamma2, gamma3, I1, I2, I3, b, out):
+    """Component form of ``vector_field_3d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = I1*I2
     t1 = gamma1*gamma1
     t2 = b*t0
@@ -207,10 +216,13 @@ def vector_field_3d(M, gamma, inertia, b):
 
     Claims: eq:motion3D, eq:mom3D. Operations after CSE: 206.
     """
-    return _run(_vector_field_3d_block, (M, gamma, inertia, b,), (3, 3, 3, 0,), (6,), 'M, gamma, inertia, b')
+    return _run(vector_field_3d_components, (M, gamma, inertia, b,), (3, 3, 3, 0,), (6,), 'M, gamma, inertia, b')
 
 
-def _det_L_gamma_3d_block(gamma1, gamma2, gamma3, I1, I2, I3, b, out):
+def det_L_gamma_3d_components(gamma1, gamma2, gamma3, I1, I2, I3, b, out):
+    """Component form of ``det_L_gamma_3d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = I1*I2
     t1 = gamma1*gamma1
     t2 = b*t0
@@ -235,10 +247,13 @@ def det_L_gamma_3d(gamma, inertia, b):
 
     Claims: eq:mom3D, S2.1:detL3D. Operations after CSE: 49.
     """
-    return _run(_det_L_gamma_3d_block, (gamma, inertia, b,), (3, 3, 0,), (1,), 'gamma, inertia, b')
+    return _run(det_L_gamma_3d_components, (gamma, inertia, b,), (3, 3, 0,), (1,), 'gamma, inertia, b')
 
 
-def _integrals_3d_block(M1, M2, M3, gamma1, gamma2, gamma3, I1, I2, I3, b, out):
+def integrals_3d_components(M1, M2, M3, gamma1, gamma2, gamma3, I1, I2, I3, b, out):
+    """Component form of ``integrals_3d``: one float or 1-D array per scalar component,
+    the output components written into ``out[0], out[1], ...`` (no broadcasting, no
+    checks; for tight loops on single points)."""
     t0 = M1*gamma1
     t1 = M2*gamma2
     t2 = M3*gamma3
@@ -299,4 +314,4 @@ def integrals_3d(M, gamma, inertia, b):
 
     Claims: S2.1:integrals3D, eq:mom3D. Operations after CSE: 215.
     """
-    return _run(_integrals_3d_block, (M, gamma, inertia, b,), (3, 3, 3, 0,), (3,), 'M, gamma, inertia, b')
+    return _run(integrals_3d_components, (M, gamma, inertia, b,), (3, 3, 3, 0,), (3,), 'M, gamma, inertia, b')

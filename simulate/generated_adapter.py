@@ -49,10 +49,10 @@ def _component(gen, stem, n):
 
     A single integration calls the kernel on one point thousands of times; the public kernel's
     batching costs ~50 us there, while the same generated block evaluated on Python floats costs
-    ~5 us. For a batch of one we therefore call the generated block ``_{stem}_{n}d_block``
+    ~5 us. For a batch of one we therefore call the generated component form ``{stem}_{n}d_components``
     (same expressions, same file) on floats; any other batch goes through the public kernel."""
     fn = getattr(gen, f"{stem}_{n}d", None) if gen is not None else None
-    block = getattr(gen, f"_{stem}_{n}d_block", None) if gen is not None else None
+    block = getattr(gen, f"{stem}_{n}d_components", None) if gen is not None else None
     return _fast(fn, block, _SHAPES.get((stem, n)))
 
 
@@ -125,9 +125,9 @@ def bind() -> Kernels:
 
     red = _module("generated.reduced")
     reduced_field = _fast(getattr(red, "reduced_field", None),
-                          getattr(red, "_reduced_field_block", None), (7,))
+                          getattr(red, "reduced_field_components", None), (7,))
     reduced_integrals = _fast(getattr(red, "reduced_integrals", None),
-                              getattr(red, "_reduced_integrals_block", None), (4,))
+                              getattr(red, "reduced_integrals_components", None), (4,))
     horizontal = getattr(red, "horizontal_solution", None) if red is not None else None
     return Kernels(name="generated", L_gamma=L_gamma, angular_velocity=angular_velocity,
                    zeta=zeta, reduced_field=reduced_field, reduced_integrals=reduced_integrals,

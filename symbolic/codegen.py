@@ -120,7 +120,10 @@ def _emit_kernel(k: Kernel) -> tuple[str, int]:
     if unknown:
         raise ValueError(f"{k.name}: outputs use symbols that are not arguments: {sorted(map(str, unknown))}")
     names = [s.name for a in k.arguments for s in a.symbols]
-    block = [f"def _{k.name}_block({', '.join(names)}, out):"]
+    block = [f"def {k.name}_components({', '.join(names)}, out):",
+             f'    """Component form of ``{k.name}``: one float or 1-D array per scalar component,',
+             '    the output components written into ``out[0], out[1], ...`` (no broadcasting, no',
+             '    checks; for tight loops on single points)."""']
     for sym, expr in replacements:
         block.append(f"    {sym} = {printer.doprint(expr)}")
     for i, expr in enumerate(reduced):
@@ -129,7 +132,7 @@ def _emit_kernel(k: Kernel) -> tuple[str, int]:
     comps = ", ".join("0" if a.scalar else str(len(a.symbols)) for a in k.arguments)
     wrapper = [f"def {k.name}({args}):", f'    r"""{k.doc.strip()}', "",
                f"    Claims: {', '.join(k.claims)}. Operations after CSE: {ops}.", '    """',
-               f"    return _run(_{k.name}_block, ({args},), ({comps},), {k.shape!r}, {args!r})"]
+               f"    return _run({k.name}_components, ({args},), ({comps},), {k.shape!r}, {args!r})"]
     return "\n".join(block) + "\n\n\n" + "\n".join(wrapper) + "\n", ops
 
 
