@@ -10,45 +10,7 @@ Operation counts after CSE: xi_eta_4d=392, field_4d=473, integrals_4d=483, measu
 import numpy
 import numpy as np
 
-CHUNK = 16384
-
-
-def _run(block, args, comps, shape, names):
-    """Broadcast the batch axes, evaluate ``block`` in chunks of CHUNK points, component-major."""
-    arrays, batch = [], ()
-    for value, c, name in zip(args, comps, names.split(", ")):
-        value = np.asarray(value, dtype=float)
-        if c and (value.ndim == 0 or value.shape[-1] != c):
-            raise ValueError(f"{name} must have shape (..., {c}), got {value.shape}")
-        arrays.append(value)
-        batch = np.broadcast_shapes(batch, value.shape[:-1] if c else value.shape)
-    count = 1
-    for s in batch:
-        count *= s
-    size = 1
-    for s in shape:
-        size *= s
-    flat = []
-    for value, c in zip(arrays, comps):
-        if (value.shape[:-1] if c else value.shape) == ():
-            flat.append((False, list(value) if c else [float(value)]))
-        else:
-            full = np.broadcast_to(value, batch + ((c,) if c else ()))
-            flat.append((True, full.reshape((count, c) if c else (count, 1))))
-    out = np.empty((count, size))
-    step = max(1, min(CHUNK, count))
-    buffer = np.empty((size, step))
-    for start in range(0, count, step):
-        stop = min(count, start + step)
-        parts = []
-        for batched, value in flat:
-            if batched:
-                parts.extend(np.ascontiguousarray(value[start:stop].T))
-            else:
-                parts.extend(value)
-        block(*parts, buffer[:, :stop - start])
-        out[start:stop] = buffer[:, :stop - start].T
-    return out.reshape(batch + shape)
+from generated._runtime import _run
 
 
 def xi_eta_4d_components(k1, k2, k3, u1, u2, u3, q1, q2, q3, x, a, b, out):
