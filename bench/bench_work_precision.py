@@ -162,21 +162,11 @@ def _odefun(n, a, b, y0, t_end, dps, ref):
     N = len(rows)
     calls = [0]
     with mpmath.workdps(dps):
-        J = mpmath.eye(n)
-        J[n - 1, n - 1] += a
 
         def rhs(_t, y):
             calls[0] += 1
             m, g = y[:N], mpmath.matrix(y[N:])
-            L = mpmath.matrix(N, N)
-            for c, (i, j) in enumerate(zip(rows, cols, strict=True)):
-                B = mpmath.zeros(n, n)
-                B[i, j], B[j, i] = 1, -1
-                Bg = B * g
-                W = J * B + B * J + b * (Bg * g.T - g * Bg.T)
-                for r, (p, q) in enumerate(zip(rows, cols, strict=True)):
-                    L[r, c] = W[p, q]
-            w = mpmath.lu_solve(L, mpmath.matrix(m))
+            w = mpmath.lu_solve(taylor.L_matrix_mp(g, a, b, n), mpmath.matrix(m))
             O, M = mpmath.zeros(n, n), mpmath.zeros(n, n)
             for c, (i, j) in enumerate(zip(rows, cols, strict=True)):
                 O[i, j], O[j, i], M[i, j], M[j, i] = w[c], -w[c], m[c], -m[c]

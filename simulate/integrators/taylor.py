@@ -30,7 +30,7 @@ import numpy as np
 from simulate import so
 from simulate.integrators.base import Solution
 
-__all__ = ["integrate", "default_order"]
+__all__ = ["integrate", "default_order", "L_matrix_mp"]
 
 
 def default_order(dps: int) -> int:
@@ -58,12 +58,13 @@ def _skew(S):
     return S - S.T
 
 
-def _L_inverse(fx, gamma, a, b, n):
-    """The matrix of $L_{\\gamma_0}^{-1}$ on vec-coordinates, fixed point, from the definition."""
-    g = [mpmath.ldexp(mpmath.mpf(int(v)), -fx.P) for v in gamma]
+def L_matrix_mp(gamma, a, b, n: int):
+    r"""The matrix of $L_\gamma(\Omega) = \mathbb{J}\Omega + \Omega\mathbb{J} + b(\Omega\gamma)\wedge\gamma$,
+    $\mathbb{J} = \mathrm{Id} + aE_nE_n^T$ (eq:M-O-axi-symm), on vec-coordinates (upper triangle, row
+    major), in mpmath at the working precision, assembled from the definition; any $\gamma$."""
     J = mpmath.eye(n)
     J[n - 1, n - 1] += a
-    gm = mpmath.matrix(g)
+    gm = mpmath.matrix(list(gamma))
     rows, cols = np.triu_indices(n, 1)
     L = mpmath.matrix(len(rows), len(rows))
     for c, (i, j) in enumerate(zip(rows, cols, strict=True)):
@@ -73,9 +74,15 @@ def _L_inverse(fx, gamma, a, b, n):
         W = J * B + B * J + b * (Bg * gm.T - gm * Bg.T)
         for r, (p, q) in enumerate(zip(rows, cols, strict=True)):
             L[r, c] = W[p, q]
-    Linv = mpmath.inverse(L)
-    return np.array([[fx.of(Linv[r, c]) for c in range(len(rows))] for r in range(len(rows))],
-                    dtype=object)
+    return L
+
+
+def _L_inverse(fx, gamma, a, b, n):
+    r"""The matrix of $L_{\gamma_0}^{-1}$ on vec-coordinates, fixed point, from the definition."""
+    g = [mpmath.ldexp(mpmath.mpf(int(v)), -fx.P) for v in gamma]
+    Linv = mpmath.inverse(L_matrix_mp(g, a, b, n))
+    size = Linv.rows
+    return np.array([[fx.of(Linv[r, c]) for c in range(size)] for r in range(size)], dtype=object)
 
 
 def _series(fx, M, gamma, g, c, a, b, r, n, p):
