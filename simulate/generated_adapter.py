@@ -93,35 +93,34 @@ def bind() -> Kernels:
     if gen is None and runtime is None:
         return Kernels(name="generated", note="generated/axisym.py does not exist yet")
 
-    def angular_velocity(M, gamma, a, b):
-        r"""$\Omega = L_\gamma^{-1}(M)$ (P:inversion)."""
-        n = gamma.shape[-1]
-        fn = _component(gen, "angular_velocity_axisym", n)
-        if fn is not None:
-            return so.unvec(fn(so.vec(M), gamma, a, b), n)
-        if runtime is not None and hasattr(runtime, "angular_velocity"):
-            return runtime.angular_velocity(M, gamma, a, b)
-        _missing("L_gamma^{-1}", n)
+    def dispatch(stem, runtime_name, label, apply, doc):
+        """``f(X, gamma, a, b)``: the component kernel ``{stem}_{n}d`` where it is generated for this
+        n (``apply(kernel, vec(X), gamma, a, b)`` gives vec-coordinates), else the ``kernels``
+        runtime (any n), else an error naming what is missing."""
+        def call(X, gamma, a, b):
+            n = gamma.shape[-1]
+            fn = _component(gen, stem, n)
+            if fn is not None:
+                return so.unvec(apply(fn, so.vec(X), gamma, a, b), n)
+            rt = getattr(runtime, runtime_name, None) if runtime is not None else None
+            if rt is not None:
+                return rt(X, gamma, a, b)
+            _missing(label, n)
+        call.__doc__ = doc
+        return call
 
-    def L_gamma(Omega, gamma, a, b):
-        r"""$M = L_\gamma(\Omega)$ (eq:M-O-axi-symm)."""
-        n = gamma.shape[-1]
-        fn = _component(gen, "L_matrix_axisym", n)
-        if fn is not None:
-            return so.unvec(np.einsum("...ij,...j->...i", fn(gamma, a, b), so.vec(Omega)), n)
-        if runtime is not None and hasattr(runtime, "L_gamma"):
-            return runtime.L_gamma(Omega, gamma, a, b)
-        _missing("L_gamma", n)
+    def direct(fn, x, gamma, a, b):
+        return fn(x, gamma, a, b)
 
-    def zeta(M0, gamma0, a, b):
-        r"""$\zeta$ of Th:Re for $(M_0, \gamma_0)\in\mathcal V$."""
-        n = gamma0.shape[-1]
-        fn = _component(gen, "zeta", n)
-        if fn is not None:
-            return so.unvec(fn(so.vec(M0), gamma0, a, b), n)
-        if runtime is not None and hasattr(runtime, "zeta"):
-            return runtime.zeta(M0, gamma0, a, b)
-        _missing("zeta", n)
+    def matrix(fn, x, gamma, a, b):
+        return np.einsum("...ij,...j->...i", fn(gamma, a, b), x)
+
+    angular_velocity = dispatch("angular_velocity_axisym", "angular_velocity", "L_gamma^{-1}",
+                                direct, r"$\Omega = L_\gamma^{-1}(M)$ (P:inversion).")
+    L_gamma = dispatch("L_matrix_axisym", "L_gamma", "L_gamma", matrix,
+                       r"$M = L_\gamma(\Omega)$ (eq:M-O-axi-symm).")
+    zeta = dispatch("zeta", "zeta", "zeta", direct,
+                    r"$\zeta$ of Th:Re for $(M_0, \gamma_0)\in\mathcal V$.")
 
     red = _module("generated.reduced")
     reduced_field = _fast(getattr(red, "reduced_field", None),
