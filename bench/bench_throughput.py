@@ -34,7 +34,7 @@ def measure(count: int = COUNT, repeat: int = 3) -> dict[str, float]:
     import sympy as sp
 
     from generated import axisym
-    from symbolic.kernels_axisym import component_kernels
+    from symbolic.emit.axisym import component_kernels
 
     rng = np.random.default_rng(2026)
     gamma = rng.standard_normal((count, 4))

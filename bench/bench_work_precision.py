@@ -31,7 +31,7 @@ from simulate import families, so
 from simulate.closed_forms import horizontal, relative_equilibrium
 from simulate.field import FullField, ReducedField
 from simulate.integrators import dop853, lie, taylor
-from simulate.kernels import KernelMissing, active
+from simulate.dispatch import KernelMissing, active
 from simulate.outputs import p_coefficients
 from simulate.run import reduced_invariants
 

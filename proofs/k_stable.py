@@ -7,7 +7,7 @@ r"""K:* — the stable rewrites used by the generated kernels, each proved equal
   ($\Delta \ge 2 + b$ is never a small difference of large terms), so this row certifies the form
   evaluated, not an accuracy gain.
 * **K:rodrigues** — $e^{Z} = I + \operatorname{sinc}\theta\,Z + \tfrac12\operatorname{sinc}^2(\theta/2)\,Z^2$
-  for $Z = \hat z \in \mathfrak{so}(3)$, $\theta = \lVert z\rVert$ (kernels.axisym.expm_skew, used by
+  for $Z = \hat z \in \mathfrak{so}(3)$, $\theta = \lVert z\rVert$ (runtime.axisym.expm_skew, used by
   the vertical solution of Th:Re for $n = 4$): Rodrigues' $(1 - \cos\theta)/\theta^2$ is replaced by
   $\tfrac12\operatorname{sinc}^2(\theta/2)$, which has no $0/0$ at $\theta \to 0$. Proved with the
   half-angle point $(c, s) = (\cos\tfrac\theta2, \sin\tfrac\theta2)$ on the circle $c^2 + s^2 = 1$
@@ -35,7 +35,7 @@ SECTION = "Kernels — stable rewrites"
 @claim("K:Delta", uses=("eq:Delta",), adds=(SECTION, "Δ(x) = 2(2+a+b) + ab(1−x)(1+x), the form the kernels evaluate, equals the derived Δ (certifies the form; no accuracy gain is claimed)"))
 def k_delta() -> Verdict:
     from symbolic.axisymmetric import Delta, a, b, x
-    from symbolic.kernels_axisym import stable_Delta
+    from symbolic.emit.axisym import stable_Delta
 
     check = rational_identity(stable_Delta(x, a, b) - Delta(x, a, b))
     return Verdict.all_of([("stable form = derived Delta", check)], method=check.method)
@@ -78,7 +78,7 @@ def _mod_both(residual: sp.Matrix, z, c):
 @claim("K:horizontal-sinc", uses=("S5:H-linear",), adds=(SECTION, "sin(νt)/ν = t sinc(νt) in the horizontal-solution kernel, equal to the derived solution"))
 def k_horizontal_sinc() -> Verdict:
     from symbolic import reduced
-    from symbolic.kernels_reduced import horizontal_solution_stable
+    from symbolic.emit.reduced import horizontal_solution_stable
 
     t, x0, G0 = sp.symbols("t x0 G0", real=True)
     nu = sp.Symbol("nu", positive=True)

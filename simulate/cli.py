@@ -7,7 +7,7 @@ import sys
 import time
 from pathlib import Path
 
-from simulate.kernels import KernelMissing
+from simulate.dispatch import KernelMissing
 from simulate.outputs import collect, max_drift, write
 from simulate.planner import plan
 from simulate.run import execute

@@ -33,7 +33,7 @@ from __future__ import annotations
 import numpy as np
 
 from simulate import so
-from simulate.kernels import active
+from simulate.dispatch import active
 
 __all__ = ["relative_equilibrium", "horizontal"]
 

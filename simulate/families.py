@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from simulate import so
-from simulate.kernels import active
+from simulate.dispatch import active
 
 __all__ = ["FAMILIES", "draw", "claim_residual", "steady_residual"]
 

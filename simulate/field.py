@@ -36,7 +36,7 @@ from __future__ import annotations
 import numpy as np
 
 from simulate import so
-from simulate.kernels import Kernels, active
+from simulate.dispatch import Kernels, active
 
 __all__ = ["FullField", "ReducedField"]
 

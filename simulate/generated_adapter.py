@@ -1,10 +1,10 @@
-r"""Adapter from the kernels of :mod:`generated` to the matrix interface of :mod:`simulate.kernels`.
+r"""Adapter from the kernels of :mod:`generated` to the matrix interface of :mod:`simulate.dispatch`.
 
 :mod:`generated.axisym` holds component kernels for $n = 3, 4$ ($M$, $\Omega$, $\zeta$ as ``vec``
 coordinates, entries $i<j$ in lexicographic order — the order of :func:`simulate.so.vec`) and
 coefficient kernels for every $n$. The assembly of the coefficient kernels into $n\times n$
 matrices for $n \ge 5$ belongs to the kernels' runtime package; until it exists, kernels for
-$n \ge 5$ raise :class:`simulate.kernels.KernelMissing` naming what is missing. Nothing here
+$n \ge 5$ raise :class:`simulate.dispatch.KernelMissing` naming what is missing. Nothing here
 computes a derived formula: it only reshapes arguments and results.
 """
 
@@ -15,12 +15,12 @@ import importlib
 import numpy as np
 
 from simulate import so
-from simulate.kernels import KernelMissing, Kernels
+from simulate.dispatch import KernelMissing, Kernels
 
 __all__ = ["bind", "RUNTIME_MODULES"]
 
 #: Where the runtime assembly of the coefficient kernels (any n) may live, first match wins.
-RUNTIME_MODULES = ("kernels.axisym", "generated.runtime", "generated.axisym_runtime")
+RUNTIME_MODULES = ("runtime.axisym",)
 
 
 _BROKEN: dict[str, str] = {}

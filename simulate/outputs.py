@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from simulate import so
-from simulate.kernels import active
+from simulate.dispatch import active
 
 __all__ = ["collect", "integrals", "p_coefficients", "write"]
 

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from simulate import families
-from simulate.kernels import Kernels, active
+from simulate.dispatch import Kernels, active
 from simulate.scene import Scene
 
 __all__ = ["Plan", "plan", "REDUCED_OUTPUTS", "MODELS"]

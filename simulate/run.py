@@ -18,7 +18,7 @@ from simulate import so
 from simulate.closed_forms import horizontal, relative_equilibrium
 from simulate.field import FullField, ReducedField
 from simulate.integrators import dop853, lie, taylor
-from simulate.kernels import active
+from simulate.dispatch import active
 from simulate.planner import Plan
 from simulate.scene import Scene
 

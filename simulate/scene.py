@@ -177,7 +177,7 @@ def loads(text: str, source: str = "<scene>") -> Scene:
             fail("initial.gamma", f"|gamma| = {norm!r} is not 1 within {tol:g}",
                  f"normalise it: gamma / {norm:.17g}")
         if name == "Omega":
-            from simulate.kernels import active
+            from simulate.dispatch import active
             Omega0 = X[None]
             M0 = active().require("L_gamma")(X, gamma0, a, b)[None]
         else:
@@ -273,7 +273,7 @@ def _check_claim(family, M, gamma, a, b, tol, fail, Omega):
                  f"fix M/gamma so that {what}, or set family = \"explicit\"")
     elif family == "steady-rotation":
         if Omega is None:
-            from simulate.kernels import active
+            from simulate.dispatch import active
             Omega = active().require("angular_velocity")(M, gamma, a, b)
         else:
             Omega = Omega[0]

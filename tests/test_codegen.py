@@ -60,8 +60,8 @@ def test_banner(fresh):
         assert producer in head and "DO NOT EDIT" in head and "Source hash (sha256" in head
         assert "Operation counts after CSE:" in head and "Claims:" in head
         imports = {li.strip() for li in text.splitlines() if li.startswith(("import ", "from "))}
-        assert imports == {"import numpy", "import numpy as np", "from generated._runtime import _run"}
-    runtime = (fresh / "_runtime.py").read_text()
+        assert imports == {"import numpy", "import numpy as np", "from generated._batching import _run"}
+    runtime = (fresh / "_batching.py").read_text()
     assert "DO NOT EDIT" in runtime
     assert {li.strip() for li in runtime.splitlines() if li.startswith(("import ", "from "))} \
         == {"import numpy as np"}

@@ -23,7 +23,7 @@ import mpmath
 import numpy as np
 import pytest
 
-import kernels
+import runtime
 from generated import axisym as g
 
 EPS = np.finfo(float).eps
@@ -125,23 +125,23 @@ def test_inverse_field_energy_zeta(n, case):
         gm, gf, M, a, b = _point(rng, n, case)
         ref, inv_norm = _reference(gm, M, a, b)
         normM = float(np.linalg.norm(M))
-        Mm = kernels.unvec(M, n)
+        Mm = runtime.unvec(M, n)
         # Omega
-        Om = kernels.vec(kernels.angular_velocity(Mm, gf, a, b))
+        Om = runtime.vec(runtime.angular_velocity(Mm, gf, a, b))
         worst["Omega"] = max(worst.get("Omega", 0), _ulps(Om, ref, inv_norm * normM))
         if n in (3, 4):  # the matrix runtime path too, for the component sizes
-            Om2 = kernels.vec(kernels.angular_velocity(Mm, gf, a, b, method="matrix"))
+            Om2 = runtime.vec(runtime.angular_velocity(Mm, gf, a, b, method="matrix"))
             worst["Omega"] = max(worst["Omega"], _ulps(Om2, ref, inv_norm * normM))
         # field and energy from the reference Omega by the definitions
         Mmp, Omp = _unvec_mp([mpmath.mpf(float(c)) for c in M], n), _unvec_mp(ref, n)
         dM = Mmp * Omp - Omp * Mmp
         dg = -(Omp * mpmath.matrix(gm))
-        Mdot, gdot = kernels.vector_field(Mm, gf, a, b)
+        Mdot, gdot = runtime.vector_field(Mm, gf, a, b)
         worst["field"] = max(worst.get("field", 0),
-                             _ulps(kernels.vec(Mdot), _vec_mp(dM, n), inv_norm * normM**2),
+                             _ulps(runtime.vec(Mdot), _vec_mp(dM, n), inv_norm * normM**2),
                              _ulps(gdot, [dg[i] for i in range(n)], inv_norm * normM))
         H_ref = mpmath.fsum(x * y for x, y in zip([mpmath.mpf(float(c)) for c in M], ref)) / 2
-        H = kernels.energy(Mm, gf, a, b)
+        H = runtime.energy(Mm, gf, a, b)
         worst["energy"] = max(worst.get("energy", 0), _ulps([H], [H_ref], inv_norm * normM**2))
         if n in (3, 4):
             fn = g.energy_axisym_3d if n == 3 else g.energy_axisym_4d
@@ -178,13 +178,13 @@ def test_zeta_on_vertical(n, case):
         gv = mpmath.matrix(gm)
         assert mpmath.norm(Z * gv + Om0 * gv) <= mpmath.mpf(10) ** -40 * (1 + mpmath.norm(M0))
         assert mpmath.norm(Z[:, n - 1]) <= mpmath.mpf(10) ** -40 * (1 + mpmath.norm(M0))
-        got = kernels.vec(kernels.zeta(M0f, gf, a, b))
+        got = runtime.vec(runtime.zeta(M0f, gf, a, b))
         normM = float(mpmath.norm(M0))
         scale = inv_norm * max(normM, 1e-300) * (1 + abs(float(kappa)) / inv_norm)
         worst = max(worst, _ulps(got, _vec_mp(Z, n), scale))
         if n in (3, 4):
             fn = g.zeta_3d if n == 3 else g.zeta_4d
-            worst = max(worst, _ulps(fn(kernels.vec(M0f), gf, a, b), _vec_mp(Z, n), scale))
+            worst = max(worst, _ulps(fn(runtime.vec(M0f), gf, a, b), _vec_mp(Z, n), scale))
     MEASURED.setdefault((n, case), {})["zeta"] = worst
     assert worst <= BOUND_ULPS["zeta"], worst
 
@@ -192,7 +192,7 @@ def test_zeta_on_vertical(n, case):
 @pytest.mark.parametrize("n", [3, 4, 5])
 @pytest.mark.parametrize("a", [0.0, 1e-12, 0.5, -1.0])
 def test_vertical_solution_against_mpmath_expm(n, a):
-    r"""Th:Re closed form (kernels.vertical_solution: generated zeta, then exp by K:rodrigues for
+    r"""Th:Re closed form (runtime.vertical_solution: generated zeta, then exp by K:rodrigues for
     n = 4, a plane rotation for n = 3, eigh for n = 5) against mpmath.expm(zeta t) at 50 digits
     applied to M0, gamma0: within 8 n eps (|M0| + 1). At a = 0, zeta = 0 and Rodrigues'
     printed form sin(theta)/theta, (1 - cos theta)/theta^2 is 0/0 = nan; the kernel is exact there."""
@@ -203,10 +203,10 @@ def test_vertical_solution_against_mpmath_expm(n, a):
     P = mpmath.eye(n) - mpmath.matrix(gm) * mpmath.matrix(gm).T
     M0 = P * _unvec_mp([mpmath.mpf(float(c)) for c in M], n) * P
     M0f = np.array(M0.tolist(), dtype=float)
-    Z = _unvec_mp([mpmath.mpf(float(c)) for c in kernels.vec(kernels.zeta(M0f, gf, a, b))], n)
+    Z = _unvec_mp([mpmath.mpf(float(c)) for c in runtime.vec(runtime.zeta(M0f, gf, a, b))], n)
     R = mpmath.expm(Z * t)
     Mt_ref, gt_ref = R * mpmath.matrix(M0f.tolist()) * R.T, R * mpmath.matrix(gf.tolist())
-    Mt, gt = kernels.vertical_solution(M0f, gf, t, a, b)
+    Mt, gt = runtime.vertical_solution(M0f, gf, t, a, b)
     scale = 1 + float(mpmath.norm(M0))
     err = max(max(float(abs(mpmath.mpf(float(Mt[i, j])) - Mt_ref[i, j])) for i in range(n) for j in range(n)),
               max(float(abs(mpmath.mpf(float(gt[i])) - gt_ref[i])) for i in range(n)))

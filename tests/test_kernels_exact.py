@@ -4,7 +4,7 @@ r"""Every generated kernel against the derived expression it was emitted from.
    exact SymPy value of the derived expression = its mpmath evaluation at 50 digits (to 1e-45
    relative) = the NumPy kernel (to the float bound below).
 2. *Fidelity on seeded samples*: NumPy kernel vs the 50-digit mpmath evaluation of the derived
-   expression with exact constants (:mod:`symbolic.kernels_mpmath`), error bounded by
+   expression with exact constants (:mod:`symbolic.mpmath_eval`), error bounded by
    ``FIDELITY_ULPS`` machine epsilons times the formula's condition scale
    $\lvert f\rvert_{\mathrm{abs}}$ (absolute-value evaluation; Higham §3.1).
 
@@ -23,7 +23,7 @@ import pytest
 import sympy as sp
 
 from symbolic.codegen import MODULES
-from symbolic.kernels_mpmath import mp_abs_eval, mp_eval
+from symbolic.mpmath_eval import mp_abs_eval, mp_eval
 
 EPS = np.finfo(float).eps
 #: Straight-line float evaluation of a formula of depth k has error <= gamma_k |f|_abs with

@@ -18,7 +18,7 @@ def test_simulate_imports_no_sympy():
     code = ("import sys\n" + "".join(f"import simulate.{m}\n" for m in modules)
             + "import simulate.integrators.dop853, simulate.integrators.lie, "
               "simulate.integrators.taylor\n"
-            + "from simulate.kernels import active\nactive()\n"
+            + "from simulate.dispatch import active\nactive()\n"
             + "assert 'sympy' not in sys.modules, sorted(m for m in sys.modules if 'sympy' in m)\n"
             + "print('ok')\n")
     out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True)

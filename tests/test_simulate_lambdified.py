@@ -10,7 +10,7 @@ import pytest
 import sympy as sp
 
 from simulate import so
-from simulate.kernels import Kernels, active
+from simulate.dispatch import Kernels, active
 from symbolic.algebra import vector_symbols
 from symbolic.model import L_matrix
 

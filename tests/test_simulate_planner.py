@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from simulate.kernels import active
+from simulate.dispatch import active
 from simulate.planner import MODELS, plan
 from simulate.scene import load, loads
 

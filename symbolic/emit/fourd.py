@@ -16,7 +16,7 @@ import sympy as sp
 
 from symbolic import fourd
 from symbolic.codegen import Argument, Kernel
-from symbolic.kernels_axisym import stable_Delta
+from symbolic.emit.axisym import stable_Delta
 
 __all__ = ["kernels", "stable_D"]
 

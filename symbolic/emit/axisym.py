@@ -11,7 +11,7 @@ Two kinds of kernel:
 
 * *coefficient kernels* for every $n$: ``inverse_coefficients(x, a, b)`` (six scalars,
   $L_\gamma^{-1}M = \sum_k c_k T_k(M)$) and ``vertical_coefficients(x, a, b)`` ($\kappa$,
-  $\tilde\kappa$). The hand-written runtime :mod:`kernels.axisym` applies them to batches of
+  $\tilde\kappa$). The hand-written runtime :mod:`runtime.axisym` applies them to batches of
   $n\times n$ matrices (einsum); ``generated/`` stays free of the $n$-dependent assembly;
 * *component kernels* for $n = 3$ and $n = 4$ (faster than the matrix form for small $n$): $M$ in
   the coordinates ``vec`` of :mod:`symbolic.algebra` (entries $M_{ij}$, $i<j$, lexicographic:

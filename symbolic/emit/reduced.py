@@ -14,8 +14,8 @@ import sympy as sp
 
 from symbolic import reduced
 from symbolic.codegen import Argument, Kernel
-from symbolic.kernels_axisym import stable_Delta
-from symbolic.kernels_fourd import stable_D
+from symbolic.emit.axisym import stable_Delta
+from symbolic.emit.fourd import stable_D
 from symbolic.reduced_invariants import F1, A, B, E, G, delta
 
 __all__ = ["kernels", "horizontal_solution_stable"]
