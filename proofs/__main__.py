@@ -1,7 +1,8 @@
 """``python -m proofs [ID ...]`` — decide ledger rows and print one line per row.
 
 With no ids it runs the whole ledger and writes ``VERIFICATION.md`` and ``verification.json`` at
-the repository root. Exit status 1 when a row fails, a proof raises, an open row gives no reason,
+the repository root (only in a source checkout: an installed package does not write into
+site-packages). Exit status 1 when a row fails, a proof raises, an open row gives no reason,
 a proof registers an id that is not a ledger row, or (``--check-generated``) ``generated/`` is stale.
 """
 
@@ -13,7 +14,7 @@ import sys
 import time
 
 from proofs import report
-from proofs.catalog import ROOT
+from proofs.catalog import ROOT, is_checkout
 from proofs.runner import run, select, unknown_registrations
 
 
@@ -60,7 +61,9 @@ def main(argv: list[str] | None = None) -> int:
         else:
             print("generated/ is up to date with symbolic/ (regenerated and compared byte for byte)")
     print(report.summary(results) + f"; wall {time.perf_counter() - start:.1f} s")
-    if not args.ids:
+    if not args.ids and not is_checkout():
+        print("not a source checkout: VERIFICATION.md and verification.json not written")
+    elif not args.ids:
         report.write_markdown(results, ROOT / "VERIFICATION.md")
         report.write_json(results, ROOT / "verification.json")
         print("wrote VERIFICATION.md and verification.json")

@@ -1,7 +1,9 @@
 """The list of ledger rows: every id of ``paper/CLAIMS.md`` plus the rows this project added.
 
 ``paper/CLAIMS.md`` and ``paper/chaplygin-sphere-nd.tex`` are copies of the shared originals
-(a test keeps them identical when ``../shared`` is present). A CLAIMS.md cell such as
+(a test keeps them identical when ``../shared`` is present). They ship inside the package as
+``proofs/paper`` (a link to ``paper/`` in the repository), read through :mod:`importlib.resources`,
+so an installed wheel finds them. A CLAIMS.md cell such as
 ``eq:motion-general, eq:M-O, eq:Inertia`` or ``eq:Manakov / eq:itildendim`` yields one row per id.
 """
 
@@ -11,11 +13,19 @@ import importlib
 import pkgutil
 import re
 from dataclasses import dataclass
+from importlib import resources
 from pathlib import Path
 
+#: The folder above the packages: the repository root in a checkout, site-packages when installed.
 ROOT = Path(__file__).resolve().parent.parent
-CLAIMS_PATH = ROOT / "paper" / "CLAIMS.md"
-PAPER_PATH = ROOT / "paper" / "chaplygin-sphere-nd.tex"
+_PAPER = resources.files("proofs") / "paper"
+CLAIMS_PATH = Path(str(_PAPER / "CLAIMS.md"))
+PAPER_PATH = Path(str(_PAPER / "chaplygin-sphere-nd.tex"))
+
+
+def is_checkout() -> bool:
+    """True when running from the source repository (not from an installed wheel)."""
+    return (ROOT / "pyproject.toml").is_file() and (ROOT / "proofs" / "catalog.py").is_file()
 
 #: Modules of the ``proofs`` package that hold machinery, not proofs.
 MACHINERY = {"ledger", "catalog", "runner", "report", "__main__"}

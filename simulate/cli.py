@@ -1,4 +1,10 @@
-"""``python -m simulate SCENE [--out DIR] [--cross-check]``: plan, run, write, summarise."""
+"""``python -m simulate SCENE [--out DIR] [--cross-check] [--force]``: plan, run, write, summarise.
+
+``SCENE`` is a scene file or the name of a built-in scene (``generic4d``; ``--list`` shows them).
+Exit status: 0 done (and the cross-check, if asked, passed); 1 the cross-check failed; 2 the scene,
+``--out`` or the run cannot give a right answer (one line on stderr, nothing written); 3 a kernel
+is missing from ``generated/``.
+"""
 
 from __future__ import annotations
 
@@ -8,15 +14,17 @@ import time
 from pathlib import Path
 
 from simulate.dispatch import KernelMissing
+from simulate.outdir import OutputError, claim
 from simulate.outputs import collect, max_drift, write
 from simulate.planner import plan
 from simulate.run import execute
-from simulate.scene import SceneError, load
+from simulate.scene import SceneError, builtin_scenes, find
+from simulate.stops import RunStopped
 
 __all__ = ["main", "summary"]
 
 
-def summary(scene, p, traj, arrays, seconds, diffs=None, out=None) -> str:
+def summary(scene, p, traj, arrays, seconds, check=None, out=None) -> str:
     """The one-screen summary: scene, model and why, cost, integral drift, cross-check."""
     lines = [f"scene   {scene.title}  (n = {scene.n}, a = {scene.a:g}, b = {scene.b:g}, "
              f"{scene.count} initial condition{'s' if scene.count > 1 else ''}, "
@@ -31,45 +39,60 @@ def summary(scene, p, traj, arrays, seconds, diffs=None, out=None) -> str:
     drift = max_drift(arrays)
     if drift:
         lines.append("drift   " + ", ".join(f"{k} {v:.2e}" for k, v in drift.items()))
-    if diffs is not None:
-        lines.append("cross-check against the full system (DOP853 rtol 1e-13), max |difference|:")
-        lines += [f"        {k:<24} {v:.2e}" for k, v in diffs.items()]
+    if check is not None:
+        lines.append(check.describe())
     if out is not None:
         lines.append(f"written {out}")
     return "\n".join(lines)
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Entry point; returns the exit status (2 for a bad scene, 3 for a missing kernel)."""
-    ap = argparse.ArgumentParser(prog="python -m simulate", description=__doc__)
-    ap.add_argument("scene", help="a scene file (TOML), e.g. scenes/generic4d.toml")
-    ap.add_argument("--out", help="output folder (default: out/<scene name>)")
+    """Entry point; returns the exit status (see the module docstring)."""
+    ap = argparse.ArgumentParser(prog="python -m simulate", description=__doc__.split("\n\n")[0])
+    ap.add_argument("scene", nargs="?",
+                    help="a scene file (TOML), e.g. scenes/generic4d.toml, or a built-in scene name")
+    ap.add_argument("--out", help="output folder: new, empty, or written before by this scene "
+                    "(default: out/<scene name>)")
     ap.add_argument("--cross-check", action="store_true",
-                    help="also run the full system and report the largest difference per output")
+                    help="also run an independent model and judge the difference (exit 1 on FAIL)")
+    ap.add_argument("--force", action="store_true",
+                    help="run even when the predicted time or memory is past the limit")
     ap.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
+    ap.add_argument("--list", action="store_true", help="list the built-in scenes and exit")
     args = ap.parse_args(argv)
+    if args.list:
+        for name, title in builtin_scenes().items():
+            print(f"{name:<16} {title}")
+        return 0
+    if args.scene is None:
+        ap.error("give a scene file or a built-in scene name (--list shows them)")
     start = time.perf_counter()
     try:
-        scene = load(args.scene)
+        scene = find(args.scene, force=args.force)
+        name = Path(scene.source).stem if not scene.source.startswith("built-in") else args.scene
+        out = Path(args.out) if args.out else Path("out") / name
+        folder = claim(out, name)
         p = plan(scene)
         print(p.describe(), flush=True)
-        traj = execute(scene, p)
+        traj = execute(scene, p, force=args.force)
         arrays = collect(scene, traj)
-        diffs = None
+        check = None
         if args.cross_check:
             from simulate.crosscheck import cross_check
-            diffs = cross_check(scene, arrays)
-    except SceneError as exc:
+            check = cross_check(scene, p, arrays, force=args.force)
+        text = summary(scene, p, traj, arrays, time.perf_counter() - start, check, out)
+        write(folder, arrays, text, plots=not args.no_plots)
+    except (SceneError, OutputError, RunStopped) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
     except KernelMissing as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 3
-    out = Path(args.out) if args.out else Path("out") / Path(args.scene).stem
-    text = summary(scene, p, traj, arrays, time.perf_counter() - start, diffs, out)
-    write(out, arrays, text, plots=not args.no_plots)
+    except OSError as exc:
+        print(f"error: writing {out}: {exc.strerror or exc}", file=sys.stderr)
+        return 2
     print(text)
-    return 0
+    return 1 if check is not None and not check.passed else 0
 
 
 if __name__ == "__main__":  # pragma: no cover

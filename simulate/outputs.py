@@ -10,21 +10,20 @@ Output arrays (``S`` samples, ``count`` initial conditions):
   $p(\lambda, \sigma)$ (eq:pol-first-integrals), $\|\gamma\|^2$; or, from the reduced model,
   $F_1, F_2, F_3, H$ (S5:red-integrals). Each with its drift $I(t) - I(0)$.
 
-:func:`write` puts ``outputs.npz``, one CSV per output and one PNG per output into a temporary
-folder next to the destination and moves it into place only when everything succeeded.
+:func:`write` puts ``outputs.npz``, one CSV per output and one PNG per output into the output
+folder, each file atomically (:mod:`simulate.outdir` decides which folders may be written).
 """
 
 from __future__ import annotations
 
-import os
-import shutil
-import tempfile
+from functools import partial
 from pathlib import Path
 
 import numpy as np
 
 from simulate import so
 from simulate.dispatch import active
+from simulate.outdir import OutputFolder
 
 __all__ = ["collect", "integrals", "p_coefficients", "write"]
 
@@ -136,34 +135,20 @@ def _plot(path: Path, t: np.ndarray, arr: np.ndarray, name: str) -> None:
     plt.close(fig)
 
 
-def write(out_dir: str | Path, arrays: dict[str, np.ndarray], summary: str,
+def write(folder: OutputFolder, arrays: dict[str, np.ndarray], summary: str,
           plots: bool = True) -> Path:
-    """Write ``arrays`` (NPZ, CSV per output, PNG per output) and ``summary.txt`` into
-    ``out_dir``, atomically: a failure leaves ``out_dir`` as it was."""
-    out_dir = Path(out_dir)
-    out_dir.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.tmp-", dir=out_dir.parent))
-    try:
-        np.savez(tmp / "outputs.npz", **arrays)
-        t = arrays["t"]
-        for name, arr in arrays.items():
-            if name == "t":
-                continue
-            if name != "zeta":
-                _csv(tmp / f"{name}.csv", t, arr, name.replace(".", "_"))
-                if plots and not name.startswith("integrals."):
-                    _plot(tmp / f"{name}.png", t, arr, name)
-            else:
-                np.savetxt(tmp / "zeta.csv", arr.reshape(arr.shape[0], -1), delimiter=",")
-        (tmp / "summary.txt").write_text(summary + "\n")
-        old = None
-        if out_dir.exists():
-            old = out_dir.with_name(f".{out_dir.name}.old-{os.getpid()}")
-            os.replace(out_dir, old)
-        os.replace(tmp, out_dir)
-        if old is not None:
-            shutil.rmtree(old)
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
-    return out_dir
+    """Write ``arrays`` (NPZ, CSV per output, PNG per output) and ``summary.txt`` into ``folder``
+    (claimed by :func:`simulate.outdir.claim`), each file atomically; returns its path."""
+    t = arrays["t"]
+    files = {"outputs.npz": lambda p: np.savez(p, **arrays)}
+    for name, arr in arrays.items():
+        if name == "t":
+            continue
+        if name != "zeta":
+            files[f"{name}.csv"] = partial(_csv, t=t, arr=arr, name=name.replace(".", "_"))
+            if plots and not name.startswith("integrals."):
+                files[f"{name}.png"] = partial(_plot, t=t, arr=arr, name=name)
+        else:
+            files["zeta.csv"] = partial(np.savetxt, X=arr.reshape(arr.shape[0], -1), delimiter=",")
+    files["summary.txt"] = lambda p: p.write_text(summary + "\n", encoding="utf-8")
+    return folder.write(files)

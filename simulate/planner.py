@@ -11,6 +11,13 @@ Models, cheapest first (each applies to every initial condition of the scene):
 4. ``reduced-7D`` — $n = 4$ and only reduced invariants / $x$ / integrals asked (eq:red-system);
 5. ``full`` — eq:motion-general with $L_\gamma^{-1}$ from :mod:`generated`.
 
+Membership tests (steady rotation, $\mathcal V$, $\mathcal H$) are relative residuals, so they do not
+depend on the scale of $M_0$; a point passes when its residual is at most
+``min(initial.tolerance, APPLIES)``: a scene may tighten the test but not loosen it past
+:data:`APPLIES`, the rounding level at which the closed forms are exact (a point at relative
+distance $r$ from the family leaves it at a rate $\sim r\|\Omega\|$, an error no closed form
+accounts for). The plan line says which residual was tested against which bound.
+
 The reconstruction ($g$, contact path) is added only when ``orientation`` or ``contact_path`` is
 asked for; the closed forms 1–2 reconstruct in closed form (:mod:`simulate.closed_forms`), the
 reduced models cannot (they forget the $SO(3)$ orbit), so those outputs force ``full``. A model
@@ -26,6 +33,7 @@ import numpy as np
 from simulate import families
 from simulate.dispatch import Kernels, active
 from simulate.scene import Scene
+from simulate.stops import check_finite
 
 __all__ = ["Plan", "plan", "REDUCED_OUTPUTS", "MODELS"]
 
@@ -33,6 +41,16 @@ MODELS = ("constant-Omega", "vertical", "horizontal-4D", "reduced-7D", "full")
 #: Outputs a reduced (SO(3)-invariant) model can produce.
 REDUCED_OUTPUTS = frozenset({"reduced", "x", "integrals"})
 RECONSTRUCTION = frozenset({"orientation", "contact_path"})
+#: Largest relative residual at which a point counts as on a family with a closed form (about
+#: 4500 ulp: the rounding of a point built in float64, e.g. M0 = P A P or L_gamma(Omega0)).
+APPLIES = 1e-12
+
+
+def _residual_test(formula: str, residuals, bound: float) -> tuple[bool, str]:
+    """Whether every residual is <= ``bound``, and a line saying what was tested."""
+    worst = max(residuals)
+    ok = bool(worst <= bound)
+    return ok, f"{formula} = {worst:.1e} {'<=' if ok else '>'} {bound:.0e}"
 
 
 @dataclass
@@ -73,9 +91,11 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
     omega = k.require("angular_velocity")
     Omega0 = scene.Omega0 if scene.Omega0 is not None else omega(scene.M0, scene.gamma0,
                                                                   scene.a, scene.b)
+    check_finite("Omega0 = L_gamma^-1 M0", Omega0, float(scene.t[0]),
+                 "a, b or the scale of M0 too large for float64")
     wants = set(scene.outputs)
     reconstruct = bool(wants & RECONSTRUCTION)
-    tol = scene.tolerance
+    tol = min(scene.tolerance, APPLIES)
     skipped: list[str] = []
 
     def make(model, reason):
@@ -91,27 +111,42 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
                   "reference": f"{scene.dps} digits",
                   "dop853": f"rtol = target/100 = {max(scene.target / 100, 2.3e-14):g}"}
         return make("full", f"integrator {scene.method} requested ({detail[scene.method]})")
-    vertical = all(families.claim_residual("vertical", M, g) <= tol
-                   for M, g in zip(scene.M0, scene.gamma0, strict=True))
+    is_vertical, v_text = _residual_test(
+        "max |M0 gamma0|/|M0|",
+        [families.claim_residual("vertical", M, g) for M, g in zip(scene.M0, scene.gamma0)], tol)
     if scene.a == 0.0:
         return make("constant-Omega", "a = 0: spherical inertia, Omega is constant "
-                    "(eq:M-O-axi-symm: a = 0 implies dOmega/dt = 0); M(t) = exp(-Omega0 t) M0 exp(Omega0 t)")
-    if scene.n == 4 and all(families.steady_residual(O) <= tol for O in Omega0):
-        return make("constant-Omega", "n = 4 and eta0 x xi0 = 0: steady rotation (P:steady-rot), "
-                    "M(t) = exp(-Omega0 t) M0 exp(Omega0 t), gamma(t) = exp(-Omega0 t) gamma0")
-    if vertical:
+                    "(eq:M-O-axi-symm: a = 0 implies dOmega/dt = 0); M(t) = exp(-Omega0 (t - t0)) M0 exp(Omega0 (t - t0))")
+    if scene.n == 4:
+        steady, s_text = _residual_test("max |eta0 x xi0|/(|eta0||xi0|)",
+                                        [families.steady_residual(O) for O in Omega0], tol)
+        if steady:
+            return make("constant-Omega", f"n = 4 and eta0 x xi0 = 0 ({s_text}): steady rotation "
+                        "(P:steady-rot), M(t) = exp(-Omega0 (t - t0)) M0 exp(Omega0 (t - t0)), "
+                        "gamma(t) = exp(-Omega0 (t - t0)) gamma0")
+        skipped.append(f"steady rotation (P:steady-rot): {s_text}")
+    if is_vertical:
         if k.has("zeta"):
-            return make("vertical", "M0 gamma0 = 0: vertical momentum, relative equilibrium "
-                        "M(t) = exp(zeta t) M0 exp(-zeta t), gamma(t) = exp(zeta t) gamma0 (Th:Re)")
+            return make("vertical", f"M0 gamma0 = 0 ({v_text}): vertical momentum, relative "
+                        "equilibrium M(t) = exp(zeta (t - t0)) M0 exp(-zeta (t - t0)), "
+                        "gamma(t) = exp(zeta (t - t0)) gamma0 (Th:Re)")
         skipped.append("vertical closed form (Th:Re): the zeta kernel is not in generated/")
+    else:
+        skipped.append(f"vertical closed form (Th:Re): {v_text}")
     reduced_only = wants <= REDUCED_OUTPUTS and scene.n == 4
     needs = ["reduced_integrals"] if "integrals" in wants else []
-    if reduced_only and all(families.claim_residual("horizontal", M, g) <= tol
-                            for M, g in zip(scene.M0, scene.gamma0, strict=True)):
-        if all(k.has(x) for x in ("horizontal", "horizontal_A", "reduced_integrals")):
-            return make("horizontal-4D", "n = 4, horizontal momentum and only reduced outputs: "
-                        "the linear system for (x, G) (S5:H-linear)")
-        skipped.append("horizontal closed form (S5:H-linear): its kernels are not in generated/")
+    if reduced_only:
+        is_horizontal, h_text = _residual_test(
+            "max |M0 - (M0 gamma0) ^ gamma0|/|M0|",
+            [families.claim_residual("horizontal", M, g) for M, g in zip(scene.M0, scene.gamma0)],
+            tol)
+        if not is_horizontal:
+            skipped.append(f"horizontal closed form (S5:H-linear): {h_text}")
+        elif all(k.has(x) for x in ("horizontal", "horizontal_A", "reduced_integrals")):
+            return make("horizontal-4D", f"n = 4, horizontal momentum ({h_text}) and only "
+                        "reduced outputs: the linear system for (x, G) (S5:H-linear)")
+        else:
+            skipped.append("horizontal closed form (S5:H-linear): its kernels are not in generated/")
     if reduced_only:
         missing = [x for x in ["reduced_field"] + needs if not k.has(x)]
         if not missing:

@@ -8,6 +8,7 @@ plus the cost (steps, right-hand-side calls, seconds).
 
 from __future__ import annotations
 
+import math
 import sys
 import time
 from dataclasses import dataclass, field
@@ -15,12 +16,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from simulate import so
+from simulate.budget import Projection
 from simulate.closed_forms import horizontal, relative_equilibrium
+from simulate.dispatch import active
 from simulate.field import FullField, ReducedField
 from simulate.integrators import dop853, lie, taylor
-from simulate.dispatch import active
 from simulate.planner import Plan
 from simulate.scene import Scene
+from simulate.stops import NonFinite, check_finite, fmt
 
 __all__ = ["Trajectory", "execute", "reduced_invariants", "Progress"]
 
@@ -39,19 +42,29 @@ class Trajectory:
 
 
 class Progress:
-    """Progress on stderr for runs longer than ``after`` seconds (at most one line a second)."""
+    """Progress on stderr for runs longer than ``after`` seconds (at most one line a second); it
+    also stops a run whose time became nan and, through ``projection``
+    (:class:`simulate.budget.Projection`), one projected to cost too much."""
 
-    def __init__(self, t_end: float, label: str, after: float = 2.0, stream=sys.stderr):
-        self.t_end, self.label, self.after, self.stream = t_end, label, after, stream
+    def __init__(self, t0: float, t_end: float, label: str, after: float = 2.0, stream=sys.stderr,
+                 projection=None):
+        self.t0, self.t_end, self.label, self.after, self.stream = t0, t_end, label, after, stream
+        self.projection = projection
         self.start = time.perf_counter()
         self.last = self.start
         self.shown = False
 
     def __call__(self, t: float) -> None:
         """Report that the integration reached time ``t``."""
+        if not math.isfinite(t):
+            raise NonFinite(f"the integration time is not finite ({t}) after t = {fmt(self.t0)}: "
+                            "the solution left float64")
+        if self.projection is not None:
+            self.projection(t)
         now = time.perf_counter()
         if now - self.start >= self.after and now - self.last >= 1.0:
-            frac = t / self.t_end if self.t_end else 1.0
+            span = self.t_end - self.t0
+            frac = (t - self.t0) / span if span else 1.0
             self.stream.write(f"\r{self.label}: t = {t:.4g} / {self.t_end:.4g} "
                               f"({100 * frac:5.1f}%, {now - self.start:.0f} s)")
             self.stream.flush()
@@ -74,9 +87,13 @@ def reduced_invariants(M: np.ndarray, gamma: np.ndarray) -> np.ndarray:
                      dot(q, np.cross(k, u))], axis=-1)
 
 
-def execute(scene: Scene, plan: Plan, progress: bool = True) -> Trajectory:
-    """Run ``plan`` on ``scene`` (see the module docstring)."""
+def execute(scene: Scene, plan: Plan, progress: bool = True, force: bool = False) -> Trajectory:
+    """Run ``plan`` on ``scene`` (see the module docstring). The initial condition is the state
+    at ``t[0]`` for every model: closed forms are evaluated at ``t - t[0]``. Raises
+    :class:`simulate.stops.NonFinite` when a field leaves float64 and
+    :class:`simulate.stops.TooCostly` when the projected time is past the limit (unless ``force``)."""
     t = scene.t
+    elapsed = t - t[0]
     traj = Trajectory(t=t, model=plan.model, method=plan.method)
     g0 = np.array([so.rotation_to(g) for g in scene.gamma0])
     start = time.perf_counter()
@@ -86,7 +103,7 @@ def execute(scene: Scene, plan: Plan, progress: bool = True) -> Trajectory:
             traj.data["zeta"] = X
         else:
             X = -plan.Omega0
-        parts = [relative_equilibrium(X[e], scene.M0[e], scene.gamma0[e], plan.Omega0[e], t,
+        parts = [relative_equilibrium(X[e], scene.M0[e], scene.gamma0[e], plan.Omega0[e], elapsed,
                                       g0[e] if plan.reconstruct else None, scene.radius)
                  for e in range(scene.count)]
         for key in parts[0]:
@@ -94,38 +111,70 @@ def execute(scene: Scene, plan: Plan, progress: bool = True) -> Trajectory:
         traj.calls = 1
     elif plan.model == "horizontal-4D":
         traj.data["reduced"] = horizontal(reduced_invariants(scene.M0, scene.gamma0),
-                                          scene.a, scene.b, t)
+                                          scene.a, scene.b, elapsed)
         traj.calls = 3
     elif plan.model == "reduced-7D":
         f = ReducedField(scene.a, scene.b)
         r0 = reduced_invariants(scene.M0, scene.gamma0)
-        sol = _integrate(f, r0, t, plan, scene)
+        sol = _integrate(f, r0, t, plan, scene, progress, force)
         traj.data["reduced"] = sol.y
         traj.steps, traj.calls = sol.steps, sol.calls
     else:
         f = FullField(scene.n, scene.a, scene.b, plan.reconstruct, scene.radius)
         y0 = f.pack(scene.M0, scene.gamma0, g0, np.zeros_like(scene.gamma0)) \
             if plan.reconstruct else f.pack(scene.M0, scene.gamma0)
-        sol = _integrate(f, y0, t, plan, scene, progress)
+        sol = _integrate(f, y0, t, plan, scene, progress, force)
         parts = f.unpack(sol.y)
         traj.data["M"], traj.data["gamma"] = parts[0], parts[1]
         if plan.reconstruct:
             traj.data["g"], traj.data["c"] = parts[2], parts[3]
         traj.steps, traj.calls = sol.steps, sol.calls
         traj.method = sol.method
+    for key, v in traj.data.items():
+        if key != "zeta":
+            check_finite(key, v, t)
     traj.seconds = time.perf_counter() - start
     return traj
 
 
-def _integrate(f, y0, t, plan, scene, progress=True):
-    bar = Progress(t[-1], f"{plan.model} {plan.method}") if progress else None
+def _checked(f):
+    """``f`` that raises :class:`NonFinite` naming the field whose derivative is not finite."""
+    names = getattr(f, "names", None) or ("M", "gamma", "g", "c")
+
+    def field(s, y):
+        dy = f(s, y)
+        if not np.isfinite(dy).all():
+            if hasattr(f, "unpack"):
+                parts = [p for p in f.unpack(dy) if p is not None]
+                bad = [nm for nm, p in zip(names, parts) if not np.isfinite(p).all()]
+            else:
+                bad = [nm for nm, col in zip(names, np.moveaxis(dy, -1, 0))
+                       if not np.isfinite(col).all()]
+            raise NonFinite(f"the time derivative of {', '.join(bad)} is not finite at t = {fmt(s)} "
+                            "(the state left float64: are a, b or the scale too large?)")
+        return dy
+    return field
+
+
+def _integrate(f, y0, t, plan, scene, progress=True, force=False):
+    label = f"{plan.model} {plan.method}"
+    bar = Progress(t[0], t[-1], label, stream=sys.stderr if progress else _Null(),
+                   projection=Projection(t[0], t[-1], label, force))
     try:
-        if plan.method == "dop853":
+        if plan.method in ("dop853", "rk45"):
             rtol = max(scene.target / 100, 2.3e-14)  # global error ~ 10-100 x rtol (bench)
-            return dop853.integrate(f, y0, t, rtol=rtol, atol=rtol, progress=bar)
+            return dop853.integrate(_checked(f), y0, t, rtol=rtol, atol=rtol, progress=bar,
+                                    scheme="DOP853" if plan.method == "dop853" else "RK45")
         if plan.method == "lie":
             return lie.integrate(f, y0, t, h=scene.step, progress=bar)
         return taylor.integrate(f, y0, t, dps=scene.dps, progress=bar)
     finally:
-        if bar:
-            bar.done()
+        bar.done()
+
+
+class _Null:
+    def write(self, text):
+        pass
+
+    def flush(self):
+        pass

@@ -39,13 +39,14 @@ from __future__ import annotations
 import math
 import tomllib
 from dataclasses import dataclass, field
+from importlib import resources
 from pathlib import Path
 
 import numpy as np
 
-from simulate import families
+from simulate import budget, families
 
-__all__ = ["Scene", "SceneError", "OUTPUTS", "METHODS", "load", "loads"]
+__all__ = ["Scene", "SceneError", "OUTPUTS", "METHODS", "load", "loads", "find", "builtin_scenes"]
 
 #: Output names a scene may ask for.
 OUTPUTS = ("M", "Omega", "gamma", "x", "integrals", "zeta", "reduced", "orientation",
@@ -90,6 +91,7 @@ class Scene:
     tolerance: float
     source: str = "<scene>"
     raw: dict = field(default_factory=dict, repr=False)
+    name: str = "scene"
 
     @property
     def count(self) -> int:
@@ -97,19 +99,60 @@ class Scene:
         return self.M0.shape[0]
 
 
-def load(path: str | Path) -> Scene:
-    """Read and validate a scene file (see the module docstring)."""
+def _builtin_folder():
+    return resources.files("simulate") / "scenes"
+
+
+def builtin_scenes() -> dict[str, str]:
+    """The example scenes shipped with the package (``scenes/`` of the repository): name -> title."""
+    out = {}
+    for entry in sorted(_builtin_folder().iterdir(), key=lambda e: e.name):
+        if entry.name.endswith(".toml"):
+            title = tomllib.loads(entry.read_text(encoding="utf-8")).get("title", "")
+            out[entry.name[:-5]] = title
+    return out
+
+
+def find(arg: str, force: bool = False) -> Scene:
+    """The scene named by ``arg``: a scene file, else a built-in scene of that name (with or
+    without ``.toml``); a :class:`SceneError` names the built-in scenes when neither exists."""
+    path = Path(arg)
+    name = path.name[:-5] if path.name.endswith(".toml") else path.name
+    if not path.exists() and str(path) in (name, name + ".toml"):
+        entry = _builtin_folder() / f"{name}.toml"
+        if entry.is_file():
+            scene = loads(entry.read_text(encoding="utf-8"), source=f"built-in scene {name}",
+                          force=force)
+            scene.name = name
+            return scene
+    if not path.exists():
+        raise SceneError(arg, "file", "no such scene file or built-in scene",
+                         "give the path of a scene file or one of the built-in scenes: "
+                         + ", ".join(builtin_scenes()))
+    return load(path, force=force)
+
+
+def load(path: str | Path, force: bool = False) -> Scene:
+    """Read and validate a scene file (see the module docstring); ``force`` lifts the memory
+    limit of :mod:`simulate.budget`."""
     path = Path(path)
     try:
-        text = path.read_text()
+        text = path.read_bytes().decode("utf-8")
     except OSError as exc:
         raise SceneError(str(path), "file", f"cannot read it ({exc.strerror})",
                          "give the path of a scene, e.g. scenes/generic4d.toml") from None
-    return loads(text, source=str(path))
+    except UnicodeDecodeError as exc:
+        raise SceneError(str(path), "file", f"not UTF-8 text (byte {exc.start} is "
+                         f"0x{exc.object[exc.start]:02x})",
+                         "give a TOML scene file saved as UTF-8") from None
+    scene = loads(text, source=str(path), force=force)
+    scene.name = path.name[:-5] if path.name.endswith(".toml") else path.name
+    return scene
 
 
-def loads(text: str, source: str = "<scene>") -> Scene:
-    """Validate a scene given as TOML text; raises :class:`SceneError`."""
+def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
+    """Validate a scene given as TOML text; raises :class:`SceneError` (also when the predicted
+    memory is past the limit of :mod:`simulate.budget` and ``force`` is not given)."""
     def fail(where, problem, fix):
         raise SceneError(source, where, problem, fix)
 
@@ -149,12 +192,26 @@ def loads(text: str, source: str = "<scene>") -> Scene:
         fail("initial.family", "steady rotation (P:steady-rot) is a 4D family",
              "set n = 4 or choose another family")
     seed = _number(init, "seed", fail, integer=True, default=None, where="initial.seed")
+    if seed is not None and seed < 0:
+        fail("initial.seed", f"seed = {seed} is negative", "use a seed >= 0")
     count = _number(init, "count", fail, integer=True, default=1, where="initial.count")
     if count < 1:
         fail("initial.count", f"count = {count}", "use count >= 1")
     scale = _number(init, "scale", fail, default=1.0, where="initial.scale")
     if not scale > 0:
         fail("initial.scale", f"scale = {scale} is not positive", "choose scale > 0")
+    times = raw.get("times", {})
+    _unknown(times, _TIMES, "times.", fail)
+    samples = _samples(times, fail)
+    want_list = raw.get("outputs", {}).get("want")
+    outputs = [w for w in want_list if isinstance(w, str)] if isinstance(want_list, list) else []
+    need = budget.memory_bytes(n, count, samples, outputs)
+    if need > budget.memory_limit() and not force:
+        fail("times.samples" if count == 1 else "initial.count",
+             f"{samples} samples x {count} initial condition(s) in n = {n} need about "
+             f"{budget.human_bytes(need)} of memory, past the limit of "
+             f"{budget.human_bytes(budget.memory_limit())}",
+             "use fewer samples or initial conditions, or pass --force")
     Omega0 = None
     if explicit:
         if "M" in init and "Omega" in init:
@@ -172,9 +229,12 @@ def loads(text: str, source: str = "<scene>") -> Scene:
         if skew > tol:
             fail(f"initial.{name}", f"not skew-symmetric (|X + X^T|/|X| = {skew:.3g})",
                  "give X with X[j][i] = -X[i][j] and zero diagonal")
-        norm = np.linalg.norm(gamma0)
+        norm = float(np.linalg.norm(gamma0))
+        if norm == 0:
+            fail("initial.gamma", "gamma = 0 is not a unit vector",
+                 f"give a unit vector of {n} numbers, e.g. the last axis E_n")
         if abs(norm - 1.0) > tol:
-            fail("initial.gamma", f"|gamma| = {norm!r} is not 1 within {tol:g}",
+            fail("initial.gamma", f"|gamma| = {norm:.17g} is not 1 within {tol:g}",
                  f"normalise it: gamma / {norm:.17g}")
         if name == "Omega":
             from simulate.dispatch import active
@@ -189,8 +249,6 @@ def loads(text: str, source: str = "<scene>") -> Scene:
             fail("initial.seed", f"the {family} family needs a seed", "add seed = <integer>")
         M0, gamma0 = families.draw(family, n, a, b, seed, count, scale)
 
-    times = raw.get("times", {})
-    _unknown(times, _TIMES, "times.", fail)
     t = _times(times, fail)
 
     want = raw.get("outputs", {}).get("want")
@@ -282,6 +340,16 @@ def _check_claim(family, M, gamma, a, b, tol, fail, Omega):
             fail("initial.family", f"claims a steady rotation but eta0 x xi0 != 0 "
                  f"(relative {r:.3g} > {tol:g}, P:steady-rot)",
                  "give Omega with eta0 parallel to xi0, or set family = \"explicit\"")
+
+
+def _samples(times, fail):
+    """The number of samples the times table asks for, checked before any array is made."""
+    if "t" in times:
+        return len(times["t"]) if isinstance(times["t"], list) else 2
+    samples = _number(times, "samples", fail, integer=True, default=201, where="times.samples")
+    if samples < 2:
+        fail("times.samples", f"samples = {samples}", "use samples >= 2")
+    return samples
 
 
 def _times(times, fail):

@@ -272,7 +272,15 @@ def stale_report(target: Path = GENERATED) -> str:
         return diff_report(target, Path(tmp))
 
 
-def main() -> int:
+def main(argv: Sequence[str] | None = None) -> int:
+    """``python -m symbolic.codegen``: rewrite ``generated/`` (arguments: only ``-h``)."""
+    import argparse
+
+    parser = argparse.ArgumentParser(
+        prog="python -m symbolic.codegen",
+        description="Rewrite generated/ (NumPy kernels) from the derived SymPy expressions; "
+                    "the same as `make generate`.")
+    parser.parse_args(argv)
     for path in write():
         print(f"wrote {path.relative_to(ROOT)}")
     return 0

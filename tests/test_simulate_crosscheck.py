@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import json
 from pathlib import Path
 
 import numpy as np
@@ -10,6 +11,7 @@ import pytest
 
 from simulate import cli, so
 from simulate.crosscheck import cross_check
+from simulate.outdir import MANIFEST, claim
 from simulate.outputs import collect, write
 from simulate.planner import plan
 from simulate.run import execute
@@ -26,15 +28,17 @@ def _short(stem, t_end=6.0, samples=13):
 @pytest.mark.parametrize("stem", ["steady4d", "vertical5d", "spherical6d", "horizontal4d",
                                   "reduced4d", "explicit4d"])
 def test_cross_check_agreement(stem):
-    """Every output of the planned model equals the full DOP853 run (rtol 1e-13) to 1e-10
-    (outputs are O(1); horizons are short)."""
+    """Every output of the planned model equals an independent full run to 1e-10
+    (outputs are O(1); horizons are short), and the cross-check judges it a pass."""
     scene = _short(stem)
     p = plan(scene)
     arrays = collect(scene, execute(scene, p, progress=False))
-    diffs = cross_check(scene, arrays, progress=False)
+    check = cross_check(scene, p, arrays, progress=False)
+    diffs = {k: d for k, d, _ in check.rows}
     assert set(diffs) == {k for k in arrays if k != "t" and k != "zeta"
                           and not k.startswith("drift.")}
     assert max(diffs.values()) < 1e-10, (p.model, diffs)
+    assert check.passed and check.describe().endswith("cross-check: pass")
 
 
 def test_vertical_closed_form_keeps_x_and_zeta_fixes_E_n():
@@ -91,16 +95,23 @@ def test_cli_writes_outputs_and_summary(tmp_path, capsys):
         assert (out / f"{name}.png").read_bytes()[:4] == b"\x89PNG"
     assert "constant-Omega" in (out / "summary.txt").read_text()
     assert sorted(p.name for p in tmp_path.iterdir()) == ["result", "steady.toml"]
+    assert "cross-check: pass" in text
 
 
-def test_failed_write_leaves_the_old_output(tmp_path):
+def test_failed_write_leaves_no_partial_file(tmp_path):
+    """Each file is written atomically: a failure mid-way leaves the files of the first run
+    (summary.txt untouched), no temporary file, and a manifest that still owns every file."""
     out = tmp_path / "o"
-    write(out, {"t": np.arange(3.0), "x": np.zeros((3, 1))}, "first", plots=False)
+    write(claim(out, "s"), {"t": np.arange(3.0), "x": np.zeros((3, 1))}, "first", plots=False)
     bad = {"t": np.arange(3.0), "x": np.zeros((3, 1)), "M": np.array([object()] * 3)}
     with pytest.raises(TypeError):
-        write(out, bad, "second", plots=False)
+        write(claim(out, "s"), bad, "second", plots=False)
     assert (out / "summary.txt").read_text() == "first\n"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["o"]
+    names = {p.name for p in out.iterdir()}
+    assert not [n for n in names if ".tmp" in n]
+    owned = set(json.loads((out / MANIFEST).read_text())["files"])
+    assert names - {MANIFEST} <= owned
 
 
 def test_rotation_to_maps_E_n_to_gamma():

@@ -14,14 +14,17 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from simulate.integrators.base import Solution
+from simulate.stops import RunStopped
 
 __all__ = ["integrate"]
 
 
 def integrate(field, y0: np.ndarray, t: np.ndarray, rtol: float = 1e-10,
-              atol: float | None = None, progress=None) -> Solution:
+              atol: float | None = None, progress=None, scheme: str = "DOP853") -> Solution:
     r"""Integrate $\dot y = f(t, y)$ with DOP853 from ``t[0]``, sampling at ``t`` (dense output is
-    not used: SciPy steps onto every sample). Domain: any smooth field; ``rtol`` $\ge 2.2\cdot10^{-14}$."""
+    not used: SciPy steps onto every sample). Domain: any smooth field; ``rtol`` $\ge 2.2\cdot10^{-14}$.
+    ``scheme = "RK45"`` uses SciPy's Dormand–Prince 5(4) instead (the independent run of
+    ``--cross-check``, :mod:`simulate.crosscheck`)."""
     y0 = np.asarray(y0, dtype=float)
     shape = y0.shape
     atol = rtol if atol is None else atol
@@ -32,12 +35,12 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, rtol: float = 1e-10,
         return field(s, y.reshape(shape)).ravel()
 
     start = time.perf_counter()
-    sol = solve_ivp(flat, (t[0], t[-1]), y0.ravel(), method="DOP853", t_eval=t,
+    sol = solve_ivp(flat, (t[0], t[-1]), y0.ravel(), method=scheme, t_eval=t,
                     rtol=max(rtol, 100 * np.finfo(float).eps), atol=atol)
     seconds = time.perf_counter() - start
     if sol.status != 0:
-        raise RuntimeError(f"DOP853 failed: {sol.message}")
+        raise RunStopped(f"{scheme} failed before t = {t[-1]:g}: {sol.message}")
     y = sol.y.T.reshape((len(t),) + shape)
-    steps = (sol.nfev - 1) // 12
-    return Solution(t=np.asarray(t), y=y, method=f"DOP853 rtol={rtol:g} atol={atol:g}",
+    steps = (sol.nfev - 1) // (12 if scheme == "DOP853" else 6)
+    return Solution(t=np.asarray(t), y=y, method=f"{scheme} rtol={rtol:g} atol={atol:g}",
                     steps=steps, calls=sol.nfev, seconds=seconds)
