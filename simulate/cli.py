@@ -13,13 +13,15 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
+
 from simulate.dispatch import KernelMissing
 from simulate.outdir import OutputError, claim
 from simulate.outputs import collect, max_drift, write
 from simulate.planner import plan
 from simulate.run import execute
 from simulate.scene import SceneError, builtin_scenes, find
-from simulate.stops import RunStopped
+from simulate.stops import RunStopped, check_finite
 
 __all__ = ["main", "summary"]
 
@@ -72,14 +74,18 @@ def main(argv: list[str] | None = None) -> int:
         name = Path(scene.source).stem if not scene.source.startswith("built-in") else args.scene
         out = Path(args.out) if args.out else Path("out") / name
         folder = claim(out, name)
-        p = plan(scene)
-        print(p.describe(), flush=True)
-        traj = execute(scene, p, force=args.force)
-        arrays = collect(scene, traj)
-        check = None
-        if args.cross_check:
-            from simulate.crosscheck import cross_check
-            check = cross_check(scene, p, arrays, force=args.force)
+        # inf/nan are not warned about but checked: every field and output, naming it and the time
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            p = plan(scene)
+            print(p.describe(), flush=True)
+            traj = execute(scene, p, force=args.force)
+            arrays = collect(scene, traj)
+            for key, v in arrays.items():
+                check_finite(key, v, scene.t if key != "zeta" else scene.t[0])
+            check = None
+            if args.cross_check:
+                from simulate.crosscheck import cross_check
+                check = cross_check(scene, p, arrays, force=args.force)
         text = summary(scene, p, traj, arrays, time.perf_counter() - start, check, out)
         write(folder, arrays, text, plots=not args.no_plots)
     except (SceneError, OutputError, RunStopped) as exc:

@@ -89,8 +89,9 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
     cheaper models (used by ``--cross-check``)."""
     k = kernels or active()
     omega = k.require("angular_velocity")
-    Omega0 = scene.Omega0 if scene.Omega0 is not None else omega(scene.M0, scene.gamma0,
-                                                                  scene.a, scene.b)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # checked below
+        Omega0 = scene.Omega0 if scene.Omega0 is not None else omega(scene.M0, scene.gamma0,
+                                                                      scene.a, scene.b)
     check_finite("Omega0 = L_gamma^-1 M0", Omega0, float(scene.t[0]),
                  "a, b or the scale of M0 too large for float64")
     wants = set(scene.outputs)

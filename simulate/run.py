@@ -92,6 +92,11 @@ def execute(scene: Scene, plan: Plan, progress: bool = True, force: bool = False
     at ``t[0]`` for every model: closed forms are evaluated at ``t - t[0]``. Raises
     :class:`simulate.stops.NonFinite` when a field leaves float64 and
     :class:`simulate.stops.TooCostly` when the projected time is past the limit (unless ``force``)."""
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # checked below
+        return _execute(scene, plan, progress, force)
+
+
+def _execute(scene, plan, progress, force):
     t = scene.t
     elapsed = t - t[0]
     traj = Trajectory(t=t, model=plan.model, method=plan.method)
