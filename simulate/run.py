@@ -46,8 +46,8 @@ class Progress:
     also stops a run whose time became nan and, through ``projection``
     (:class:`simulate.budget.Projection`), one projected to cost too much."""
 
-    def __init__(self, t0: float, t_end: float, label: str, after: float = 2.0, stream=sys.stderr,
-                 projection=None):
+    def __init__(self, t_end: float, label: str, after: float = 2.0, stream=sys.stderr,
+                 projection=None, t0: float = 0.0):
         self.t0, self.t_end, self.label, self.after, self.stream = t0, t_end, label, after, stream
         self.projection = projection
         self.start = time.perf_counter()
@@ -163,8 +163,8 @@ def _checked(f):
 
 def _integrate(f, y0, t, plan, scene, progress=True, force=False):
     label = f"{plan.model} {plan.method}"
-    bar = Progress(t[0], t[-1], label, stream=sys.stderr if progress else _Null(),
-                   projection=Projection(t[0], t[-1], label, force))
+    bar = Progress(t[-1], label, stream=sys.stderr if progress else _Null(),
+                   projection=Projection(t[0], t[-1], label, force), t0=t[0])
     try:
         if plan.method in ("dop853", "rk45"):
             rtol = max(scene.target / 100, 2.3e-14)  # global error ~ 10-100 x rtol (bench)

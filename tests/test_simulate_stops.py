@@ -146,3 +146,18 @@ def test_codegen_help_prints_usage_and_writes_nothing():
     assert r.returncode == 0 and r.stdout.startswith("usage:") and "wrote" not in r.stdout
     assert digest() == before
     assert {p.name: p.stat().st_mtime_ns for p in (ROOT / "generated").glob("*.py")} == mtimes
+
+
+def test_progress_counts_from_t0_and_stops_on_a_nan_time():
+    import io
+
+    from simulate.run import Progress
+    from simulate.stops import NonFinite
+
+    stream = io.StringIO()
+    bar = Progress(5.0, "late", after=0.0, stream=stream, t0=3.0)
+    bar.last -= 2.0
+    bar(4.0)
+    assert "50.0%" in stream.getvalue()
+    with pytest.raises(NonFinite, match="not finite"):
+        bar(float("nan"))
