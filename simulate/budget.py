@@ -3,6 +3,7 @@
 * memory — counted from the scene before any array is made: ``samples x count`` times the
   floats per sample of the state and of every output, times 3 (the integrator's samples, the
   collected outputs and their CSV rows live at the same time);
+* time to draw an ensemble — ``count x`` :data:`DRAW_SECONDS`, before drawing;
 * time — projected from a pilot: after :data:`PILOT_SECONDS` of integration the elapsed time
   is scaled by the share of ``[t[0], t[-1]]`` covered (:class:`Projection`). Closed forms cost
   one matrix exponential per sample and are covered by the memory count.
@@ -18,8 +19,8 @@ import time
 
 from simulate.stops import TooCostly
 
-__all__ = ["LIMIT_SECONDS", "PILOT_SECONDS", "memory_limit", "memory_bytes", "Projection",
-           "human_bytes"]
+__all__ = ["LIMIT_SECONDS", "PILOT_SECONDS", "DRAW_SECONDS", "memory_limit", "memory_bytes",
+           "Projection", "human_bytes", "announce"]
 
 LIMIT_SECONDS = 600.0
 PILOT_SECONDS = 0.5
@@ -54,6 +55,17 @@ def memory_bytes(n: int, count: int, samples: int, outputs) -> int:
     return 3 * 8 * per_sample * samples * count + 8 * count * (n * n + n)
 
 
+#: Seconds to draw one initial condition of a family (measured: 50-150 us per member).
+DRAW_SECONDS = 1.5e-4
+
+
+def announce(text: str, stream=None) -> None:
+    """Say something about the cost on stderr (before the run starts)."""
+    stream = stream or sys.stderr
+    stream.write(f"cost: {text}\n")
+    stream.flush()
+
+
 class Projection:
     """Projects the run time after a pilot and refuses a run past :data:`LIMIT_SECONDS`."""
 
@@ -78,5 +90,4 @@ class Projection:
             raise TooCostly(f"{text}, past the limit of {LIMIT_SECONDS:g} s; shorten times, "
                             "loosen accuracy.target, or pass --force")
         if projected > ANNOUNCE_SECONDS:
-            self.stream.write(text + "\n")
-            self.stream.flush()
+            announce(text, self.stream)

@@ -14,11 +14,13 @@ r"""Scenes: TOML files that name a sphere, an initial condition, times, outputs 
     count = 1             # > 1: an ensemble, integrated vectorised
     scale = 1.0           # ||M0|| in the Killing norm (families only)
     # M = [[...], ...]    # or Omega = [[...], ...]; gamma = [...]; with family = a claim to check
-    tolerance = 1e-10     # for |gamma| = 1, skewness and family claims
+    tolerance = 1e-10     # for |gamma| = 1, skewness and family claims; the planner's own
+                          # membership tests use min(tolerance, 1e-12) (never looser)
 
     [times]
     t_end = 100.0
-    samples = 1001        # or: t = [0.0, 0.5, ...] (increasing, t[0] >= 0)
+    samples = 1001        # or: t = [3.0, 3.5, ...] (increasing, t[0] >= 0); the initial
+                          # condition is the state at t[0], for every model
 
     [outputs]
     want = ["M", "gamma", "x", "integrals"]
@@ -31,7 +33,9 @@ r"""Scenes: TOML files that name a sphere, an initial condition, times, outputs 
     step = 0.01           # step of the Lie-group method (which ignores target)
 
 :func:`load` validates everything before anything runs and raises one :class:`SceneError`
-naming the field and the fix.
+naming the field and the fix; that includes a memory or drawing cost past the limits of
+:mod:`simulate.budget` (lifted by ``force``, the command line's ``--force``), and a cost worth
+mentioning is said on stderr. :func:`find` also accepts the name of a built-in scene.
 """
 
 from __future__ import annotations
@@ -212,6 +216,15 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
              f"{budget.human_bytes(need)} of memory, past the limit of "
              f"{budget.human_bytes(budget.memory_limit())}",
              "use fewer samples or initial conditions, or pass --force")
+    if need > budget.memory_limit() / 8:
+        budget.announce(f"about {budget.human_bytes(need)} of memory ({samples} samples x "
+                        f"{count} initial condition(s))")
+    draw = 0.0 if explicit else count * budget.DRAW_SECONDS
+    if draw > budget.LIMIT_SECONDS and not force:
+        fail("initial.count", f"drawing {count} initial conditions takes about {draw:.3g} s, "
+             f"past the limit of {budget.LIMIT_SECONDS:g} s", "use a smaller count or pass --force")
+    if draw > budget.ANNOUNCE_SECONDS:
+        budget.announce(f"drawing {count} initial conditions: about {draw:.3g} s")
     Omega0 = None
     if explicit:
         if "M" in init and "Omega" in init:
