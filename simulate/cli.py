@@ -69,11 +69,11 @@ def main(argv: list[str] | None = None) -> int:
     if args.scene is None:
         ap.error("give a scene file or a built-in scene name (--list shows them)")
     start = time.perf_counter()
+    out = Path(args.out) if args.out else None
     try:
         scene = find(args.scene, force=args.force)
-        name = Path(scene.source).stem if not scene.source.startswith("built-in") else args.scene
-        out = Path(args.out) if args.out else Path("out") / name
-        folder = claim(out, name)
+        out = out or Path("out") / scene.name
+        folder = claim(out, scene.name)
         # inf/nan are not warned about but checked: every field and output, naming it and the time
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             p = plan(scene)
