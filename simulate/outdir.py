@@ -71,6 +71,12 @@ def _read_manifest(folder: Path) -> dict | None:
     return data
 
 
+def _is_leftover(entry: str, owned: set[str]) -> bool:
+    """A temporary file of :meth:`OutputFolder._atomic` for an owned name (left by a killed run)."""
+    return any(entry.startswith(f".{name}.") and f".tmp{Path(name).suffix}" in entry
+               for name in owned)
+
+
 class OutputFolder:
     """A folder :func:`claim` found safe to write to; ``owned`` are the names it may replace."""
 
@@ -121,7 +127,8 @@ def claim(path: str | Path, scene: str) -> OutputFolder:
     given = str(path)
     path = Path(path)
     if path.is_symlink() or (path.exists() and not path.is_dir()):
-        kind = "a symbolic link" if path.is_symlink() else "a file, not a folder"
+        kind = ("a symbolic link" if path.is_symlink() else
+                "a file, not a folder" if path.is_file() else "a device or special file, not a folder")
         raise OutputError(f"--out {given}: exists and is {kind}; give a new or empty folder")
     if path.is_dir():
         entries = sorted(os.listdir(path))
@@ -131,7 +138,8 @@ def claim(path: str | Path, scene: str) -> OutputFolder:
             raise OutputError(f"--out {given}: the folder holds files this program did not write "
                               f"({shown}); give a new or empty folder")
         owned = set(manifest["files"]) if manifest else set()
-        foreign = [e for e in entries if e != MANIFEST and e not in owned]
+        leftovers = {e for e in entries if _is_leftover(e, owned | {MANIFEST})}
+        foreign = [e for e in entries if e != MANIFEST and e not in owned | leftovers]
         if foreign:
             raise OutputError(f"--out {given}: the folder holds files this program did not write "
                               f"({', '.join(foreign[:3])}); give a new or empty folder")
@@ -141,7 +149,7 @@ def claim(path: str | Path, scene: str) -> OutputFolder:
                               "e.g. out/<scene name>")
         if not _probe_writable(path):
             raise OutputError(f"--out {given}: the folder is not writable; give another folder")
-        return OutputFolder(path, scene, owned)
+        return OutputFolder(path, scene, owned | leftovers)
     ancestor = path.absolute().parent
     while not ancestor.exists() and not ancestor.is_symlink():
         ancestor = ancestor.parent

@@ -71,7 +71,7 @@ def test_existing_file_and_device_are_refused(tmp_path, scene, capsys):
     f.write_text("mine")
     _refused(capsys, scene, f, "is a file")
     assert f.read_text() == "mine"
-    _refused(capsys, scene, "/dev/null", "is a file")
+    _refused(capsys, scene, "/dev/null", "not a folder")
     assert Path("/dev/null").is_char_device()
 
 
@@ -197,3 +197,15 @@ def test_refusal_costs_no_computation():
                        timeout=60)
     assert r.returncode == 2, r.stderr
     assert "Traceback" not in r.stderr and r.stderr.count("\n") == 1
+
+
+def test_a_killed_runs_temporary_files_are_its_own(tmp_path, scene, capsys):
+    """A run killed between writing a temporary file and moving it leaves '.M.csv.XXXX.tmp.csv';
+    the next run recognises it (its name is in the manifest) and cleans it up."""
+    out = tmp_path / "result"
+    assert cli.main([str(scene), "--out", str(out), "--no-plots"]) == 0
+    (out / ".M.csv.abc123.tmp.csv").write_text("partial")
+    assert cli.main([str(scene), "--out", str(out), "--no-plots"]) == 0
+    assert not [p for p in out.iterdir() if ".tmp" in p.name]
+    (out / ".thesis.tex.abc.tmp.tex").write_text("not ours")  # not a name in the manifest
+    _refused(capsys, scene, out, "thesis")
