@@ -104,7 +104,7 @@ def p_n3special_case() -> Verdict:
                         method="exact symbolic in (a, b, omega): the points lie in V and both "
                                "expressions equal -a omega/(2+a+b) hat(E_3)")
     return Verdict.decide(
-        printed_chk, corrected=fixed_chk, n_values=(3,),
+        printed_chk, corrected=fixed_chk, n_values=(3,), kind="proof",
         printed_latex=r"\hat\Omega_0E_3 = 0 \;\Rightarrow\; \text{both expressions for } \zeta \text{ equal } 0",
         correction_latex=r"\hat\Omega_0E_3 = 0 \text{ on } \mathcal{V} \Rightarrow \Omega_0 = \omega E_3 "
                          r"\text{ and } (\omega = 0 \text{ or } \gamma_0 = \pm E_3);\ \text{then both "

@@ -99,6 +99,7 @@ def so3_action() -> Verdict:
     rot_check = next((c for c in rot if not c), rot[0])
     isotropy = Verdict.decide(
         _isotropy(printed_rule=True), n_values=(4,), corrected=_isotropy(printed_rule=False),
+        kind="scope", remark="The printed rule (k, u, q parallel => isotropy SO(2)) holds except at the two points k = u = q = 0 (M = 0, gamma = +-E_4), which it does not exclude; there the isotropy is all of SO(3).",
         printed_latex=r"k, u, q \text{ parallel} \Rightarrow \text{isotropy} \cong SO(2)",
         correction_latex=(r"\operatorname{iso}(k,u,q,x) \cong \begin{cases} SO(3) & k = u = q = 0 "
                           r"\ (M = 0,\ \gamma = \pm E_4)\\ SO(2) & \dim\operatorname{span}\{k,u,q\} = 1"

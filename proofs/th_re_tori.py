@@ -295,7 +295,10 @@ def th_re_tori() -> Verdict:
                     "Fubini, analytic zero sets are null (mathematical facts, not machine-checked)")
     printed = combine([_degenerate_parameters(), fixed])
     generic = Verdict.decide(
-        printed, corrected=combine([fixed, a0]),
+        printed, corrected=combine([fixed, a0]), kind="scope",
+        remark="True for a != 0. The paper's domain includes a = 0 (spherical inertia, line 368); "
+               "there zeta = 0 and every point of V is an equilibrium, so there are no tori of "
+               "dimension rank SO(n-1).",
         printed_latex=r"\text{generic dimension of the tori} = \operatorname{rank} SO(n-1) = "
                       r"[\tfrac{n-1}{2}] \quad (-1 \le a \le 1,\ b > 0)",
         correction_latex=r"\text{for } a \neq 0:\ \dim \overline{\{e^{\zeta t}\cdot p\}} \le "
