@@ -115,19 +115,37 @@ def _write_atomic(path: Path, text: str) -> None:
     tmp.replace(path)
 
 
+_MARKDOWN_SPECIAL = str.maketrans({c: "\\" + c for c in "\\`*_[]<>|$#"})
+
+
 def _cell(text: str | None) -> str:
-    return (text or "").replace("|", "\\|").replace("\n", " ")
+    """Plain text (a method, a note) inside Markdown: no character may start markup or math."""
+    return (text or "").translate(_MARKDOWN_SPECIAL).replace("\n", " ")
 
 
 def _inline_math(latex: str | None) -> str:
-    """A formula inside a table cell: ``|`` would end the cell, so it becomes ``\\vert``."""
+    """A formula inside a table cell: ``|`` would end the cell, so ``\\|`` becomes ``\\Vert`` and
+    ``|`` becomes ``\\vert``."""
     if not latex:
         return ""
-    return "$" + " ".join(latex.split()).replace("|", r"\vert ") + "$"
+    return "$" + " ".join(latex.split()).replace(r"\|", r"\Vert ").replace("|", r"\vert ") + "$"
+
+
+#: A display longer than this (characters of LaTeX) that is a counterexample is set on two lines.
+_LONG_DISPLAY = 160
 
 
 def _display(latex: str) -> list[str]:
     return ["$$", latex.strip(), "$$", ""]
+
+
+def _counterexample_display(latex: str) -> list[str]:
+    """A long counterexample on two lines: the point, then the residual it gives."""
+    arrow = r" \;\Rightarrow\; "
+    if len(latex) > _LONG_DISPLAY and arrow in latex:
+        point, residual = latex.split(arrow, 1)
+        latex = r"\begin{gathered}" + point + r" \\ \Rightarrow\; " + residual + r"\end{gathered}"
+    return _display(latex)
 
 
 def _anchor(row_id: str) -> str:
@@ -198,11 +216,15 @@ def _errata_table(results: Sequence[Result]) -> list[str]:
         return out + ["None.", ""]
     out += ["| row | kind | as printed | proved instead |", "|---|---|---|---|"]
     for r in rows:
+        groups: dict[tuple, list[str]] = {}  # parts with the same formulas share one line
         for item in _findings(r):
-            label = f"{_cell(item.name)}: " if item is not r.verdict else ""
+            key = (item.printed_latex, item.correction_latex)
+            groups.setdefault(key, []).append(item.name if item is not r.verdict else "")
+        for (printed, fixed), names in groups.items():
+            label = "; ".join(_cell(n) for n in names if n)
             out.append(f"| [`{r.row.id}`](#{_anchor(r.row.id)}) | {r.verdict.kind} "
-                       f"| {label}{_inline_math(item.printed_latex)} "
-                       f"| {_inline_math(item.correction_latex) or r.status} |")
+                       f"| {label + ': ' if label else ''}{_inline_math(printed)} "
+                       f"| {_inline_math(fixed) or r.status} |")
     return out + [""]
 
 
@@ -225,27 +247,31 @@ def _finding(r: Result) -> list[str]:
     v = r.verdict
     kind = f" · {v.kind} ({'erratum' if v.kind in ERRATA_KINDS else 'remark'})" if v.kind else ""
     out = [f'<a id="{_anchor(r.row.id)}"></a>', "", f"### `{r.row.id}` — {r.status}{kind}", "",
-           f"Claim: {r.row.claim}", ""]
+           f"Claim: {_cell(r.row.claim)}", ""]
     if r.error:
         return out + ["```", r.error.strip(), "```", ""]
     if v.remark:
-        out += [f"Remark: {v.remark}", ""]
+        out += [f"Remark: {_cell(v.remark)}", ""]
+    shown: set[str] = set()  # each formula once: a later part refers to it
     for item in _findings(r):
         if item is not v:
-            out += [f"**Part: {item.name}** ({item.verdict}{', ' + item.kind if item.kind else ''})", ""]
-        if item.printed_latex:
-            out += ["As printed:", ""] + _display(item.printed_latex)
-        if item.counterexample_latex:
-            out += ["Counterexample (exact):", ""] + _display(item.counterexample_latex)
-        elif item.counterexample:
-            out += [f"Counterexample (exact): {item.counterexample}", ""]
-        if item.correction_latex:
-            out += ["Corrected (proved):", ""] + _display(item.correction_latex)
+            out += [f"**Part: {_cell(item.name)}** ({item.verdict}{', ' + item.kind if item.kind else ''})", ""]
+        for label, latex in (("As printed", item.printed_latex),
+                             ("Counterexample (exact)", item.counterexample_latex),
+                             ("Corrected (proved)", item.correction_latex)):
+            if latex and latex in shown:
+                out += [f"{label}: the formula shown above.", ""]
+            elif latex:
+                shown.add(latex)
+                out += [f"{label}:", ""] + (_counterexample_display(latex)
+                                            if label.startswith("Counterexample") else _display(latex))
+            elif label.startswith("Counterexample") and item.counterexample:
+                out += [f"Counterexample (exact): {_cell(item.counterexample)}", ""]
         if item is not v and item.notes:
-            out += [f"Notes: {item.notes}", ""]
+            out += [f"Notes: {_cell(item.notes)}", ""]
     if v.notes:
-        out += [f"Notes: {v.notes}", ""]
-    return out + [f"Method: {v.method}", ""]
+        out += [f"Notes: {_cell(v.notes)}", ""]
+    return out + [f"Method: {_cell(v.method)}", ""]
 
 
 def _argued_section(results: Sequence[Result]) -> list[str]:
@@ -253,4 +279,4 @@ def _argued_section(results: Sequence[Result]) -> list[str]:
     out = ["## Argued, not machine-checked", ""]
     if not items:
         return out + ["Nothing: every part of every row is computed.", ""]
-    return out + [f"- `{i}`: {name}" for i, name in items] + [""]
+    return out + [f"- `{i}`: {_cell(name)}" for i, name in items] + [""]

@@ -300,10 +300,11 @@ def th_re_tori() -> Verdict:
                "dimension rank SO(n-1).",
         printed_latex=r"\text{generic dimension of the tori} = \operatorname{rank} SO(n-1) = "
                       r"[\tfrac{n-1}{2}] \quad (-1 \le a \le 1,\ b > 0)",
-        correction_latex=r"\text{for } a \neq 0:\ \dim \overline{\{e^{\zeta t}\cdot p\}} \le "
+        correction_latex=r"\begin{gathered}\text{for } a \neq 0:\ \dim \overline{\{e^{\zeta t}\cdot p\}} \le "
                          r"\lfloor\tfrac{n-1}{2}\rfloor \text{ on } \mathcal{V}, \text{ with equality "
-                         r"on a dense full-measure set (open dense for } n \le 4); \text{ for } a = 0,\ "
-                         r"\zeta \equiv 0 \text{ and } \mathcal{V} \text{ consists of equilibria}",
+                         r"on a dense full-measure set (open dense for } n \le 4); \\ \text{for } a = 0,\ "
+                         r"\zeta \equiv 0 \text{ and } \mathcal{V} \text{ consists of equilibria}"
+                         r"\end{gathered}",
         method="exact: det Z_gamma = mu_1^k mu_2^(n-2), mu_1 = -a(2+b(1-x^2))/(2 Delta), "
                "mu_2 = -a x/Delta; the factor a vanishes at a = 0 in the paper's domain",
         notes="On the equator x_0 = 0 (a null set) mu_2 = 0, zeta lies in so(n-2) and for odd n "

@@ -121,6 +121,8 @@ def _latex_value(value) -> str:
     vec = _as_tuple(value)
     if vec is not None:
         return "(" + ", ".join(_latex_value(v) for v in vec) + ")"
+    if isinstance(value, sp.MatrixBase):  # full-size fractions keep the rows of a matrix apart
+        return sp.latex(value).replace("\\frac", "\\dfrac")
     return sp.latex(value).replace("\\frac", "\\tfrac").replace("\\dfrac", "\\tfrac")
 
 
