@@ -227,7 +227,7 @@ def write(results: Sequence[Result], path: Path) -> bool:
     with matplotlib.rc_context({"svg.hashsalt": "chaplygin-nd claim graph", "svg.fonttype": "none"}):
         fig = draw(results)
         buffer = io.StringIO()
-        fig.savefig(buffer, format="svg", metadata={"Date": None})
+        fig.savefig(buffer, format="svg", metadata={"Date": None, "Creator": None})
         plt.close(fig)
     text = buffer.getvalue()
     old = path.read_text(encoding="utf-8") if path.exists() else None
