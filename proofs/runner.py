@@ -39,7 +39,7 @@ class Result:
         return d
 
 
-def _run_one(claim_id: str, seed: int) -> tuple[Verdict, float, str]:
+def _run_one(claim_id: str, seed: int = points.DEFAULT_SEED) -> tuple[Verdict, float, str]:
     """Decide one row with ``seed`` as the seed of its seeded checks (in this process)."""
     spec = registry()[claim_id]
     previous = points.set_ledger_seed(seed)
