@@ -14,10 +14,13 @@ $(STAMP): pyproject.toml
 	$(PY) -m pip install --quiet -e '.[test]'
 	touch $(STAMP)
 
-## verify: run every proof, print the ledger, write VERIFICATION.md and verification.json,
-## and fail on a `fails` row, an error, an `open` row without reason, or a stale generated/.
+## verify: run every proof, print the ledger, write VERIFICATION.md, verification.json and
+## docs/claim-graph.svg, and fail on a `fails` row, an error, an `open` row without reason, a
+## finding without a kind, or a stale generated/. `make verify SEED=N` draws every seeded point
+## from seed N (default: symbolic.points.DEFAULT_SEED); the seed is recorded in both reports.
+SEED ?=
 verify: setup
-	$(PY) -m proofs --check-generated
+	$(PY) -m proofs --check-generated $(if $(SEED),--seed $(SEED))
 
 ## test: the pytest suite (engine, proofs, kernels against mpmath, hard cases).
 test: setup

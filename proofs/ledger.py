@@ -22,11 +22,33 @@ from dataclasses import asdict, dataclass, field
 
 from symbolic.exact import Check
 
-__all__ = ["Verdict", "Part", "claim", "registry", "VERDICTS", "ClaimSpec"]
+__all__ = ["Verdict", "Part", "claim", "registry", "VERDICTS", "ClaimSpec", "KINDS",
+           "ERRATA_KINDS", "NEEDS_KIND"]
 
 #: Verdicts, best first. ``error`` is set only by the runner when a proof raises.
 VERDICTS = ("holds", "definition", "corrected", "open", "fails", "error")
 _RANK = {v: i for i, v in enumerate(VERDICTS)}
+
+#: What a non-holding row found, most serious first (DESIGN.md, "Verdicts"):
+#: ``formula`` — a displayed formula is false; ``proof`` — a step of a proof is false, the
+#: statement holds; ``scope`` — the statement fails on a parameter value or stratum the paper does
+#: not exclude; ``reading`` — the text is ambiguous, false in one reading and true in another.
+KINDS = ("formula", "proof", "scope", "reading")
+#: Kinds that are errata of the paper; the others are remarks.
+ERRATA_KINDS = ("formula", "proof")
+#: Verdicts that must say which kind of finding they are.
+NEEDS_KIND = ("corrected", "fails")
+
+
+def _check_kind(kind: str | None) -> None:
+    if kind is not None and kind not in KINDS:
+        raise ValueError(f"unknown kind {kind!r}; one of {KINDS}")
+
+
+def _kind_for(verdict: str, kind: str | None) -> str | None:
+    """A kind describes a finding: it is kept only on a row that is not a pass."""
+    _check_kind(kind)
+    return kind if verdict in NEEDS_KIND else None
 
 
 @dataclass(frozen=True)
@@ -41,10 +63,15 @@ class Part:
     printed_latex: str | None = None
     correction_latex: str | None = None
     notes: str = ""
+    kind: str | None = None
+    #: argued in prose, not computed (counted and listed apart; never a machine-checked pass)
+    argued: bool = False
+    remark: str = ""
 
     def __post_init__(self):
         if self.verdict not in VERDICTS:
             raise ValueError(f"unknown verdict {self.verdict!r}")
+        _check_kind(self.kind)
 
 
 def _decide(printed: Check, corrected: Check | None, correction_latex: str | None):
@@ -75,32 +102,46 @@ class Verdict:
     correction_latex: str | None = None
     notes: str = ""
     parts: tuple[Part, ...] = ()
+    #: ``formula``/``proof``/``scope``/``reading`` for a ``corrected``/``fails`` row (see KINDS)
+    kind: str | None = None
+    #: what the paper leaves implicit, stated for the reader (e.g. a constant factor its proof
+    #: names); shown in the remarks of the report, never changes the verdict
+    remark: str = ""
+    #: argued in prose, not computed (counted and listed apart; never a machine-checked pass)
+    argued: bool = False
 
     def __post_init__(self):
         if self.verdict not in VERDICTS:
             raise ValueError(f"unknown verdict {self.verdict!r}")
-        if self.verdict == "corrected" and not (self.counterexample and self.correction_latex):
+        _check_kind(self.kind)
+        fixed = self.correction_latex or any(p.verdict == "corrected" and p.correction_latex
+                                             for p in self.parts)
+        if self.verdict == "corrected" and not (self.counterexample and fixed):
             raise ValueError("a corrected row needs a counterexample and a corrected formula")
 
     # -- constructors ------------------------------------------------------------------------
     @classmethod
     def decide(cls, printed: Check, *, n_values: Sequence[int] = (), method: str = "",
                corrected: Check | None = None, correction_latex: str | None = None,
-               printed_latex: str | None = None, notes: str = "") -> Verdict:
+               printed_latex: str | None = None, notes: str = "", kind: str | None = None,
+               remark: str = "") -> Verdict:
         """Compare the printed formula (``printed``: the check of printed == derived) and, if it
-        fails, a proposed correction (``corrected``: the check of corrected == derived)."""
+        fails, a proposed correction (``corrected``: the check of corrected == derived).
+        ``kind`` (one of :data:`KINDS`) says what a failure of ``printed`` means; it is kept only
+        when the verdict is ``corrected`` or ``fails``."""
         verdict, cx, cx_latex, fix = _decide(printed, corrected, correction_latex)
         how = method or printed.method
         if verdict == "corrected" and corrected is not None:
             how = f"{how}; correction: {corrected.method}"
         return cls(verdict, how, tuple(n_values), cx, cx_latex,
-                   printed_latex if verdict != "holds" else None, fix, notes)
+                   printed_latex if verdict != "holds" else None, fix, notes,
+                   kind=_kind_for(verdict, kind), remark=remark)
 
     @classmethod
     def all_of(cls, checks: Iterable[tuple[str, Check]], *, n_values: Sequence[int] = (),
-               method: str = "", notes: str = "") -> Verdict:
-        """``holds`` iff every named check holds; otherwise ``fails`` with the first counterexample.
-        The method lists each check's method unless ``method`` is given."""
+               method: str = "", notes: str = "", kind: str | None = None) -> Verdict:
+        """``holds`` iff every named check holds; otherwise ``fails`` (of ``kind``) with the first
+        counterexample. The method lists each check's method unless ``method`` is given."""
         checks = list(checks)
         methods = "; ".join(f"{name}: {c.method}" for name, c in checks)
         for name, c in checks:
@@ -108,7 +149,7 @@ class Verdict:
                 cx = c.counterexample
                 return cls("fails", method or methods, tuple(n_values),
                            f"{name}: {cx.text()}" if cx else name,
-                           cx.latex() if cx else None, None, None, notes)
+                           cx.latex() if cx else None, None, None, notes, kind=kind)
         return cls("holds", method or methods, tuple(n_values), notes=notes)
 
     @classmethod
@@ -132,29 +173,38 @@ class Verdict:
 
     @classmethod
     def of_parts(cls, parts: Sequence[Part], *, n_values: Sequence[int] = (), method: str = "",
-                 notes: str = "") -> Verdict:
-        """A row made of named parts; its verdict is the worst part's (``definition`` ~ ``holds``)."""
+                 notes: str = "", kind: str | None = None, remark: str = "") -> Verdict:
+        """A row made of named parts; its verdict is the worst part's (``definition`` ~ ``holds``).
+        Its kind is ``kind`` or, by default, the most serious kind of the parts that carry the
+        row's verdict. The printed and corrected formulas stay on the parts (one display each)."""
         if not parts:
             raise ValueError("of_parts needs at least one part")
         worst = max(parts, key=lambda p: _RANK["holds" if p.verdict == "definition" else p.verdict])
         verdict = "holds" if worst.verdict == "definition" else worst.verdict
         method = method or "; ".join(sorted({p.method for p in parts}))
-        if verdict in ("corrected", "fails"):
+        remark = remark or " ".join(p.remark for p in parts if p.remark)
+        if verdict in NEEDS_KIND:
             bad = [p for p in parts if p.verdict == verdict]
             cx = "; ".join(f"{p.name}: {p.counterexample}" for p in bad)
-            fix = "\n".join(f"{p.name}: {p.correction_latex}" for p in bad if p.correction_latex)
-            printed = "\n".join(f"{p.name}: {p.printed_latex}" for p in bad if p.printed_latex)
-            return cls(verdict, method, tuple(n_values), cx, None, printed or None, fix or None,
-                       notes, tuple(parts))
+            kinds = [p.kind for p in bad if p.kind]
+            kind = kind or min(kinds, key=KINDS.index, default=None)
+            return cls(verdict, method, tuple(n_values), cx, None, None, None, notes, tuple(parts),
+                       kind=_kind_for(verdict, kind), remark=remark)
         if verdict == "open":
             notes = notes or "; ".join(f"{p.name}: {p.notes}" for p in parts if p.verdict == "open")
-        return cls(verdict, method, tuple(n_values), notes=notes, parts=tuple(parts))
+        return cls(verdict, method, tuple(n_values), notes=notes, parts=tuple(parts), remark=remark)
 
     def as_part(self, name: str) -> Part:
-        """This verdict as a named part of a larger row."""
+        """This verdict as a named part of a larger row (its remark becomes the row's remark)."""
         return Part(name, self.verdict, self.method, self.counterexample,
                     self.counterexample_latex, self.printed_latex, self.correction_latex,
-                    self.notes)
+                    self.notes, self.kind, self.argued, self.remark)
+
+    @property
+    def argued_parts(self) -> tuple[str, ...]:
+        """Names of what this row argues in prose instead of computing (the row itself if so)."""
+        names = tuple(p.name for p in self.parts if p.argued)
+        return names + (("(the whole row)",) if self.argued and not names else ())
 
     def to_dict(self) -> dict:
         d = asdict(self)

@@ -104,12 +104,12 @@ def p_n3special_case() -> Verdict:
                         method="exact symbolic in (a, b, omega): the points lie in V and both "
                                "expressions equal -a omega/(2+a+b) hat(E_3)")
     return Verdict.decide(
-        printed_chk, corrected=fixed_chk, n_values=(3,),
+        printed_chk, corrected=fixed_chk, n_values=(3,), kind="proof",
         printed_latex=r"\hat\Omega_0E_3 = 0 \;\Rightarrow\; \text{both expressions for } \zeta \text{ equal } 0",
-        correction_latex=r"\hat\Omega_0E_3 = 0 \text{ on } \mathcal{V} \Rightarrow \Omega_0 = \omega E_3 "
-                         r"\text{ and } (\omega = 0 \text{ or } \gamma_0 = \pm E_3);\ \text{then both "
+        correction_latex=r"\begin{gathered}\hat\Omega_0E_3 = 0 \text{ on } \mathcal{V} \Rightarrow \Omega_0 = \omega E_3 "
+                         r"\text{ and } (\omega = 0 \text{ or } \gamma_0 = \pm E_3); \\ \text{then both "
                          r"expressions equal } -\frac{a\,\omega}{2+a+b}\,\hat E_3 \text{ (they agree, "
-                         r"but vanish only if } a\omega = 0)",
+                         r"but vanish only if } a\omega = 0)\end{gathered}",
         method="exact symbolic in (a, b, omega) at gamma_0 = +-E_3, Omega_0 = omega E_3",
         notes="Counterexample: gamma_0 = E_3, Omega_0 = E_3 (spin about the vertical symmetry "
               "axis, a point of V). The proposition itself holds (row P:n3special).")

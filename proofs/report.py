@@ -1,4 +1,10 @@
-"""Render ledger results: one console line per row, VERIFICATION.md and verification.json."""
+"""Render ledger results: one console line per row, VERIFICATION.md and verification.json.
+
+Everything here is general over :data:`proofs.ledger.VERDICTS` and :data:`proofs.ledger.KINDS`: a
+new verdict or kind needs only its one-line description in :data:`VERDICT_TEXT` / :data:`KIND_TEXT`
+(a test checks that every one has one). The Markdown is written for a renderer with TeX math
+(GitHub, pandoc, MathJax, KaTeX): labels stay outside the math, one formula per ``$$`` display.
+"""
 
 from __future__ import annotations
 
@@ -6,13 +12,51 @@ import json
 import platform
 from collections import Counter
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 
 import sympy
 
+from proofs.ledger import ERRATA_KINDS, KINDS, NEEDS_KIND, VERDICTS
 from proofs.runner import Result
 
-ORDER = ("holds", "definition", "corrected", "open", "fails", "error")
+#: What each verdict means, for the reader of the report (one entry per verdict of the ledger).
+VERDICT_TEXT = {
+    "holds": "the printed statement equals an independent derivation (a remark may add what the "
+             "paper leaves implicit)",
+    "definition": "a definition (with consistency checks where they apply)",
+    "evidence": "numerical support for a qualitative statement, with a control showing the method "
+                "can tell the difference; never counted as holds",
+    "corrected": "false as printed; an exact counterexample and a proved correction are recorded",
+    "open": "not decided; the reason is given",
+    "fails": "false as printed, no correction proved yet",
+    "error": "the proof raised an exception (a fault of the ledger, not a verdict on the paper)",
+}
+
+#: What each kind of finding means; errata are the kinds in ``ERRATA_KINDS``, the rest remarks.
+KIND_TEXT = {
+    "formula": "a displayed formula is false",
+    "proof": "a step of a proof is false; the statement holds",
+    "scope": "the statement fails on a parameter value or stratum the paper does not exclude",
+    "reading": "the printed text is ambiguous: false in one reading, true in another (both stated)",
+}
+
+#: Where the claim graph is written (relative to the repository root; tracked, so links work).
+GRAPH_PATH = "docs/claim-graph.svg"
+
+
+@dataclass(frozen=True)
+class RunInfo:
+    """What a reader needs to repeat the run: the seed, and whether generated/ was checked."""
+
+    seed: int
+    #: ``"up to date"``, ``"STALE"`` or ``"not checked"``
+    generated: str = "not checked"
+    problems: tuple[str, ...] = ()
+
+    @property
+    def trustworthy(self) -> bool:
+        return self.generated != "STALE" and not self.problems
 
 
 def line(result: Result) -> str:
@@ -22,7 +66,8 @@ def line(result: Result) -> str:
     method = v.method if result.status != "open" else f"open: {v.notes.strip() or 'NO REASON'}"
     if result.error:
         method = "ERROR: " + result.error.strip().splitlines()[-1]
-    text = f"{result.row.id:<24} {result.status:<10} {result.seconds:7.2f}s  {method}{ns}"
+    status = result.status + (f" ({v.kind})" if v.kind else "")
+    text = f"{result.row.id:<24} {status:<20} {result.seconds:7.2f}s  {method}{ns}"
     return text if len(text) <= 220 else text[:217] + "..."
 
 
@@ -30,78 +75,208 @@ def totals(results: Sequence[Result]) -> Counter:
     return Counter(r.status for r in results)
 
 
+def argued(results: Sequence[Result]) -> list[tuple[str, str]]:
+    """(row id, part name) of everything argued in prose rather than computed."""
+    return [(r.row.id, name) for r in results for name in r.verdict.argued_parts]
+
+
 def summary(results: Sequence[Result]) -> str:
+    """The totals line: rows per verdict (in the order of VERDICTS), findings per kind, the parts
+    argued in prose, and the proof time."""
     count = totals(results)
-    parts = ", ".join(f"{count[k]} {k}" for k in ORDER if count[k])
+    parts = ", ".join(f"{count[k]} {k}" for k in VERDICTS if count[k])
+    kinds = Counter(r.verdict.kind for r in results if r.verdict.kind)
+    found = f" [{', '.join(f'{kinds[k]} {k}' for k in KINDS if kinds[k])}]" if kinds else ""
     seconds = sum(r.seconds for r in results)
-    return f"{len(results)} rows: {parts} ({seconds:.1f} s of proof time)"
+    return (f"{len(results)} rows: {parts}{found}; {len(argued(results))} parts argued, not "
+            f"machine-checked ({seconds:.1f} s of proof time)")
 
 
-def write_json(results: Sequence[Result], path: Path) -> None:
-    data = {"summary": dict(totals(results)), "rows": [r.to_dict() for r in results],
+def missing_kind(results: Sequence[Result]) -> list[str]:
+    """Rows that found something (``corrected``/``fails``) without saying which kind: an error of
+    the ledger, reported as a problem by ``python -m proofs``."""
+    return [r.row.id for r in results if r.status in NEEDS_KIND and not r.verdict.kind]
+
+
+def write_json(results: Sequence[Result], path: Path, info: RunInfo) -> None:
+    data = {"seed": info.seed, "generated": info.generated, "problems": list(info.problems),
+            "summary": dict(totals(results)),
+            "kinds": dict(Counter(r.verdict.kind for r in results if r.verdict.kind)),
+            "argued": [{"id": i, "part": name} for i, name in argued(results)],
+            "claim_graph": GRAPH_PATH,
+            "rows": [r.to_dict() for r in results],
             "environment": {"python": platform.python_version(), "sympy": sympy.__version__}}
-    path.write_text(json.dumps(data, indent=2, ensure_ascii=False) + "\n", encoding="utf-8")
+    _write_atomic(path, json.dumps(data, indent=2, ensure_ascii=False) + "\n")
+
+
+def _write_atomic(path: Path, text: str) -> None:
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(text, encoding="utf-8")
+    tmp.replace(path)
+
+
+_MARKDOWN_SPECIAL = str.maketrans({c: "\\" + c for c in "\\`*_[]<>|$#"})
 
 
 def _cell(text: str | None) -> str:
-    return (text or "").replace("|", "\\|").replace("\n", " ")
+    """Plain text (a method, a note) inside Markdown: no character may start markup or math."""
+    return (text or "").translate(_MARKDOWN_SPECIAL).replace("\n", " ")
 
 
-def write_markdown(results: Sequence[Result], path: Path) -> None:
-    out = ["# Verification ledger", "",
-           "Written by `make verify` (`python -m proofs`). One row per computable claim of the "
-           "paper (`paper/CLAIMS.md`, plus rows this project added). Verdicts: **holds** (printed "
-           "formula = independent derivation), **corrected** (printed formula false; exact "
-           "counterexample and a proved correction below), **fails** (false, no correction yet), "
-           "**definition**, **open** (not decided; the reason is given).", "",
-           f"**{summary(results)}**", "",
-           "| id | verdict | seconds | n | method | proof |", "|---|---|---|---|---|---|"]
+def _inline_math(latex: str | None) -> str:
+    """A formula inside a table cell: ``|`` would end the cell, so ``\\|`` becomes ``\\Vert`` and
+    ``|`` becomes ``\\vert``."""
+    if not latex:
+        return ""
+    return "$" + " ".join(latex.split()).replace(r"\|", r"\Vert ").replace("|", r"\vert ") + "$"
+
+
+#: A display longer than this (characters of LaTeX) that is a counterexample is set on two lines.
+_LONG_DISPLAY = 160
+
+
+def _display(latex: str) -> list[str]:
+    return ["$$", latex.strip(), "$$", ""]
+
+
+def _counterexample_display(latex: str) -> list[str]:
+    """A long counterexample on two lines: the point, then the residual it gives."""
+    arrow = r" \;\Rightarrow\; "
+    if len(latex) > _LONG_DISPLAY and arrow in latex:
+        point, residual = latex.split(arrow, 1)
+        latex = r"\begin{gathered}" + point + r" \\ \Rightarrow\; " + residual + r"\end{gathered}"
+    return _display(latex)
+
+
+def _anchor(row_id: str) -> str:
+    return "finding-" + "".join(c if c.isalnum() else "-" for c in row_id.lower())
+
+
+def _findings(r: Result):
+    """The pieces of a row that carry its finding: its bad parts, or the row itself."""
+    bad = [p for p in r.verdict.parts if p.verdict in NEEDS_KIND]
+    return bad or ([r.verdict] if r.status in NEEDS_KIND else [])
+
+
+def write_markdown(results: Sequence[Result], path: Path, info: RunInfo) -> None:
+    """VERIFICATION.md: run facts, errata, remarks, the full table, then each finding in LaTeX."""
+    out = ["# Verification ledger", ""]
+    if info.generated == "STALE":
+        out += ["> **STALE — do not rely on this report.** `generated/` differs from what "
+                "`symbolic/` emits now (run `make generate`, then `make verify`).", ""]
+    if info.problems:
+        out += ["> **This run has problems** (`make verify` exits non-zero):", ">"]
+        out += [f"> - {_cell(p.splitlines()[0])}" for p in info.problems] + [""]
+    out += [f"Written by `make verify` (`python -m proofs`) with **seed {info.seed}** (repeat with "
+            f"`make verify SEED={info.seed}`); `generated/`: {info.generated}.", "",
+            f"**{summary(results)}**", "",
+            "One row per computable claim of the paper (`paper/CLAIMS.md`, plus rows this project "
+            "added). Verdicts:", ""]
+    out += [f"- **{v}** — {VERDICT_TEXT[v]}" for v in VERDICTS]
+    out += ["", "Every `corrected`/`fails` row has a kind: "
+            + "; ".join(f"**{k}** — {KIND_TEXT[k]}" for k in KINDS)
+            + f". Errata are {' and '.join(ERRATA_KINDS)}; the other kinds are remarks.", "",
+            f"The claim graph (what each row uses, coloured by verdict and kind): "
+            f"[{GRAPH_PATH}]({GRAPH_PATH}).", "", f"![claim graph]({GRAPH_PATH})", ""]
+    out += _errata_table(results) + _remarks_table(results)
+    out += ["## All rows", "", "| id | verdict | kind | seconds | n | method | proof |",
+            "|---|---|---|---|---|---|---|"]
     for r in results:
         v = r.verdict
         ns = ",".join(map(str, v.n_values))
         method = v.method if r.status != "open" else f"open: {v.notes}"
-        out.append(f"| `{r.row.id}` | **{r.status}** | {r.seconds:.2f} | {ns} | {_cell(method)} "
-                   f"| {r.module} |")
-    findings = [r for r in results if r.status in ("corrected", "fails", "error")]
-    out += ["", "## Findings in the paper", ""]
-    if not findings:
-        out.append("None so far.")
-    for r in findings:
+        out.append(f"| `{r.row.id}` | **{r.status}** | {v.kind or ''} | {r.seconds:.2f} | {ns} "
+                   f"| {_cell(method)} | {r.module} |")
+    out += ["", "## Findings in detail", ""]
+    detailed = [r for r in results if _findings(r) or r.error]
+    out += [] if detailed else ["None.", ""]
+    for r in detailed:
         out += _finding(r)
+    out += _argued_section(results)
     parted = [r for r in results if r.verdict.parts]
     if parted:
-        out += ["", "## Rows made of parts", ""]
+        out += ["## Rows made of parts", ""]
         for r in parted:
-            out += [f"### `{r.row.id}`", "", "| part | verdict | method |", "|---|---|---|"]
-            out += [f"| {_cell(p.name)} | {p.verdict} | {_cell(p.method)} |" for p in r.verdict.parts]
+            out += [f"### `{r.row.id}`", "", "| part | verdict | kind | method |", "|---|---|---|---|"]
+            out += [f"| {_cell(p.name)} | {p.verdict}{' (argued)' if p.argued else ''} "
+                    f"| {p.kind or ''} | {_cell(p.method)} |" for p in r.verdict.parts]
             out.append("")
-    notes = [r for r in results if r.verdict.notes and r.status not in ("open",)]
+    notes = [r for r in results if r.verdict.notes and r.status != "open"]
     if notes:
-        out += ["", "## Notes", ""]
-        out += [f"- `{r.row.id}`: {r.verdict.notes}" for r in notes]
-    path.write_text("\n".join(out) + "\n", encoding="utf-8")
+        out += ["## Notes", ""]
+        out += [f"- `{r.row.id}`: {_cell(r.verdict.notes)}" for r in notes]
+        out.append("")
+    _write_atomic(path, "\n".join(out).rstrip("\n") + "\n")
+
+
+def _errata_table(results: Sequence[Result]) -> list[str]:
+    rows = [r for r in results if r.verdict.kind in ERRATA_KINDS]
+    out = [f"## Errata ({', '.join(ERRATA_KINDS)})", ""]
+    if not rows:
+        return out + ["None.", ""]
+    out += ["| row | kind | as printed | proved instead |", "|---|---|---|---|"]
+    for r in rows:
+        groups: dict[tuple, list[str]] = {}  # parts with the same formulas share one line
+        for item in _findings(r):
+            key = (item.printed_latex, item.correction_latex)
+            groups.setdefault(key, []).append(item.name if item is not r.verdict else "")
+        for (printed, fixed), names in groups.items():
+            label = "; ".join(_cell(n) for n in names if n)
+            out.append(f"| [`{r.row.id}`](#{_anchor(r.row.id)}) | {r.verdict.kind} "
+                       f"| {label + ': ' if label else ''}{_inline_math(printed)} "
+                       f"| {_inline_math(fixed) or r.status} |")
+    return out + [""]
+
+
+def _remarks_table(results: Sequence[Result]) -> list[str]:
+    rows = [r for r in results
+            if (r.verdict.kind and r.verdict.kind not in ERRATA_KINDS) or r.verdict.remark]
+    out = [f"## Remarks ({', '.join(k for k in KINDS if k not in ERRATA_KINDS)}; "
+           "rows that hold with a remark)", ""]
+    if not rows:
+        return out + ["None.", ""]
+    out += ["| row | verdict | kind | remark |", "|---|---|---|---|"]
+    for r in rows:
+        link = f"[`{r.row.id}`](#{_anchor(r.row.id)})" if _findings(r) else f"`{r.row.id}`"
+        out.append(f"| {link} | {r.status} | {r.verdict.kind or ''} "
+                   f"| {_cell(r.verdict.remark or r.verdict.notes)} |")
+    return out + [""]
 
 
 def _finding(r: Result) -> list[str]:
     v = r.verdict
-    out = [f"### `{r.row.id}` — {r.status}", "", f"Claim: {r.row.claim}", ""]
+    kind = f" · {v.kind} ({'erratum' if v.kind in ERRATA_KINDS else 'remark'})" if v.kind else ""
+    out = [f'<a id="{_anchor(r.row.id)}"></a>', "", f"### `{r.row.id}` — {r.status}{kind}", "",
+           f"Claim: {_cell(r.row.claim)}", ""]
     if r.error:
         return out + ["```", r.error.strip(), "```", ""]
-    if v.printed_latex:
-        out += ["As printed:", "", "$$", v.printed_latex, "$$", ""]
-    if v.counterexample:
-        out += [f"Counterexample (exact): {v.counterexample}", ""]
-    if v.counterexample_latex:
-        out += ["$$", v.counterexample_latex, "$$", ""]
-    if v.correction_latex:
-        out += ["Corrected (proved):", "", "$$", v.correction_latex, "$$", ""]
-    for p in v.parts:
-        if p.verdict in ("corrected", "fails"):
-            out += [f"- part **{p.name}**: {p.verdict}. {p.counterexample or ''}"]
-            if p.printed_latex:
-                out += ["", "  printed: $$" + p.printed_latex + "$$"]
-            if p.correction_latex:
-                out += ["", "  corrected: $$" + p.correction_latex + "$$"]
+    if v.remark:
+        out += [f"Remark: {_cell(v.remark)}", ""]
+    shown: set[str] = set()  # each formula once: a later part refers to it
+    for item in _findings(r):
+        if item is not v:
+            out += [f"**Part: {_cell(item.name)}** ({item.verdict}{', ' + item.kind if item.kind else ''})", ""]
+        for label, latex in (("As printed", item.printed_latex),
+                             ("Counterexample (exact)", item.counterexample_latex),
+                             ("Corrected (proved)", item.correction_latex)):
+            if latex and latex in shown:
+                out += [f"{label}: the formula shown above.", ""]
+            elif latex:
+                shown.add(latex)
+                out += [f"{label}:", ""] + (_counterexample_display(latex)
+                                            if label.startswith("Counterexample") else _display(latex))
+            elif label.startswith("Counterexample") and item.counterexample:
+                out += [f"Counterexample (exact): {_cell(item.counterexample)}", ""]
+        if item is not v and item.notes:
+            out += [f"Notes: {_cell(item.notes)}", ""]
     if v.notes:
-        out += [f"Notes: {v.notes}", ""]
-    return out + [f"Method: {v.method}", ""]
+        out += [f"Notes: {_cell(v.notes)}", ""]
+    return out + [f"Method: {_cell(v.method)}", ""]
+
+
+def _argued_section(results: Sequence[Result]) -> list[str]:
+    items = argued(results)
+    out = ["## Argued, not machine-checked", ""]
+    if not items:
+        return out + ["Nothing: every part of every row is computed.", ""]
+    return out + [f"- `{i}`: {_cell(name)}" for i, name in items] + [""]

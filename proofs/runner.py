@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 from proofs.catalog import Row, all_rows, discover, pending_reason
 from proofs.ledger import Verdict, registry
+from symbolic import points
 
 
 @dataclass(frozen=True)
@@ -38,8 +39,10 @@ class Result:
         return d
 
 
-def _run_one(claim_id: str) -> tuple[Verdict, float, str]:
+def _run_one(claim_id: str, seed: int = points.DEFAULT_SEED) -> tuple[Verdict, float, str]:
+    """Decide one row with ``seed`` as the seed of its seeded checks (in this process)."""
     spec = registry()[claim_id]
+    previous = points.set_ledger_seed(seed)
     start = time.perf_counter()
     try:
         verdict = spec.run()
@@ -49,6 +52,8 @@ def _run_one(claim_id: str) -> tuple[Verdict, float, str]:
     except Exception:  # a proof that raises is an error row, never a silent pass
         return (Verdict("fails", "raised an exception", notes="see error"),
                 time.perf_counter() - start, traceback.format_exc(limit=8))
+    finally:
+        points.set_ledger_seed(previous)
 
 
 def _init_worker():
@@ -74,19 +79,21 @@ def unknown_registrations() -> list[str]:
     return sorted(set(registry()) - known)
 
 
-def run(rows: Sequence[Row], *, jobs: int | None = None,
+def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFAULT_SEED,
         on_result: Callable[[Result], None] = lambda r: None) -> list[Result]:
-    """Decide ``rows``; registered ones run in ``jobs`` processes, the rest are ``open``."""
+    """Decide ``rows``; registered ones run in ``jobs`` processes, the rest are ``open``.
+    ``seed`` is the seed of every seeded check (passed to each worker with each row)."""
     discover()
     specs = registry()
     todo = [r.id for r in rows if r.id in specs]
+    seeds = [seed] * len(todo)
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(todo) or 1))
     if jobs == 1:
-        iterator = map(_run_one, todo)
+        iterator = map(_run_one, todo, seeds)
         pool = None
     else:
         pool = ProcessPoolExecutor(jobs, mp_context=mp.get_context("fork"), initializer=_init_worker)
-        iterator = pool.map(_run_one, todo)
+        iterator = pool.map(_run_one, todo, seeds)
     results = []
     try:
         pending = iter(todo)

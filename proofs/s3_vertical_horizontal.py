@@ -107,7 +107,7 @@ def vertical_horizontal_3d() -> Verdict:
                        n_values=(3,)).as_part("V invariant"),
         Verdict.all_of([("d/dt <M, gamma> = 0, any Omega", h_invariant)],
                        n_values=(3,)).as_part("H = {<M,gamma> = 0} invariant"),
-        Verdict.decide(name_printed, corrected=name_fixed, n_values=(3,),
+        Verdict.decide(name_printed, corrected=name_fixed, n_values=(3,), kind="formula",
                        printed_latex=r"\mathcal{H} = \{ (M,\gamma) \in P : f_2=\langle M, \gamma \rangle=0\},\quad f_2 = \|M\|^2",
                        correction_latex=r"\mathcal{H} = \{ (M,\gamma) \in P : f_1=\langle M, \gamma \rangle=0\}",
                        notes="Literally {f_2 = 0} = {M = 0} has dimension 2, not the stated 4: "
@@ -170,7 +170,7 @@ def euler_top() -> Verdict:
                                 sphere=SPHERE)
     parts = [
         Verdict.decide(_euler_along_V(), n_values=(3,)).as_part("statement (eq:vert-3D on V)"),
-        Verdict.decide(lambda_printed, corrected=lambda_fixed, n_values=(3,),
+        Verdict.decide(lambda_printed, corrected=lambda_fixed, n_values=(3,), kind="proof",
                        printed_latex=r"f_1(M_0,\gamma_0)=f_1(M(t),\gamma (t))=\lambda^2",
                        correction_latex=r"f_1(M(t),\gamma(t)) = \langle \lambda\gamma,\gamma\rangle = \lambda"
                                         r"\quad(\text{and } f_2 = \lambda^2),\ \text{so } \lambda = f_1 \text{ is constant}")

@@ -21,7 +21,6 @@ k, u, q = fourd.k, fourd.u, fourd.q
 SPHERE = (*q, x)
 SAMPLERS = {a: lambda r: points.rational(r, -1, 1, 8),
             b: lambda r: points.rational(r, 0, 4, 8, open_lo=True)}
-SEED = points.DEFAULT_SEED
 
 
 def on_P(residual, label: str) -> Check:

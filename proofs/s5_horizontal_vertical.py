@@ -178,11 +178,13 @@ def h_linear() -> Verdict:
     initial = Verdict.decide(
         zero_at_points(lambda pt: _printed_solution_at(pt)[:2], horizontal_point, count=4,
                        label="Hlin printed IC", describe="H (x != 0), at t = 0"),
-        n_values=(4,), corrected=fix, printed_latex=shown_latex, correction_latex=fix_latex)
+        n_values=(4,), corrected=fix, printed_latex=shown_latex, correction_latex=fix_latex,
+        kind="formula")
     frequency = Verdict.decide(
         zero_at_points(lambda pt: _printed_solution_at(pt)[2:], _horizontal_point_G0, count=4,
                        label="Hlin printed ODE", describe="H with G_0 = 0 (x != 0), at t = 0"),
-        n_values=(4,), corrected=fix, printed_latex=shown_latex, correction_latex=fix_latex)
+        n_values=(4,), corrected=fix, printed_latex=shown_latex, correction_latex=fix_latex,
+        kind="formula")
     return Verdict.of_parts([
         Verdict.all_of([("G_dot", exact(Gdot - X["G"].xreplace(g), "Hlin G")),
                         ("x_dot", exact(xdot - X["x"], "Hlin x"))], n_values=(4,)).as_part(

@@ -69,6 +69,7 @@ def s5_f123() -> Verdict:
         chk = on_P(shown.coeff_monomial(mon) - det.coeff_monomial(mon), f"F123 {mon}")
         fixed = on_P(fix - det.coeff_monomial(mon), f"F123 fix {mon}") if fix is not None else None
         parts.append(Verdict.decide(chk, n_values=(4,), corrected=fixed, correction_latex=fix_latex,
+                                    kind="formula",
                                     printed_latex=pl).as_part(name))
     extra = exact(sum(det.coeff_monomial(m) * lam**m[0] * sig**m[1] for m in det.monoms())
                   - (lam**4 - lam**3 * sig * g2 + lam**2 * F2 - lam * sig * F3 + F1**2), "F123 all")

@@ -52,7 +52,7 @@ def _lie(f, X):
 def _independent() -> Verdict:
     ints = reduced.integrals()
     fs = [ints[n] for n in ("F1", "F2", "F3", "H")] + [delta**2 - DET]
-    pt = invariants_at(phase_point(points.generator(points.DEFAULT_SEED, "red-int rank")))
+    pt = invariants_at(phase_point(points.generator(points.ledger_seed(), "red-int rank")))
     J = sp.Matrix([[sp.diff(f, c).xreplace(pt) for c in COORDS] for f in fs])
     rank = J.rank()
     return Verdict.all_of([("rank", exact(sp.Integer(rank - 5), "red-int rank"))], n_values=(4,),
@@ -110,7 +110,13 @@ def red_measure() -> Verdict:
                         ("X(Delta) = c Delta", xdelta)], n_values=(4,)).as_part(
             "R invariant; Phi/Delta a first integral"),
         Verdict.decide(
-            naive, n_values=(4,), corrected=fixed,
+            naive, n_values=(4,), corrected=fixed, kind="reading",
+            remark="'The restriction of mu_r to R' has two readings. False: the residue of mu_r "
+                   "along the relation delta^2 - det Lambda = 0 that the paper writes (not "
+                   "invariant, since X(delta^2 - det Lambda) = c (delta^2 - det Lambda) with "
+                   "c = -2abxG/((2+a+b)Delta) != 0). True: mu_r is invariant on R^7, and its "
+                   "residue along the first integral (delta^2 - det Lambda)/Delta, "
+                   "dA dB dE dG dF_1 dx/(2 Delta |delta|), is invariant on R.",
             printed_latex=(r"\mu_r|_{\mathcal{R}} = \frac{dA\,dB\,dE\,dG\,dF_1\,dx}{\Delta(x)^2\,"
                            r"|\partial_\delta(\delta^2-\det\Lambda)|}"),
             correction_latex=(r"\mu_{\mathcal{R}} = \frac{\mu_r}{d\big((\delta^2-\det\Lambda)/\Delta\big)}"

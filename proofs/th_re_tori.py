@@ -100,7 +100,6 @@ __all__ = ["torus_rank", "zeta_map_rank", "isotropy_rank", "centralizer_dim", "m
 
 SECTION = "Section 4 — the axisymmetric sphere"
 NS = tuple(range(3, 9))
-SEED = points.DEFAULT_SEED
 
 
 def torus_rank(n: int) -> int:
@@ -177,7 +176,7 @@ def mu_coefficients(x_=x, a_=a, b_=b) -> tuple[sp.Expr, sp.Expr]:
 
 def seeded_point(n: int, *, label: str = "tori", a_zero: bool = False) -> dict:
     r"""Seeded exact point of $\mathcal{V}$ with $a \ne 0$ (or $a = 0$), $b > 0$, $x_0 \ne 0$."""
-    rng = points.generator(SEED, label, n)
+    rng = points.generator(points.ledger_seed(), label, n)
     av = sp.Integer(0) if a_zero else points.rational(rng, -1, 1, 8, nonzero=True)
     bv = points.rational(rng, 0, 4, 8, open_lo=True)
     g = points.sphere_point(rng, n)
@@ -230,7 +229,7 @@ def _seeded_ranks() -> Check:
                 return Check(False, "exact ranks over QQ at seeded points of V",
                              Counterexample(_pt_desc(p), value, where))
     return fact(True, f"exact ranks over QQ (DomainMatrix) at one seeded rational point of V "
-                      f"(a != 0, x_0 != 0; seed {SEED}) for each n in {NS[0]}..{NS[-1]}: "
+                      f"(a != 0, x_0 != 0; seed {points.ledger_seed()}) for each n in {NS[0]}..{NS[-1]}: "
                       "rank Z_gamma = dim so(n-1), isotropy algebra in so(n-1) = 0, "
                       "dim z(zeta) = rank SO(n-1) (zeta regular), zeta E_n = 0")
 
@@ -295,13 +294,17 @@ def th_re_tori() -> Verdict:
                     "Fubini, analytic zero sets are null (mathematical facts, not machine-checked)")
     printed = combine([_degenerate_parameters(), fixed])
     generic = Verdict.decide(
-        printed, corrected=combine([fixed, a0]),
+        printed, corrected=combine([fixed, a0]), kind="scope",
+        remark="True for a != 0. The paper's domain includes a = 0 (spherical inertia, line 368); "
+               "there zeta = 0 and every point of V is an equilibrium, so there are no tori of "
+               "dimension rank SO(n-1).",
         printed_latex=r"\text{generic dimension of the tori} = \operatorname{rank} SO(n-1) = "
                       r"[\tfrac{n-1}{2}] \quad (-1 \le a \le 1,\ b > 0)",
-        correction_latex=r"\text{for } a \neq 0:\ \dim \overline{\{e^{\zeta t}\cdot p\}} \le "
+        correction_latex=r"\begin{gathered}\text{for } a \neq 0:\ \dim \overline{\{e^{\zeta t}\cdot p\}} \le "
                          r"\lfloor\tfrac{n-1}{2}\rfloor \text{ on } \mathcal{V}, \text{ with equality "
-                         r"on a dense full-measure set (open dense for } n \le 4); \text{ for } a = 0,\ "
-                         r"\zeta \equiv 0 \text{ and } \mathcal{V} \text{ consists of equilibria}",
+                         r"on a dense full-measure set (open dense for } n \le 4); \\ \text{for } a = 0,\ "
+                         r"\zeta \equiv 0 \text{ and } \mathcal{V} \text{ consists of equilibria}"
+                         r"\end{gathered}",
         method="exact: det Z_gamma = mu_1^k mu_2^(n-2), mu_1 = -a(2+b(1-x^2))/(2 Delta), "
                "mu_2 = -a x/Delta; the factor a vanishes at a = 0 in the paper's domain",
         notes="On the equator x_0 = 0 (a null set) mu_2 = 0, zeta lies in so(n-2) and for odd n "

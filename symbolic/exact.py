@@ -24,6 +24,7 @@ inside the stated domain (on the sphere where asked) and the exact non-zero valu
 
 from __future__ import annotations
 
+import re
 import time
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -54,13 +55,75 @@ class Counterexample:
     where: str = ""
 
     def text(self) -> str:
-        at = ", ".join(f"{name} = {sp.sstr(value)}" for name, value in self.point)
+        at = ", ".join(f"{name} = {_text_value(value)}" for name, value in _grouped(self.point))
         loc = f" ({self.where})" if self.where else ""
-        return f"at {at}: residual{loc} = {sp.sstr(self.residual)} != 0"
+        return f"at {at}: residual{loc} = {_text_value(self.residual)} != 0"
 
     def latex(self) -> str:
-        at = ",\\; ".join(f"{_latex_name(name)} = {sp.latex(value)}" for name, value in self.point)
-        return f"{at} \\;\\Rightarrow\\; \\text{{residual}} = {sp.latex(self.residual)} \\neq 0"
+        r"""The point as a reader writes it: components gathered into vectors
+        ($\gamma = (\tfrac{2}{3}, \dots)$), then the exact non-zero residual."""
+        at = ",\\; ".join(f"{_latex_name(name)} = {_latex_value(value)}"
+                          for name, value in _grouped(self.point))
+        loc = f"\\ \\text{{({self.where})}}" if self.where else ""
+        return (f"{at} \\;\\Rightarrow\\; \\text{{residual}}{loc} = "
+                f"{_latex_value(self.residual)} \\neq 0")
+
+
+_INDEXED = re.compile(r"^([A-Za-z]+)_?(\d+)$")
+#: indexed names that are separate quantities, not the components of one vector (the integrals)
+_NOT_VECTORS = {"F", "f"}
+
+
+def _grouped(point) -> list[tuple[str, object]]:
+    """``gamma1, gamma2, gamma3`` (in any order) -> ``gamma = (gamma1, gamma2, gamma3)`` when the
+    indices of one base name are exactly 1..k (k >= 2); other names stay as they are, in order."""
+    bases: dict[str, dict[int, object]] = {}
+    for name, value in point:
+        m = _INDEXED.match(name)
+        if m:
+            bases.setdefault(m.group(1), {})[int(m.group(2))] = value
+    vectors = {base: comps for base, comps in bases.items()
+               if len(comps) >= 2 and sorted(comps) == list(range(1, len(comps) + 1))
+               and base not in {name for name, _ in point} and base not in _NOT_VECTORS}
+    out, done = [], set()
+    for name, value in point:
+        m = _INDEXED.match(name)
+        if m and m.group(1) in vectors:
+            if m.group(1) not in done:
+                comps = vectors[m.group(1)]
+                out.append((m.group(1), tuple(comps[i] for i in sorted(comps))))
+                done.add(m.group(1))
+            continue
+        out.append((name, value))
+    return out
+
+
+def _as_tuple(value):
+    """A vector (tuple, list, or a one-row/one-column matrix) as a tuple; anything else: None."""
+    if isinstance(value, (tuple, list)):
+        return tuple(value)
+    if isinstance(value, sp.MatrixBase) and 1 in value.shape:
+        return tuple(value)
+    return None
+
+
+def _text_value(value) -> str:
+    vec = _as_tuple(value)
+    if vec is not None:
+        return "(" + ", ".join(sp.sstr(v) for v in vec) + ")"
+    if isinstance(value, sp.MatrixBase):
+        return "[" + "; ".join(", ".join(sp.sstr(v) for v in value.row(i))
+                               for i in range(value.rows)) + "]"
+    return sp.sstr(value)
+
+
+def _latex_value(value) -> str:
+    vec = _as_tuple(value)
+    if vec is not None:
+        return "(" + ", ".join(_latex_value(v) for v in vec) + ")"
+    if isinstance(value, sp.MatrixBase):  # full-size fractions keep the rows of a matrix apart
+        return sp.latex(value).replace("\\frac", "\\dfrac")
+    return sp.latex(value).replace("\\frac", "\\tfrac").replace("\\dfrac", "\\tfrac")
 
 
 def _latex_name(name: str) -> str:
@@ -134,7 +197,7 @@ def numerator_polynomial(expr: sp.Expr, gens: Sequence[sp.Symbol],
 
 def rational_identity(residual, *, sphere: Sequence[sp.Symbol] | None = None,
                       samplers: Mapping[sp.Symbol, Sampler] | None = None,
-                      seed: int = points.DEFAULT_SEED, label: str = "") -> Check:
+                      seed: int | None = None, label: str = "") -> Check:
     r"""Prove ``residual == 0`` as an identity of rational functions over $\mathbb{Q}$, or refute it.
 
     ``residual``: a SymPy expression, a matrix, or a list of expressions or of sparse polynomials
@@ -143,8 +206,10 @@ def rational_identity(residual, *, sphere: Sequence[sp.Symbol] | None = None,
     ``sphere``: symbols $\gamma_1..\gamma_n$ with the identity claimed on $\lVert\gamma\rVert = 1$.
     ``samplers``: for the counterexample search only, how to draw each parameter (e.g. $a \in
     [-1,1]$, $b > 0$); other symbols are drawn from small rationals, sphere symbols on $S^{n-1}$.
+    ``seed``: of the counterexample search; default :func:`symbolic.points.ledger_seed`.
     """
     start = time.perf_counter()
+    seed = points.ledger_seed() if seed is None else seed
     entries = _entries(residual)
     symbols = _free_symbols(entries)
     if sphere and not set(sphere) <= symbols:
@@ -220,15 +285,17 @@ def exact_zero(value) -> tuple[bool, str, object]:
 
 
 def zero_at_points(residual: Callable[[dict], object], sample: Callable[[Random], dict], *,
-                   count: int, seed: int = points.DEFAULT_SEED, label: str,
+                   count: int, seed: int | None = None, label: str,
                    describe: str = "") -> Check:
     r"""Evaluate ``residual(point)`` exactly at ``count`` seeded points ``sample(rng)``; it must be 0.
 
     ``sample`` returns a dict name -> exact value (numbers, vectors, matrices); ``residual``
     returns an exact number, matrix or list. ``describe`` names the space sampled (for the
-    method string). A non-zero value stops the check and becomes the counterexample.
+    method string). A non-zero value stops the check and becomes the counterexample. ``seed``:
+    default :func:`symbolic.points.ledger_seed` (the seed of the ledger run).
     """
     start = time.perf_counter()
+    seed = points.ledger_seed() if seed is None else seed
     method = f"exact at {count} seeded rational points{' of ' + describe if describe else ''} (seed {seed})"
     for i in range(count):
         rng = points.generator(seed, label, i)

@@ -20,12 +20,29 @@ import sympy as sp
 from symbolic.algebra import column, unvec
 
 __all__ = [
-    "DEFAULT_SEED", "generator", "rational", "rationals", "sphere_point", "skew_matrix",
+    "DEFAULT_SEED", "ledger_seed", "set_ledger_seed", "generator", "rational", "rationals", "sphere_point", "skew_matrix",
     "rational_rotation", "axisymmetric_parameters",
 ]
 
-#: The seed of every ledger check unless a proof names another one.
+#: The seed of a ledger run unless ``python -m proofs --seed N`` (``make verify SEED=N``) names another.
 DEFAULT_SEED = 20261121
+_ledger_seed = DEFAULT_SEED
+
+
+def ledger_seed() -> int:
+    """The seed of the ledger run in this process: every seeded check that names no seed of its
+    own draws its points from it. The runner sets it in each worker before each row
+    (:func:`set_ledger_seed`), so it is an explicit parameter of a run, recorded in its report."""
+    return _ledger_seed
+
+
+def set_ledger_seed(seed: int) -> int:
+    """Make ``seed`` the seed of the ledger checks in this process; returns the previous one."""
+    global _ledger_seed
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise ValueError(f"a ledger seed is a non-negative integer, not {seed!r}")
+    previous, _ledger_seed = _ledger_seed, seed
+    return previous
 
 
 def generator(seed: int, *labels: object) -> random.Random:
