@@ -247,7 +247,8 @@ def _contact_figure(plt, t, arr):
     right.legend(fontsize=8, loc="best", ncol=1 if d <= 6 else 2)
     right.grid(True, lw=0.3)
     right.set_title("coordinates of the contact point against t", fontsize=9)
-    fig.suptitle(f"contact path of the ball on the hyperplane $\\mathbb{{R}}^{{{d}}}$ "
+    fig.suptitle(f"contact path of the ball on the {'plane' if d == 2 else 'hyperplane'} "
+                 f"$\\mathbb{{R}}^{{{d}}}$ "
                  f"(n = {n}, space frame)", fontsize=10)
     return fig
 
