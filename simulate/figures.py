@@ -36,6 +36,7 @@ REDUCED_NAMES = (r"$A = \|k\|^2$", r"$B = \|u\|^2$", r"$E = \langle k, q\rangle$
 INTEGRAL_NAMES = {"energy": "H", "gamma_norm2": r"\|\gamma\|^2", "F1": "F_1", "F2": "F_2",
                   "F3": "F_3"}
 _SEPARATE = 12  # at most this many panels for an ensemble of a vector output
+_AXIS_LABELS = {"M": "$M_{ij}$", "Omega": r"$\Omega_{ij}$", "gamma": r"$\gamma_i$"}
 _STYLES = ("-", "--", ":")  # line style per block of ten colours
 _OUTSIDE = {"loc": "upper left", "bbox_to_anchor": (1.01, 1.0)}  # legend right of the axes
 
@@ -84,6 +85,21 @@ def _components(name: str, arr: np.ndarray) -> tuple[list[str], np.ndarray, str]
     raise KeyError(name)
 
 
+def _constant(ax, y) -> bool:
+    """If ``y`` is constant to rounding (spread <= 1e-9 of its size), centre a readable y-range
+    on it and say so in the legend; returns whether it did."""
+    y = np.asarray(y, dtype=float)
+    size = max(1.0, float(np.max(np.abs(y))))
+    spread = float(np.max(y) - np.min(y))
+    if not spread <= 1e-9 * size:
+        return False
+    mid = float(np.mean(y))
+    half = 0.05 * max(abs(mid), 1e-3 * size)
+    ax.set_ylim(mid - half, mid + half)
+    ax.plot([], [], " ", label=f"constant: max - min = {spread:.1e}")
+    return True
+
+
 def _ensemble(ax, t, Y, color="C0", label=None, legend=True):
     """All members of ``Y (S, count)`` thin, the median bold and the 5-95 % band."""
     count = Y.shape[1]
@@ -109,8 +125,10 @@ def _series_figure(plt, name, t, arr):
         if count == 1:
             for i, lab in enumerate(labels):
                 ax.plot(t, vals[:, 0, i], lw=0.9, ls=_STYLES[i // 10 % 3], label=lab)
+            if k == 1:
+                _constant(ax, vals[:, 0, 0])
             ax.legend(fontsize=8, ncol=max(1, (k + 9) // 10), **_OUTSIDE)
-            ax.set_ylabel(labels[0] if k == 1 else name if name != "Omega" else r"$\Omega$")
+            ax.set_ylabel(labels[0] if k == 1 else _AXIS_LABELS.get(name, name))
         else:
             _ensemble(ax, t, vals[:, :, 0], label=labels[0])
         ax.set_xlabel("t")
@@ -130,6 +148,7 @@ def _series_figure(plt, name, t, arr):
             continue
         if count == 1:
             ax.plot(t, vals[:, 0, i], lw=0.9, color=f"C{i % 10}", label=labels[i])
+            _constant(ax, vals[:, 0, i])
             ax.legend(fontsize=8, loc="best")
             ax.set_ylabel(labels[i])
         else:
@@ -176,24 +195,25 @@ def _drift_figure(plt, key, t, arr):
             ax.set_ylabel(r"$|I(t) - I(t_0)|$ (identically 0)")
         else:
             ax.set_yscale("log")
-            _ensemble(ax, t, pos, label=r"$\max |I(t) - I(t_0)|$ over " +
-                      ("the coefficients" if len(labels) > 1 else labels[0]))
+            _ensemble(ax, t, pos, label=labels[0] if len(labels) == 1 else
+                      r"$\max_{\mathrm{coefficients}} |I(t) - I(t_0)|$")
         fig.suptitle(f"{what}, {count} initial conditions", fontsize=10)
         ax.grid(True, which="both", lw=0.3)
         return fig
     zero = [lab for i, lab in enumerate(labels) if not np.any(vals[:, 0, i])]
     live = [i for i, lab in enumerate(labels) if lab not in zero]
+    gaps = any(np.any(vals[1:, 0, i] == 0) for i in live)
     if live:
         ax.set_yscale("log")
         for i in live:
             y = np.where(vals[:, 0, i] > 0, vals[:, 0, i], np.nan)
-            ax.plot(t, y, lw=0.8, ls=_STYLES[i // 10 % 3], marker="." if len(t) <= 60 else None, ms=3,
+            ax.plot(t, y, lw=0.6 if gaps else 0.8, ls=_STYLES[i // 10 % 3],
+                    marker="." if gaps or len(t) <= 60 else None, ms=2.5,
                     label=labels[i] if len(labels) > 1 else labels[0])
         ax.set_ylabel(r"$|I(t) - I(t_0)|$" if len(labels) > 1 else labels[0])
     else:
         ax.plot(t, vals[:, 0, 0], lw=0.8, label=labels[0] if len(labels) == 1 else "every coefficient")
         ax.set_ylabel(r"$|I(t) - I(t_0)|$")
-    gaps = any(np.any(vals[1:, 0, i] == 0) for i in live)
     if gaps:
         ax.plot([], [], " ", label="gaps: drift exactly 0 there")
     if zero:

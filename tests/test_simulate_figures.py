@@ -141,3 +141,12 @@ def test_a_scene_writes_one_png_per_output(tmp_path):
     pngs = sorted(p.name for p in (tmp_path / "out").glob("*.png"))
     assert pngs == ["M.png", "contact_path.png", "drift.energy.png", "drift.gamma_norm2.png",
                     "drift.p.png", "x.png"]
+
+
+def test_a_constant_output_gets_a_readable_axis_and_says_so():
+    """x is constant on V (Th:Re): the axis is not stretched over 1e-16 and the legend says it."""
+    x = np.full((len(T), 1), -0.15492323) + 1e-17 * np.arange(len(T))[:, None]
+    ax = figure("x", T, x).axes[0]
+    low, high = ax.get_ylim()
+    assert high - low > 1e-3
+    assert any("constant" in tx.get_text() for tx in ax.get_legend().get_texts())
