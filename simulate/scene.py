@@ -266,7 +266,7 @@ def _body(raw, n, fail):
         if a > 1.0:
             notes.append(f"a = {a:g} is outside the paper's stated range a in [-1, 1] "
                          "(eq:axisymm): a prolate body, physical (S4:physical-ball); Delta(x) > 0 "
-                         "and L_gamma is invertible for every a > -2")
+                         "for every a > -2 (eq:Delta), so L_gamma is invertible (P:Measure)")
         bad = parameter_violations(n, a, b)
         if bad:
             notes.append("(a, b) is not realisable as a ball: " + "; ".join(bad)
