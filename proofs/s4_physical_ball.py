@@ -218,7 +218,7 @@ def physical_ball() -> Verdict:
         ("5. I_ball(Omega) + m r^2 (Omega g) ^ g = s L_gamma(Omega)",
          _each_n(_ball_is_scaled_sphere, SYMBOLIC_N, "ball-L")),
         ("5'. J_ball = s (Id + a E_n E_n^T), m r^2 = s b", _each_n(_mass_tensors_agree, ALL_N, "ball-J")),
-        ("6. eq:motion-general and H scale with M -> s M", _each_n(_dynamics_scale, (3, 4, 5), "ball-dyn")),
+        ("6. eq:motion-general and H scale with M -> s M", _each_n(_dynamics_scale, (3, 4), "ball-dyn")),
         ("7. n = 3: hat(I w + m r^2 g x (w x g)) = s L_gamma(hat w)", _each_n(_literature_3d, (3,), "ball-3d")),
         ("8a. v^T (mu X X^T) v = mu <v, X>^2, tr(mu X X^T) = mu |X|^2",
          _each_n(_point_mass_bounds, SYMBOLIC_N, "ball-psd")),
