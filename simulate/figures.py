@@ -236,7 +236,7 @@ def _contact_figure(plt, t, arr):
     lw = 1.0 if count == 1 else 0.5
     for e in range(count):
         P = vals[:, e, :3] if three else vals[:, e, :2] if d >= 2 else np.c_[vals[:, e, 0], 0 * t]
-        label = "contact path" if e == 0 else None
+        label = "contact point = centre seen from the plane" if e == 0 else None
         ax.plot(*P.T, lw=lw, color="C0", alpha=1.0 if count == 1 else 0.4, label=label)
         ax.plot(*P[:1].T, "o", color="C2", ms=5, label="start $t_0$" if e == 0 else None)
         ax.plot(*P[-1:].T, "s", color="C3", ms=5, label="end" if e == 0 else None)
