@@ -10,8 +10,9 @@ Output arrays (``S`` samples, ``count`` initial conditions):
   $p(\lambda, \sigma)$ (eq:pol-first-integrals), $\|\gamma\|^2$; or, from the reduced model,
   $F_1, F_2, F_3, H$ (S5:red-integrals). Each with its drift $I(t) - I(0)$.
 
-:func:`write` puts ``outputs.npz``, one CSV per output and one PNG per output into the output
-folder, each file atomically (:mod:`simulate.outdir` decides which folders may be written).
+:func:`write` puts ``outputs.npz``, one CSV per output and one PNG per output (drawn by
+:mod:`simulate.figures`) into the output folder, each file atomically (:mod:`simulate.outdir`
+decides which folders may be written).
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ import numpy as np
 
 from simulate import so
 from simulate.dispatch import active
+from simulate.figures import plot
 from simulate.outdir import OutputFolder
 
 __all__ = ["collect", "integrals", "p_coefficients", "write"]
@@ -108,33 +110,6 @@ def _csv(path: Path, t: np.ndarray, arr: np.ndarray, name: str) -> None:
                fmt="%.17g")
 
 
-def _plot(path: Path, t: np.ndarray, arr: np.ndarray, name: str) -> None:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(7, 4))
-    first = arr[:, 0] if arr.ndim > 1 else arr
-    if name == "contact_path":
-        ax.plot(first[:, 0], first[:, 1] if first.shape[-1] > 1 else 0 * first[:, 0])
-        ax.set_xlabel("c_1")
-        ax.set_ylabel("c_2")
-        ax.set_aspect("equal", "datalim")
-    elif name.startswith("drift."):
-        ys = np.abs(first.reshape(len(t), -1)) + 1e-300
-        ax.semilogy(t, ys, lw=0.8)
-        ax.set_ylabel(f"|{name}|")
-    else:
-        ax.plot(t, first.reshape(len(t), -1), lw=0.8)
-        ax.set_ylabel(name)
-    if name != "contact_path":
-        ax.set_xlabel("t")
-    ax.set_title(f"{name} (first initial condition)")
-    fig.tight_layout()
-    fig.savefig(path, dpi=90)
-    plt.close(fig)
-
-
 def write(folder: OutputFolder, arrays: dict[str, np.ndarray], summary: str,
           plots: bool = True) -> Path:
     """Write ``arrays`` (NPZ, CSV per output, PNG per output) and ``summary.txt`` into ``folder``
@@ -146,9 +121,9 @@ def write(folder: OutputFolder, arrays: dict[str, np.ndarray], summary: str,
             continue
         if name != "zeta":
             files[f"{name}.csv"] = partial(_csv, t=t, arr=arr, name=name.replace(".", "_"))
-            if plots and not name.startswith("integrals."):
-                files[f"{name}.png"] = partial(_plot, t=t, arr=arr, name=name)
         else:
             files["zeta.csv"] = partial(np.savetxt, X=arr.reshape(arr.shape[0], -1), delimiter=",")
+        if plots and not name.startswith("integrals."):
+            files[f"{name}.png"] = partial(plot, t=t, arr=arr, name=name)
     files["summary.txt"] = lambda p: p.write_text(summary + "\n", encoding="utf-8")
     return folder.write(files)

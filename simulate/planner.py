@@ -63,6 +63,7 @@ class Plan:
     method: str
     Omega0: np.ndarray
     skipped: list[str] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)  # about the scene's parameters (simulate.ball)
 
     def describe(self) -> str:
         """One paragraph: model, why, and what was ruled out."""
@@ -71,6 +72,7 @@ class Plan:
             text += "; with reconstruction (orientation g, contact path)"
         if self.skipped:
             text += "\n  not used: " + "; ".join(self.skipped)
+        text += "".join(f"\n  note: {note}" for note in self.notes)
         return text
 
 
@@ -101,7 +103,7 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
 
     def make(model, reason):
         return Plan(model, reason, reconstruct,
-                    _method(scene, model), Omega0, skipped)
+                    _method(scene, model), Omega0, skipped, list(scene.notes))
 
     if force_full:
         return make("full", "forced (cross-check)")

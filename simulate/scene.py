@@ -4,9 +4,22 @@ r"""Scenes: TOML files that name a sphere, an initial condition, times, outputs 
 
     title = "generic 4D sphere"
     n = 4                 # dimension, n >= 3
-    a = 0.5               # eq:axisymm, J = Id + a E_n E_n^T, -1 <= a <= 1
-    b = 1.0               # eq:M-O, b = m r^2 > 0
+    a = 0.5               # eq:axisymm, J = Id + a E_n E_n^T, a >= -1 (the paper states
+                          # -1 <= a <= 1; a > 1, a prolate body, runs with a note)
+    b = 1.0               # eq:M-O, b = m r^2 > 0 (a ball exists iff b >= n + a; otherwise
+                          # the plan notes that (a, b) is not realisable and runs anyway)
     radius = 1.0          # r, only used by the contact path (optional, default 1)
+
+    # or, instead of a, b and radius, a physical ball (S4:physical-ball):
+    # [ball]
+    # mass = 2.0
+    # radius = 0.1
+    # inertia = [I1, In]  # moment of inertia in a plane containing the axis E_n, and in a
+    #                     # plane orthogonal to it (n = 3: principal moments (I1, I1, I3))
+    # mass_tensor = [j1, jn]  # or the mass tensor diag(j1, ..., j1, jn) about the centre
+    # Then s = In/2, a = 2(I1 - In)/In, b = 2 m r^2/In; outputs are in the paper's variables
+    # (M_ball = s M, H_ball = s H; Omega, gamma, x, t unchanged); an explicit initial.M is
+    # the ball's angular momentum about the contact point (divided by s on input).
 
     [initial]             # explicit (M or Omega, and gamma) or a family with a seed
     family = "generic"    # generic | vertical | horizontal | steady-rotation | explicit
@@ -49,6 +62,13 @@ from pathlib import Path
 import numpy as np
 
 from simulate import budget, families
+from simulate.ball import (
+    Ball,
+    ball_violations,
+    from_mass_tensor,
+    from_moments,
+    parameter_violations,
+)
 
 __all__ = ["Scene", "SceneError", "OUTPUTS", "METHODS", "load", "loads", "find", "builtin_scenes"]
 
@@ -56,7 +76,8 @@ __all__ = ["Scene", "SceneError", "OUTPUTS", "METHODS", "load", "loads", "find",
 OUTPUTS = ("M", "Omega", "gamma", "x", "integrals", "zeta", "reduced", "orientation",
            "contact_path")
 METHODS = ("auto", "dop853", "lie", "reference")
-_TOP = {"title", "n", "a", "b", "radius", "initial", "times", "outputs", "accuracy"}
+_TOP = {"title", "n", "a", "b", "radius", "ball", "initial", "times", "outputs", "accuracy"}
+_BALL = {"mass", "radius", "inertia", "mass_tensor"}
 _INITIAL = {"family", "seed", "count", "scale", "M", "Omega", "gamma", "tolerance"}
 _TIMES = {"t_end", "samples", "t"}
 _ACCURACY = {"target", "method", "dps", "step"}
@@ -96,6 +117,8 @@ class Scene:
     source: str = "<scene>"
     raw: dict = field(default_factory=dict, repr=False)
     name: str = "scene"
+    ball: Ball | None = None
+    notes: tuple[str, ...] = ()
 
     @property
     def count(self) -> int:
@@ -165,21 +188,13 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
     except tomllib.TOMLDecodeError as exc:
         fail("TOML", f"not valid TOML ({exc})", "correct the syntax at the position given")
     _unknown(raw, _TOP, "", fail)
-    for table in ("initial", "times", "outputs", "accuracy"):
+    for table in ("ball", "initial", "times", "outputs", "accuracy"):
         if table in raw and not isinstance(raw[table], dict):
             fail(table, "must be a table", f"write it as [{table}]")
     n = _number(raw, "n", fail, integer=True, required=True)
     if n < 3:
         fail("n", f"n = {n} is below 3", "use n >= 3 (the sphere S^{n-1} rolls on R^{n-1})")
-    a = _number(raw, "a", fail, required=True)
-    if not -1.0 <= a <= 1.0:
-        fail("a", f"a = {a} is outside [-1, 1] (eq:axisymm)", "choose -1 <= a <= 1")
-    b = _number(raw, "b", fail, required=True)
-    if not b > 0:
-        fail("b", f"b = {b} is not positive (b = m r^2, eq:M-O)", "choose b > 0")
-    radius = _number(raw, "radius", fail, default=1.0)
-    if not radius > 0:
-        fail("radius", f"radius = {radius} is not positive", "choose radius > 0")
+    a, b, radius, ball, notes = _body(raw, n, fail)
 
     init = raw.get("initial", {})
     _unknown(init, _INITIAL, "initial.", fail)
@@ -249,6 +264,8 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
         if abs(norm - 1.0) > tol:
             fail("initial.gamma", f"|gamma| = {norm:.17g} is not 1 within {tol:g}",
                  f"normalise it: gamma / {norm:.17g}")
+        if name == "M" and ball is not None:
+            X = X / ball.s  # the ball's M about the contact point -> the paper's M
         if name == "Omega":
             from simulate.dispatch import active
             Omega0 = X[None]
@@ -299,7 +316,67 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
                  family=family, claimed=explicit and family != "explicit", seed=seed, M0=M0,
                  gamma0=gamma0, Omega0=Omega0, t=t, outputs=tuple(dict.fromkeys(want)),
                  target=target, method=method, dps=dps, step=step, tolerance=tol,
-                 source=source, raw=raw)
+                 source=source, raw=raw, ball=ball, notes=tuple(notes))
+
+
+def _body(raw, n, fail):
+    """(a, b, radius, ball, notes) from either ``a, b[, radius]`` or a ``[ball]`` table
+    (S4:physical-ball); realisability as in :mod:`simulate.ball`."""
+    notes: list[str] = []
+    if "ball" not in raw:
+        a = _number(raw, "a", fail, required=True)
+        if not a >= -1.0:
+            fail("a", f"a = {a:g} < -1: J = Id + a E_n E_n^T (eq:axisymm) is not positive "
+                 "semidefinite, no mass distribution has it", "choose a >= -1")
+        b = _number(raw, "b", fail, required=True)
+        if not b > 0:
+            fail("b", f"b = {b:g} is not positive (b = m r^2, eq:M-O)", "choose b > 0")
+        radius = _number(raw, "radius", fail, default=1.0)
+        if not radius > 0:
+            fail("radius", f"radius = {radius:g} is not positive", "choose radius > 0")
+        if a > 1.0:
+            notes.append(f"a = {a:g} is outside the paper's stated range a in [-1, 1] "
+                         "(eq:axisymm): a prolate body, physical (S4:physical-ball); Delta(x) > 0 "
+                         "for every a > -2 (eq:Delta), so L_gamma is invertible (P:Measure)")
+        bad = parameter_violations(n, a, b)
+        if bad:
+            notes.append("(a, b) is not realisable as a ball: " + "; ".join(bad)
+                         + "; the paper treats (a, b) abstractly, so it runs")
+        return a, b, radius, None, notes
+    for key in ("a", "b", "radius"):
+        if key in raw:
+            fail(key, f"{key} is given together with [ball]",
+                 f"remove {key}: it follows from the ball (S4:physical-ball)")
+    table = raw["ball"]
+    _unknown(table, _BALL, "ball.", fail)
+    mass = _number(table, "mass", fail, required=True, where="ball.mass")
+    radius = _number(table, "radius", fail, required=True, where="ball.radius")
+    for key, v in (("mass", mass), ("radius", radius)):
+        if not v > 0:
+            fail(f"ball.{key}", f"{key} = {v:g} is not positive", f"choose {key} > 0")
+    if ("inertia" in table) == ("mass_tensor" in table):
+        fail("ball", "give exactly one of inertia = [I1, In] and mass_tensor = [j1, jn]",
+             "e.g. inertia = [0.4, 0.4] for a solid homogeneous ball of mass 1, radius 1")
+    key = "inertia" if "inertia" in table else "mass_tensor"
+    pair = _array(table[key], (2,), f"ball.{key}", fail)
+    make = from_moments if key == "inertia" else from_mass_tensor
+    ball = make(n, mass, radius, *pair)
+    bad = ball_violations(ball)
+    if bad:
+        fail(f"ball.{key}", "no mass distribution inside the radius has these moments: "
+             + "; ".join(bad), "give moments with 2 I1 >= In > 0 and I1 + (n-2) In/2 <= m r^2")
+    a, b = ball.a, ball.b
+    if not (math.isfinite(a) and math.isfinite(b) and b > 0):
+        fail(f"ball.{key}", f"the paper's parameters a = {a:g}, b = {b:g} are not finite positive "
+             "numbers", "give moments of a size comparable with m r^2")
+    notes.append(f"ball m = {mass:g}, r = {radius:g}, I1 = {ball.I1:g}, In = {ball.In:g} -> "
+                 f"s = In/2 = {ball.s:g}, a = 2(I1 - In)/In = {a:g}, b = 2 m r^2/In = {b:g} "
+                 "(S4:physical-ball); outputs are the paper's variables: M_ball = s M, "
+                 "H_ball = s H; Omega, gamma, x, t unchanged")
+    if a > 1.0:
+        notes.append(f"a = {a:g} is outside the paper's stated range a in [-1, 1] (eq:axisymm): "
+                     "a prolate body, physical (S4:physical-ball)")
+    return a, b, radius, ball, notes
 
 
 def _unknown(table, allowed, prefix, fail):

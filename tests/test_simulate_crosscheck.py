@@ -88,8 +88,8 @@ def test_cli_writes_outputs_and_summary(tmp_path, capsys):
     assert cli.main([str(path), "--out", str(out), "--cross-check"]) == 0
     text = capsys.readouterr().out
     assert "model: constant-Omega" in text and "cross-check" in text and "drift" in text
-    data = np.load(out / "outputs.npz")
-    assert data["M"].shape == (301, 1, 4, 4) and data["contact_path"].shape == (301, 1, 3)
+    with np.load(out / "outputs.npz") as data:  # closed: an open npz is a ResourceWarning (error)
+        assert data["M"].shape == (301, 1, 4, 4) and data["contact_path"].shape == (301, 1, 3)
     for name in ("M", "Omega", "gamma", "orientation", "contact_path", "drift.energy"):
         assert (out / f"{name}.csv").stat().st_size > 0
         assert (out / f"{name}.png").read_bytes()[:4] == b"\x89PNG"

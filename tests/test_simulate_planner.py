@@ -28,6 +28,7 @@ def _expected(stem: str) -> str:
         "long4d": "full",               # method = "lie" asks for the full system
         "explicit4d": "full",
         "reference4d": "full",
+        "prolate_ball3d": "full",       # a physical ball (S4:physical-ball), a = 4
     }[stem]
 
 

@@ -1,0 +1,152 @@
+"""Scene figures carry what a reader needs: legends, labelled axes, named quantities, only the
+independent entries, no artificial floor on log axes, the whole ensemble, a real contact-path
+picture and titles that do not collide. Checked on the matplotlib artists, not on pixels."""
+
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+from matplotlib.collections import PolyCollection  # noqa: E402
+
+from simulate import cli  # noqa: E402
+from simulate.figures import REDUCED_NAMES, figure  # noqa: E402
+
+T = np.linspace(0.0, 5.0, 41)
+
+
+@pytest.fixture(autouse=True)
+def _close_figures():
+    yield
+    plt.close("all")
+
+
+def skew_series(n, count=1, seed=0):
+    rng = np.random.default_rng(seed)
+    A = rng.normal(size=(len(T), count, n, n))
+    return A - np.swapaxes(A, -1, -2)
+
+
+def labelled(ax):
+    return bool(ax.get_xlabel()) and bool(ax.get_ylabel())
+
+
+def no_overlap(fig):
+    """The figure title overlaps no axis title, offset text or tick label."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    top = fig._suptitle.get_window_extent(renderer)
+    others = []
+    for ax in fig.axes:
+        others += [ax.title, ax.yaxis.get_offset_text(), ax.xaxis.get_offset_text()]
+        others += ax.get_yticklabels()
+    return not any(o.get_text() and o.get_visible() and top.overlaps(o.get_window_extent(renderer))
+                   for o in others)
+
+
+@pytest.mark.parametrize("name", ["M", "Omega"])
+def test_skew_matrix_shows_only_the_upper_triangle(name):
+    n = 5
+    fig = figure(name, T, skew_series(n))
+    ax = fig.axes[0]
+    labels = [line.get_label() for line in ax.get_lines()]
+    assert len(labels) == n * (n - 1) // 2
+    assert labels[0].endswith("_{12}$") and labels[-1].endswith("_{45}$")
+    assert ax.get_legend() is not None and labelled(ax)
+    assert no_overlap(fig)
+
+
+def test_reduced_invariants_are_named_panels():
+    rng = np.random.default_rng(1)
+    fig = figure("reduced", T, rng.normal(size=(len(T), 1, 7)))
+    panels = [ax for ax in fig.axes if ax.axison]
+    assert [ax.get_ylabel() for ax in panels] == list(REDUCED_NAMES)
+    assert all(ax.get_legend() is not None for ax in panels)
+    assert any(ax.get_xlabel() == "t" for ax in panels)
+
+
+def test_drift_uses_actual_values_on_a_log_axis():
+    """Zeros (t = t0, exact rounding) are left out, never raised to a floor such as 1e-300."""
+    rng = np.random.default_rng(2)
+    d = 10.0 ** rng.uniform(-16, -13, size=(len(T), 1))
+    d[0] = 0.0
+    d[7] = 0.0
+    fig = figure("drift.energy", T, d)
+    ax = fig.axes[0]
+    assert ax.get_yscale() == "log"
+    low, high = ax.get_ylim()
+    assert low > 1e-18 and high < 1e-11
+    assert "H" in ax.get_ylabel() and ax.get_legend() is not None
+    assert no_overlap(fig)
+
+
+def test_identically_zero_drift_is_named_not_drawn():
+    n = 4
+    d = np.zeros((len(T), 1, n + 1, 2))
+    d[1:, 0, 1, 0] = 1e-15
+    fig = figure("drift.p", T, d)
+    ax = fig.axes[0]
+    texts = [tx.get_text() for tx in ax.get_legend().get_texts()]
+    assert any(tx.startswith("identically 0") for tx in texts)
+    assert sum(1 for line in ax.get_lines() if len(line.get_xdata())) == 1
+    all_zero = figure("drift.gamma_norm2", T, np.zeros((len(T), 1)))
+    assert all_zero.axes[0].get_yscale() == "linear"
+
+
+def test_ensemble_figure_shows_every_member_and_the_band():
+    count = 16
+    rng = np.random.default_rng(3)
+    fig = figure("x", T, rng.normal(size=(len(T), count)))
+    ax = fig.axes[0]
+    assert len(ax.get_lines()) == count + 1  # members + median
+    assert any(isinstance(c, PolyCollection) for c in ax.collections)  # the 5-95 % band
+    assert ax.get_legend() is not None and labelled(ax)
+    gamma = figure("gamma", T, rng.normal(size=(len(T), count, 3)))
+    assert sum(1 for a in gamma.axes if a.axison) == 3 and gamma.legends
+
+
+@pytest.mark.parametrize("n, kind", [(3, "rectilinear"), (4, "3d"), (6, "3d")])
+def test_contact_path_is_a_picture_of_the_path(n, kind):
+    c = np.cumsum(np.random.default_rng(n).normal(size=(len(T), 1, n - 1)), axis=0)
+    fig = figure("contact_path", T, c)
+    path, coords = fig.axes[0], fig.axes[1]
+    assert path.name == kind
+    assert path.get_xlabel() == "$c_1$" and path.get_ylabel() == "$c_2$"
+    assert path.get_legend() is not None
+    assert len(coords.get_lines()) == n - 1 and coords.get_legend() is not None
+    if n >= 5:
+        assert "projected onto $(c_1, c_2, c_3)$" in path.get_title()
+
+
+def test_orientation_and_zeta_figures():
+    n = 4
+    g = np.broadcast_to(np.eye(n), (len(T), 1, n, n))
+    fig = figure("orientation", T, g)
+    assert len(fig.axes) == n * n
+    assert fig.axes[0].get_legend() is not None
+    z = figure("zeta", T, skew_series(n)[0])
+    assert z.axes[0].get_xlabel() and z.axes[0].get_legend() is not None
+
+
+def test_a_scene_writes_one_png_per_output(tmp_path):
+    """The command line draws the figures (closed form: cheap)."""
+    scene = tmp_path / "s.toml"
+    scene.write_text('n = 4\na = 0.0\nb = 1.0\n[initial]\nfamily = "generic"\nseed = 1\n'
+                     '[times]\nt_end = 2.0\nsamples = 11\n'
+                     '[outputs]\nwant = ["M", "x", "integrals", "contact_path"]\n')
+    assert cli.main([str(scene), "--out", str(tmp_path / "out")]) == 0
+    pngs = sorted(p.name for p in (tmp_path / "out").glob("*.png"))
+    assert pngs == ["M.png", "contact_path.png", "drift.energy.png", "drift.gamma_norm2.png",
+                    "drift.p.png", "x.png"]
+
+
+def test_a_constant_output_gets_a_readable_axis_and_says_so():
+    """x is constant on V (Th:Re): the axis is not stretched over 1e-16 and the legend says it."""
+    x = np.full((len(T), 1), -0.15492323) + 1e-17 * np.arange(len(T))[:, None]
+    ax = figure("x", T, x).axes[0]
+    low, high = ax.get_ylim()
+    assert high - low > 1e-3
+    assert any("constant" in tx.get_text() for tx in ax.get_legend().get_texts())
