@@ -12,7 +12,7 @@ import sympy
 
 from proofs.runner import Result
 
-ORDER = ("holds", "definition", "corrected", "open", "fails", "error")
+ORDER = ("holds", "definition", "corrected", "evidence", "open", "fails", "error")
 
 
 def line(result: Result) -> str:
@@ -53,7 +53,9 @@ def write_markdown(results: Sequence[Result], path: Path) -> None:
            "paper (`paper/CLAIMS.md`, plus rows this project added). Verdicts: **holds** (printed "
            "formula = independent derivation), **corrected** (printed formula false; exact "
            "counterexample and a proved correction below), **fails** (false, no correction yet), "
-           "**definition**, **open** (not decided; the reason is given).", "",
+           "**definition**, **evidence** (numerical support for a qualitative statement, with a "
+           "control that could have failed; never counted as holds), **open** (not decided; the "
+           "reason is given).", "",
            f"**{summary(results)}**", "",
            "| id | verdict | seconds | n | method | proof |", "|---|---|---|---|---|---|"]
     for r in results:
@@ -75,6 +77,16 @@ def write_markdown(results: Sequence[Result], path: Path) -> None:
             out += [f"### `{r.row.id}`", "", "| part | verdict | method |", "|---|---|---|"]
             out += [f"| {_cell(p.name)} | {p.verdict} | {_cell(p.method)} |" for p in r.verdict.parts]
             out.append("")
+    measured = [r for r in results if r.verdict.evidence]
+    if measured:
+        out += ["", "## Numerical evidence", ""]
+        for r in measured:
+            e = r.verdict.evidence
+            out += [f"### `{r.row.id}` — {r.status}", "", f"Claim: {r.row.claim}", "",
+                    f"- measured: {e['measured']}", f"- initial conditions: {e['initial_conditions']}",
+                    f"- tolerance: {e['tolerance']}",
+                    f"- would have contradicted it: {e['contradiction']}",
+                    f"- control: {e['control']} (separates: {e['control_separates']})", ""]
     notes = [r for r in results if r.verdict.notes and r.status not in ("open",)]
     if notes:
         out += ["", "## Notes", ""]

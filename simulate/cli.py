@@ -7,6 +7,7 @@ import sys
 import time
 from pathlib import Path
 
+from simulate import tori_scene
 from simulate.dispatch import KernelMissing
 from simulate.outputs import collect, max_drift, write
 from simulate.planner import plan
@@ -67,8 +68,14 @@ def main(argv: list[str] | None = None) -> int:
         return 3
     out = Path(args.out) if args.out else Path("out") / Path(args.scene).stem
     text = summary(scene, p, traj, arrays, time.perf_counter() - start, diffs, out)
-    write(out, arrays, text, plots=not args.no_plots)
-    print(text)
+    extra_lines: list[str] = []
+    extra = None
+    if tori_scene.wants(scene):
+        def extra(folder):
+            extra_lines.extend(tori_scene.write(scene, traj, folder))
+            return extra_lines
+    write(out, arrays, text, plots=not args.no_plots, extra=extra)
+    print("\n".join([text, *extra_lines]))
     return 0
 
 

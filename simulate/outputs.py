@@ -137,9 +137,10 @@ def _plot(path: Path, t: np.ndarray, arr: np.ndarray, name: str) -> None:
 
 
 def write(out_dir: str | Path, arrays: dict[str, np.ndarray], summary: str,
-          plots: bool = True) -> Path:
+          plots: bool = True, extra=None) -> Path:
     """Write ``arrays`` (NPZ, CSV per output, PNG per output) and ``summary.txt`` into
-    ``out_dir``, atomically: a failure leaves ``out_dir`` as it was."""
+    ``out_dir``, atomically: a failure leaves ``out_dir`` as it was. ``extra(folder)``, if given,
+    writes further files into the temporary folder and returns lines for the summary."""
     out_dir = Path(out_dir)
     out_dir.parent.mkdir(parents=True, exist_ok=True)
     tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.tmp-", dir=out_dir.parent))
@@ -155,6 +156,8 @@ def write(out_dir: str | Path, arrays: dict[str, np.ndarray], summary: str,
                     _plot(tmp / f"{name}.png", t, arr, name)
             else:
                 np.savetxt(tmp / "zeta.csv", arr.reshape(arr.shape[0], -1), delimiter=",")
+        if extra is not None:
+            summary = "\n".join([summary, *extra(tmp)])
         (tmp / "summary.txt").write_text(summary + "\n")
         old = None
         if out_dir.exists():

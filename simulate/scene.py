@@ -49,7 +49,7 @@ __all__ = ["Scene", "SceneError", "OUTPUTS", "METHODS", "load", "loads"]
 
 #: Output names a scene may ask for.
 OUTPUTS = ("M", "Omega", "gamma", "x", "integrals", "zeta", "reduced", "orientation",
-           "contact_path")
+           "contact_path", "frequencies", "poincare")
 METHODS = ("auto", "dop853", "lie", "reference")
 _TOP = {"title", "n", "a", "b", "radius", "initial", "times", "outputs", "accuracy"}
 _INITIAL = {"family", "seed", "count", "scale", "M", "Omega", "gamma", "tolerance"}
@@ -200,9 +200,10 @@ def loads(text: str, source: str = "<scene>") -> Scene:
     for w in want:
         if w not in OUTPUTS:
             fail("outputs.want", f"unknown output {w!r}", f"use names from {', '.join(OUTPUTS)}")
-    if "reduced" in want and n != 4:
-        fail("outputs.want", "the reduced invariants (eq:red-system) exist for n = 4 only",
-             "remove 'reduced' or set n = 4")
+    for name in ("reduced", "frequencies", "poincare"):
+        if name in want and n != 4:
+            fail("outputs.want", f"{name!r} uses the reduced invariants (eq:red-system), which "
+                 "exist for n = 4 only", f"remove {name!r} or set n = 4")
     if "zeta" in want and family not in ("vertical",) and not (
             family == "explicit" and all(
                 families.claim_residual("vertical", M, g) <= tol for M, g in zip(M0, gamma0, strict=True))):
