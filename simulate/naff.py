@@ -91,23 +91,24 @@ def independent_frequencies(freqs, tol: float, K: int = 8, limit: int = 5) -> li
     return basis
 
 
-def frequency_diffusion(signals, dt: float, lines: int = 3, terms: int = 8) -> float:
+def frequency_diffusion(signals, dt: float, lines: int = 3, terms: int = 8,
+                        rel_amp: float = 0.05) -> float:
     r"""Laskar's regularity indicator: the NAFF lines of the first and of the second half of each
     signal, and for the ``lines`` strongest lines of the first half (ignoring $|\omega| <
-    10^{-3}\max|\omega|$) the relative change $|\omega^{(2)} - \omega^{(1)}|/|\omega^{(1)}|$ to the nearest line
+    10^{-3}\max|\omega|$ and lines weaker than ``rel_amp`` times the strongest: those are rounding) the relative change $|\omega^{(2)} - \omega^{(1)}|/|\omega^{(1)}|$ to the nearest line
     of the second half; the maximum over signals and lines. On a torus it decreases like a
     power of the orbit length (the NAFF error); on a chaotic orbit the frequencies drift.
     Domain: signals of equal length $\ge 14$ samples; returns inf if a half has no line."""
     worst = 0.0
     for z in signals:
         half = len(z) // 2
-        w1, _ = spectral_lines(z[:half], dt, terms)
+        w1, a1 = spectral_lines(z[:half], dt, terms)
         w2, _ = spectral_lines(z[half:2 * half], dt, terms)
         if len(w1) == 0 and len(w2) == 0:
             continue
         if len(w1) == 0 or len(w2) == 0:
             return float("inf")
-        big = np.abs(w1) >= 1e-3 * np.max(np.abs(w1))
+        big = (np.abs(w1) >= 1e-3 * np.max(np.abs(w1))) & (a1 >= rel_amp * a1.max())
         for w in w1[big][:lines]:
             worst = max(worst, float(np.min(np.abs(w2 - w)) / abs(w)))
     return worst
