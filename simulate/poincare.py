@@ -82,12 +82,12 @@ def figure(path, panels, title: str) -> None:
     markers = "o^sDvP"
     for ax, (sub, series) in zip(axes[0], panels):
         for k, (label, pts) in enumerate(series):
-            ax.plot(pts[:, 0], pts[:, 1], markers[k % len(markers)], ms=2.6, alpha=0.8,
-                    label=label, mfc="none" if k else None)
+            ax.plot(pts[:, 0], pts[:, 1], markers[k % len(markers)], ms=max(5.0 - 1.2 * k, 2.2),
+                    alpha=0.85, label=label, mfc="none" if k else None)
         ax.set_xlabel(r"$E = \langle k, q\rangle$")
         ax.set_ylabel(r"$\delta = \langle q, k\times u\rangle$")
         ax.set_title(sub, fontsize=10)
-        ax.legend(fontsize=8, markerscale=2.5, loc="best")
+        ax.legend(fontsize=8, markerscale=1.5, loc="upper right", framealpha=0.9)
         ax.grid(alpha=0.3)
     fig.suptitle(title, fontsize=11)
     fig.tight_layout()

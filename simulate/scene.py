@@ -52,7 +52,7 @@ OUTPUTS = ("M", "Omega", "gamma", "x", "integrals", "zeta", "reduced", "orientat
            "contact_path", "frequencies", "poincare")
 METHODS = ("auto", "dop853", "lie", "reference")
 _TOP = {"title", "n", "a", "b", "radius", "initial", "times", "outputs", "accuracy"}
-_INITIAL = {"family", "seed", "count", "scale", "M", "Omega", "gamma", "tolerance"}
+_INITIAL = {"family", "seed", "count", "scale", "M", "Omega", "gamma", "tolerance", "members"}
 _TIMES = {"t_end", "samples", "t"}
 _ACCURACY = {"target", "method", "dps", "step"}
 
@@ -187,7 +187,16 @@ def loads(text: str, source: str = "<scene>") -> Scene:
     else:
         if seed is None:
             fail("initial.seed", f"the {family} family needs a seed", "add seed = <integer>")
-        M0, gamma0 = families.draw(family, n, a, b, seed, count, scale)
+        members = init.get("members")
+        if members is not None:
+            if not (isinstance(members, list) and members and "count" not in init and all(
+                    isinstance(m, int) and not isinstance(m, bool) and m >= 0 for m in members)):
+                fail("initial.members", f"{members!r}", "a list of member indices >= 0 of the "
+                     "family draw (instead of count)")
+            M0, gamma0 = families.draw(family, n, a, b, seed, max(members) + 1, scale)
+            M0, gamma0 = M0[members], gamma0[members]
+        else:
+            M0, gamma0 = families.draw(family, n, a, b, seed, count, scale)
 
     times = raw.get("times", {})
     _unknown(times, _TIMES, "times.", fail)
