@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -108,3 +109,23 @@ def test_evidence_verdict_needs_its_fields_and_a_separating_control():
     assert Verdict.numerical(False, control_separates=True, **kw).verdict == "open"
     with pytest.raises(ValueError):
         Verdict("evidence", "numerical")
+
+
+def test_tori_scene_plans_the_full_system_for_frequencies_only():
+    from simulate.planner import plan
+    from simulate.scene import SceneError, load, loads
+
+    scene = load(Path(__file__).resolve().parent.parent / "scenes" / "tori4d.toml")
+    assert scene.count == 4
+    p = plan(scene)
+    assert p.model == "full" and "frequencies on P" in p.reason
+    text = ('n = 4\na = -0.5\nb = 0.5\n[initial]\nfamily = "generic"\nseed = 3\n'
+            'members = [3, 1]\n[times]\nt_end = 10.0\nsamples = 21\n[outputs]\nwant = ["poincare"]\n')
+    s2 = loads(text)
+    assert plan(s2).model == "reduced-7D"
+    M, g = families.draw("generic", 4, -0.5, 0.5, 3, count=4)
+    assert np.array_equal(s2.M0, M[[3, 1]]) and np.array_equal(s2.gamma0, g[[3, 1]])
+    with pytest.raises(SceneError):
+        loads(text.replace("members = [3, 1]", "members = [-1]"))
+    with pytest.raises(SceneError):
+        loads(text.replace("n = 4", "n = 5"))

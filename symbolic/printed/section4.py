@@ -308,6 +308,6 @@ def Omega0_Manakov(Omega0, chi_, a, b):
 # quasi-periodic on tori whose generic dimension is $\mbox{rank}( \SO(n-1))= [\frac{n-1}{2} ]$."
 def vertical_torus_dimension(n):
     """Th:Re-tori:frequencies (lines 579-580), our reading as a number: a generic solution on
-    $\mathcal{V}$ is quasi-periodic with $\mathrm{rank}\,SO(n-1) = [\frac{n-1}{2}]$ independent
+    $\\mathcal{V}$ is quasi-periodic with $\\mathrm{rank}\\,SO(n-1) = [\frac{n-1}{2}]$ independent
     frequencies (the paper states no condition on $a$)."""
     return sp.floor(sp.Rational(n - 1, 2))

@@ -259,7 +259,7 @@ def steady_rotation(Omega0, M0, gamma0, t):
 # -- S5:EJ-tori, lines 884-885: "the regular compact level sets of the integrals which have no
 # equilibrium points are 2-tori where the flow is quasi-periodic after a time reparametrisation."
 def euler_jacobi_torus_dimension():
-    """S5:EJ-tori (lines 884-885), our reading as a number: on a regular compact level set of
+    r"""S5:EJ-tori (lines 884-885), our reading as a number: on a regular compact level set of
     $(F_1, F_2, F_3, H)$ in $\mathcal{R}$ without equilibria the reduced flow is quasi-periodic with
     2 independent frequencies (the time change of Euler-Jacobi makes it linear on the 2-torus)."""
     return sp.Integer(2)
@@ -276,5 +276,5 @@ def reconstruction_statement():
 # -- line 904: "Considering that $\SO(3)$ has rank 1, we conclude that the $\mathcal{V}$ is foliated
 # by periodic orbits."
 def so3_rank():
-    """Line 904 (S5:V-SO3 paragraph): $\mathrm{rank}\,SO(3) = 1$."""
+    r"""S5:reconstruction uses it (line 904, the S5:V-SO3 paragraph): $\mathrm{rank}\,SO(3) = 1$."""
     return sp.Integer(1)
