@@ -78,7 +78,7 @@ def figure(path, panels, title: str) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(1, len(panels), figsize=(6.2 * len(panels), 5.6), squeeze=False)
+    fig, axes = plt.subplots(1, len(panels), figsize=(6.2 * len(panels), 6.2), squeeze=False)
     markers = "o^sDvP"
     for ax, (sub, series) in zip(axes[0], panels):
         for k, (label, pts) in enumerate(series):
@@ -87,7 +87,8 @@ def figure(path, panels, title: str) -> None:
         ax.set_xlabel(r"$E = \langle k, q\rangle$")
         ax.set_ylabel(r"$\delta = \langle q, k\times u\rangle$")
         ax.set_title(sub, fontsize=10)
-        ax.legend(fontsize=8, markerscale=1.5, loc="upper right", framealpha=0.9)
+        ax.legend(fontsize=8, markerscale=1.5, loc="upper center", bbox_to_anchor=(0.5, -0.11),
+                  ncol=3, frameon=False)
         ax.grid(alpha=0.3)
     fig.suptitle(title, fontsize=11)
     fig.tight_layout()

@@ -1,8 +1,8 @@
 r"""The scene outputs ``frequencies`` and ``poincare`` ($n = 4$; issue 11).
 
 ``frequencies`` writes ``frequencies.json`` with three entries, each with ``"frequencies"`` (the
-independent frequencies of the first orbit, rad per unit time), ``"diffusion"`` (the largest
-frequency diffusion over its orbits) and ``"orbits"`` (the analysis of every orbit):
+independent frequencies of the first orbit, rad per unit time), ``"diffusion"`` (its frequency
+diffusion), ``"max_diffusion"`` and ``"orbits"`` (the analysis of every orbit):
 
 * ``"reduced"`` — eq:red-system from the reduced point of every initial condition, plus two
   orbits moved along the first one's level set (:func:`simulate.evidence.level_set_points`);
@@ -71,8 +71,16 @@ def _control(scene) -> Orbits:
 
 
 def _entry(orb: Orbits, note: str) -> dict:
+    """The analysis of every orbit; the entry's ``frequencies`` and ``diffusion`` are those of the
+    first orbit. An irregular orbit (D >= REGULAR) has no meaningful frequency count: its
+    ``frequencies`` are then its three strongest lines and ``regular`` is false."""
     specs = [naff.analyse(signals(orb, m), orb.experiment.dt) for m in range(orb.y.shape[1])]
-    return {"frequencies": specs[0].frequencies, "diffusion": max(s.diffusion for s in specs),
+    first = specs[0]
+    regular = first.diffusion < fq.REGULAR
+    strongest = sorted({round(abs(w), 12) for w, _ in first.lines[:6]})[:3]
+    return {"frequencies": first.frequencies if regular else strongest,
+            "diffusion": first.diffusion, "regular": bool(regular),
+            "max_diffusion": max(s.diffusion for s in specs),
             "model": note, "integration_seconds": round(orb.seconds, 3),
             "orbits": [s.to_dict() for s in specs]}
 
@@ -95,8 +103,10 @@ def write(scene, traj, folder: Path) -> list[str]:
                 "regular_threshold": fq.REGULAR, "separation_factor": fq.SEPARATION}
         (folder / "frequencies.json").write_text(json.dumps(data, indent=1) + "\n")
         lines.append("frequencies " + ", ".join(
-            f"{k}: {len(data[k]['frequencies'])} independent {np.round(data[k]['frequencies'], 6)}"
-            f" (diffusion {data[k]['diffusion']:.1e})" for k in ("reduced", "full", "control")))
+            f"{k}: " + (f"{len(data[k]['frequencies'])} independent" if data[k]["regular"] else
+                        "irregular, strongest lines") +
+            f" {np.round(data[k]['frequencies'], 6)} (diffusion {data[k]['diffusion']:.1e})"
+            for k in ("reduced", "full", "control")))
     if "poincare" in scene.outputs:
         F = active().require("reduced_integrals")(reduced.y[0, 0], scene.a, scene.b)
         level = ", ".join(f"{v:.4f}" for v in F)
