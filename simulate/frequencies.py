@@ -127,3 +127,24 @@ def zeta_rates(exp: Experiment) -> list[float]:
     z = active().require("zeta")(M0, g0, exp.a, exp.b)[0]
     lam = np.sort(np.abs(np.linalg.eigvals(z).imag))[::-2]
     return sorted(float(v) for v in lam if v > 1e-12)
+
+
+def robustness(lengths=(2048.0, 4096.0), rtols=(1e-10, 1e-11), stream=None) -> list[dict]:
+    """How the counts and diffusions of the reduced, full and control experiments change with
+    orbit length and DOP853 tolerance (minutes: every setting integrates all three; cached).
+    ``python -c "from simulate.frequencies import robustness; robustness()"``."""
+    import sys
+
+    stream = stream or sys.stdout
+    rows = []
+    for t_end in lengths:
+        for rtol in rtols:
+            for make in (reduced_experiment, full_experiment, control_experiment):
+                exp = make(t_end=t_end, rtol=rtol)
+                specs = spectra(exp)
+                row = {"experiment": exp.name, "T": t_end, "rtol": rtol,
+                       "counts": [s.count for s in specs],
+                       "diffusion": [float(f"{s.diffusion:.3g}") for s in specs]}
+                rows.append(row)
+                print(row, file=stream, flush=True)
+    return rows
