@@ -28,6 +28,7 @@ def _expected(stem: str) -> str:
         "long4d": "full",               # method = "lie" asks for the full system
         "explicit4d": "full",
         "reference4d": "full",
+        "tori4d": "full",               # frequencies on P need the full system (issue 11)
     }[stem]
 
 
