@@ -96,7 +96,7 @@ def s5_ej_tori() -> Verdict:
     return Verdict.numerical(
         supported,
         measured=(f"independent frequencies per orbit {counts} (expected {expected}); "
-                  f"frequencies {[_fmt(s.frequencies) for s in specs]}; diffusion {_fmt(ds, 3)}; "
+                  f"frequencies {' '.join(_fmt(s.frequencies) for s in specs)}; diffusion {_fmt(ds, 3)}; "
                   f"rotation numbers {_fmt(rho, 10)}: the {same} orbits of level set L1 agree to "
                   f"{agree:.1e}, L2 differs by {differ:.1e}; Poincare section scatter "
                   f"{_fmt(scatter, 2)}"),
@@ -142,7 +142,7 @@ def s5_reconstruction() -> Verdict:
         supported,
         measured=(f"independent frequencies of the full flow on P per orbit {counts} (at most "
                   f"{bound} = 2 + rank SO(3) expected); frequencies "
-                  f"{[_fmt(s.frequencies) for s in specs]}; diffusion {_fmt(ds, 3)}; the reduced "
+                  f"{' '.join(_fmt(s.frequencies) for s in specs)}; diffusion {_fmt(ds, 3)}; the reduced "
                   f"frequencies of the same orbits lie in these lattices: {inside}"),
         initial_conditions=len(specs),
         tolerance=f"regular: D < {fq.REGULAR:g}; {_settings(exp)}",
