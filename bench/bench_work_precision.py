@@ -29,9 +29,9 @@ import numpy as np
 
 from simulate import families, so
 from simulate.closed_forms import horizontal, relative_equilibrium
+from simulate.dispatch import KernelMissing, active
 from simulate.field import FullField, ReducedField
 from simulate.integrators import dop853, lie, taylor
-from simulate.dispatch import KernelMissing, active
 from simulate.outputs import p_coefficients
 from simulate.run import reduced_invariants
 

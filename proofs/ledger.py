@@ -23,11 +23,16 @@ from dataclasses import asdict, dataclass, field
 from symbolic.exact import Check
 
 __all__ = ["Verdict", "Part", "claim", "registry", "VERDICTS", "ClaimSpec", "KINDS",
-           "ERRATA_KINDS", "NEEDS_KIND"]
+           "ERRATA_KINDS", "NEEDS_KIND",
+           "EVIDENCE_FIELDS"]
 
-#: Verdicts, best first. ``error`` is set only by the runner when a proof raises.
-VERDICTS = ("holds", "definition", "corrected", "open", "fails", "error")
+#: Verdicts, best first. ``error`` is set only by the runner when a proof raises. ``evidence`` is
+#: numerical support for a qualitative statement (never counted as ``holds``).
+VERDICTS = ("holds", "definition", "corrected", "evidence", "open", "fails", "error")
 _RANK = {v: i for i, v in enumerate(VERDICTS)}
+#: What an ``evidence`` row must state (DESIGN.md, Verdicts).
+EVIDENCE_FIELDS = frozenset({"measured", "initial_conditions", "tolerance", "contradiction",
+                             "control", "control_separates"})
 
 #: What a non-holding row found, most serious first (DESIGN.md, "Verdicts"):
 #: ``formula`` — a displayed formula is false; ``proof`` — a step of a proof is false, the
@@ -109,6 +114,7 @@ class Verdict:
     remark: str = ""
     #: argued in prose, not computed (counted and listed apart; never a machine-checked pass)
     argued: bool = False
+    evidence: dict | None = None  # for ``evidence`` rows: see :meth:`Verdict.numerical`
 
     def __post_init__(self):
         if self.verdict not in VERDICTS:
@@ -118,6 +124,8 @@ class Verdict:
                                              for p in self.parts)
         if self.verdict == "corrected" and not (self.counterexample and fixed):
             raise ValueError("a corrected row needs a counterexample and a corrected formula")
+        if self.verdict == "evidence" and not (self.evidence and EVIDENCE_FIELDS <= set(self.evidence)):
+            raise ValueError(f"an evidence row needs the fields {sorted(EVIDENCE_FIELDS)}")
 
     # -- constructors ------------------------------------------------------------------------
     @classmethod
@@ -163,6 +171,27 @@ class Verdict:
         if checks:
             method = method + "; " + "; ".join(f"{name}: {c.method}" for name, c in checks)
         return cls("definition", method, tuple(n_values), notes=notes)
+
+    @classmethod
+    def numerical(cls, supported: bool, *, measured: str, initial_conditions: int,
+                  tolerance: str, contradiction: str, control: str, control_separates: bool,
+                  method: str, n_values: Sequence[int] = (), notes: str = "",
+                  data: dict | None = None) -> Verdict:
+        """Numerical evidence for a qualitative statement. ``evidence`` only when the measurement
+        supports the statement *and* the control (a system where the statement should fail)
+        shows the method can tell the difference; otherwise ``open`` with the numbers as reason.
+        Never ``holds``: a measurement is not a proof. The row records what was measured, on how
+        many initial conditions, with which tolerance, what would have contradicted the
+        statement, and the control."""
+        record = {"measured": measured, "initial_conditions": initial_conditions,
+                  "tolerance": tolerance, "contradiction": contradiction, "control": control,
+                  "control_separates": control_separates, **(data or {})}
+        if supported and control_separates:
+            return cls("evidence", method, tuple(n_values), notes=notes, evidence=record)
+        why = ("the control does not separate from the regular orbits" if not control_separates
+               else "the measurement does not support the statement")
+        return cls("open", method, tuple(n_values),
+                   notes=f"{why}: {measured}; {notes}".strip("; "), evidence=record)
 
     @classmethod
     def open(cls, reason: str) -> Verdict:

@@ -201,6 +201,16 @@ def write_markdown(results: Sequence[Result], path: Path, info: RunInfo) -> None
             out += [f"| {_cell(p.name)} | {p.verdict}{' (argued)' if p.argued else ''} "
                     f"| {p.kind or ''} | {_cell(p.method)} |" for p in r.verdict.parts]
             out.append("")
+    measured = [r for r in results if r.verdict.evidence]
+    if measured:
+        out += ["## Numerical evidence", ""]
+        for r in measured:
+            e = r.verdict.evidence
+            out += [f"### `{r.row.id}` — {r.status}", "", f"Claim: {_cell(str(r.row.claim))}", "",
+                    f"- measured: {_cell(str(e['measured']))}", f"- initial conditions: {_cell(str(e['initial_conditions']))}",
+                    f"- tolerance: {_cell(str(e['tolerance']))}",
+                    f"- would have contradicted it: {_cell(str(e['contradiction']))}",
+                    f"- control: {_cell(str(e['control']))} (separates: {e['control_separates']})", ""]
     notes = [r for r in results if r.verdict.notes and r.status != "open"]
     if notes:
         out += ["## Notes", ""]

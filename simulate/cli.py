@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
+from simulate import tori_scene
 from simulate.dispatch import KernelMissing
 from simulate.outdir import OutputError, claim
 from simulate.outputs import collect, max_drift, write
@@ -86,8 +87,11 @@ def main(argv: list[str] | None = None) -> int:
             if args.cross_check:
                 from simulate.crosscheck import cross_check
                 check = cross_check(scene, p, arrays, force=args.force)
-        text = summary(scene, p, traj, arrays, time.perf_counter() - start, check, out)
-        write(folder, arrays, text, plots=not args.no_plots)
+            extra, extra_lines = (tori_scene.files(scene, traj) if tori_scene.wants(scene)
+                                  else ({}, []))
+        text = "\n".join([summary(scene, p, traj, arrays, time.perf_counter() - start, check, out),
+                          *extra_lines])
+        write(folder, arrays, text, plots=not args.no_plots, extra=extra)
     except (SceneError, OutputError, RunStopped) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2

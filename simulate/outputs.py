@@ -111,9 +111,10 @@ def _csv(path: Path, t: np.ndarray, arr: np.ndarray, name: str) -> None:
 
 
 def write(folder: OutputFolder, arrays: dict[str, np.ndarray], summary: str,
-          plots: bool = True) -> Path:
-    """Write ``arrays`` (NPZ, CSV per output, PNG per output) and ``summary.txt`` into ``folder``
-    (claimed by :func:`simulate.outdir.claim`), each file atomically; returns its path."""
+          plots: bool = True, extra: dict | None = None) -> Path:
+    """Write ``arrays`` (NPZ, CSV per output, PNG per output), the ``extra`` files
+    (``{name: writer(path)}``, e.g. :func:`simulate.tori_scene.files`) and ``summary.txt`` into
+    ``folder`` (claimed by :func:`simulate.outdir.claim`), each file atomically; returns its path."""
     t = arrays["t"]
     files = {"outputs.npz": lambda p: np.savez(p, **arrays)}
     for name, arr in arrays.items():
@@ -125,5 +126,6 @@ def write(folder: OutputFolder, arrays: dict[str, np.ndarray], summary: str,
             files["zeta.csv"] = partial(np.savetxt, X=arr.reshape(arr.shape[0], -1), delimiter=",")
         if plots and not name.startswith("integrals."):
             files[f"{name}.png"] = partial(plot, t=t, arr=arr, name=name)
+    files.update(extra or {})
     files["summary.txt"] = lambda p: p.write_text(summary + "\n", encoding="utf-8")
     return folder.write(files)

@@ -39,7 +39,7 @@ __all__ = ["Plan", "plan", "REDUCED_OUTPUTS", "MODELS"]
 
 MODELS = ("constant-Omega", "vertical", "horizontal-4D", "reduced-7D", "full")
 #: Outputs a reduced (SO(3)-invariant) model can produce.
-REDUCED_OUTPUTS = frozenset({"reduced", "x", "integrals"})
+REDUCED_OUTPUTS = frozenset({"reduced", "x", "integrals", "poincare"})
 RECONSTRUCTION = frozenset({"orientation", "contact_path"})
 #: Largest relative residual at which a point counts as on a family with a closed form (about
 #: 4500 ulp: the rounding of a point built in float64, e.g. M0 = P A P or L_gamma(Omega0)).
@@ -160,5 +160,9 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
     elif scene.n == 4:
         other = sorted(wants - REDUCED_OUTPUTS)
         skipped.append(f"reduced 7D system: outputs {', '.join(other)} are not SO(3)-invariant")
+        if "frequencies" in wants:
+            return make("full", "frequencies on P (the reconstruction) need the full system "
+                        "eq:motion-general; the 'reduced' frequencies come from eq:red-system and "
+                        "the 'control' from the generic-J sphere (simulate/tori_scene.py)")
     return make("full", "no closed form or reduction applies to these initial conditions "
                 "and outputs: the full system eq:motion-general")

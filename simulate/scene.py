@@ -74,11 +74,11 @@ __all__ = ["Scene", "SceneError", "OUTPUTS", "METHODS", "load", "loads", "find",
 
 #: Output names a scene may ask for.
 OUTPUTS = ("M", "Omega", "gamma", "x", "integrals", "zeta", "reduced", "orientation",
-           "contact_path")
+           "contact_path", "frequencies", "poincare")
 METHODS = ("auto", "dop853", "lie", "reference")
 _TOP = {"title", "n", "a", "b", "radius", "ball", "initial", "times", "outputs", "accuracy"}
 _BALL = {"mass", "radius", "inertia", "mass_tensor"}
-_INITIAL = {"family", "seed", "count", "scale", "M", "Omega", "gamma", "tolerance"}
+_INITIAL = {"family", "seed", "count", "scale", "M", "Omega", "gamma", "tolerance", "members"}
 _TIMES = {"t_end", "samples", "t"}
 _ACCURACY = {"target", "method", "dps", "step"}
 
@@ -277,7 +277,16 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
     else:
         if seed is None:
             fail("initial.seed", f"the {family} family needs a seed", "add seed = <integer>")
-        M0, gamma0 = families.draw(family, n, a, b, seed, count, scale)
+        members = init.get("members")
+        if members is not None:
+            if not (isinstance(members, list) and members and "count" not in init and all(
+                    isinstance(m, int) and not isinstance(m, bool) and m >= 0 for m in members)):
+                fail("initial.members", f"{members!r}", "a list of member indices >= 0 of the "
+                     "family draw (instead of count)")
+            M0, gamma0 = families.draw(family, n, a, b, seed, max(members) + 1, scale)
+            M0, gamma0 = M0[members], gamma0[members]
+        else:
+            M0, gamma0 = families.draw(family, n, a, b, seed, count, scale)
 
     t = _times(times, fail)
 
@@ -288,9 +297,10 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
     for w in want:
         if w not in OUTPUTS:
             fail("outputs.want", f"unknown output {w!r}", f"use names from {', '.join(OUTPUTS)}")
-    if "reduced" in want and n != 4:
-        fail("outputs.want", "the reduced invariants (eq:red-system) exist for n = 4 only",
-             "remove 'reduced' or set n = 4")
+    for name in ("reduced", "frequencies", "poincare"):
+        if name in want and n != 4:
+            fail("outputs.want", f"{name!r} uses the reduced invariants (eq:red-system), which "
+                 "exist for n = 4 only", f"remove {name!r} or set n = 4")
     if "zeta" in want and family not in ("vertical",) and not (
             family == "explicit" and all(
                 families.claim_residual("vertical", M, g) <= tol for M, g in zip(M0, gamma0, strict=True))):

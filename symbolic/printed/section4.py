@@ -23,6 +23,7 @@ __all__ = [
     "Y_solution", "action", "V_velocity", "Itilde_3d", "euler_3d_rhs", "zeta_3d_matrix",
     "zeta_3d_wedge", "zeta_Th_Re", "Omega0_Th_Re", "zeta_xiVnD", "mu_n3", "mu_n3_equation",
     "Itilde", "Itilde_gamma", "Itilde_gamma_En", "chi", "Omega0_Manakov",
+    "vertical_torus_dimension",
 ]
 
 #: claim id -> LaTeX source lines transcribed in this module.
@@ -33,6 +34,7 @@ SOURCE = {
     "eq:V-velocity": (514, 515), "eq:xiV3D": (522, 525, 526, 527, 539, 540, 541, 542, 543, 558),
     "Th:Re": (591, 592, 610, 614), "eq:xiVnD": (642, 643, 644), "P:n3special": (666, 671, 674),
     "eq:itildendim": (708, 712), "eq:solManakov": (728, 736),
+    "Th:Re-tori:frequencies": (579, 580),
 }
 
 
@@ -300,3 +302,12 @@ def chi(Omega0, a, b):
 def Omega0_Manakov(Omega0, chi_, a, b):
     """eq:solManakov (line 736): $\\Omega_0 = -\\chi + \\frac{1}{2+a+b}\\tilde{\\mathbb{I}}(\\Omega_0)$ (right side)."""
     return -chi_ + Itilde(Omega0, a, b) / (2 + a + b)
+
+
+# -- Th:Re-tori, lines 579-580: "Since $\SO(n-1)$ is compact, the corresponding solutions on $P$ are
+# quasi-periodic on tori whose generic dimension is $\mbox{rank}( \SO(n-1))= [\frac{n-1}{2} ]$."
+def vertical_torus_dimension(n):
+    """Th:Re-tori:frequencies (lines 579-580), our reading as a number: a generic solution on
+    $\\mathcal{V}$ is quasi-periodic with $\\mathrm{rank}\\,SO(n-1) = [\frac{n-1}{2}]$ independent
+    frequencies (the paper states no condition on $a$)."""
+    return sp.floor(sp.Rational(n - 1, 2))

@@ -19,6 +19,7 @@ __all__ = [
     "k_of", "u_of", "xi_of", "eta_of", "measure_density", "action", "Lambda", "princ_minors",
     "red_system", "red_F2", "red_F3", "red_H", "red_measure_density", "H_SO3", "V_SO3", "A_on_J",
     "H_linear_system", "H_linear_solution", "omega_squared", "motion_velocity", "steady_rotation",
+    "euler_jacobi_torus_dimension", "reconstruction_statement", "so3_rank",
 ]
 
 #: claim id -> LaTeX source lines transcribed in this module.
@@ -29,7 +30,7 @@ SOURCE = {
     "eq:red-system": (857, 858, 859, 860, 862, 863, 864, 865), "S5:red-integrals": (872, 873, 874),
     "S5:red-measure": (880,), "S5:H-SO3": (894,), "S5:V-SO3": (898,), "eq:A-on-J": (916,),
     "S5:H-linear": (922, 926, 930), "eq:Motion-Velocity": (947, 948, 949),
-    "P:steady-rot": (958, 961),
+    "P:steady-rot": (958, 961), "S5:EJ-tori": (884, 885), "S5:reconstruction": (885, 904),
 }
 
 
@@ -253,3 +254,27 @@ def motion_velocity(xi, eta, q, x, a, b):
 def steady_rotation(Omega0, M0, gamma0, t):
     """P:steady-rot (line 961): $M(t)= e^{-\\Omega_0 t} M_0 e^{\\Omega_0 t}$, $\\gamma(t)= e^{-\\Omega_0 t}\\gamma_0$."""
     return (-Omega0 * t).exp() * M0 * (Omega0 * t).exp(), (-Omega0 * t).exp() * gamma0
+
+
+# -- S5:EJ-tori, lines 884-885: "the regular compact level sets of the integrals which have no
+# equilibrium points are 2-tori where the flow is quasi-periodic after a time reparametrisation."
+def euler_jacobi_torus_dimension():
+    r"""S5:EJ-tori (lines 884-885), our reading as a number: on a regular compact level set of
+    $(F_1, F_2, F_3, H)$ in $\mathcal{R}$ without equilibria the reduced flow is quasi-periodic with
+    2 independent frequencies (the time change of Euler-Jacobi makes it linear on the 2-torus)."""
+    return sp.Integer(2)
+
+
+# -- S5:reconstruction, line 885: "Determining the nature of the reconstruction of this type of
+# dynamics to $P$ is a difficult problem for which little is known~\cite{Zung, FGNG}."
+def reconstruction_statement():
+    """S5:reconstruction (line 885): the paper states no number of frequencies for the
+    reconstructed flow on $P$; our reading: ``None`` (open in the paper)."""
+    return None
+
+
+# -- line 904: "Considering that $\SO(3)$ has rank 1, we conclude that the $\mathcal{V}$ is foliated
+# by periodic orbits."
+def so3_rank():
+    r"""S5:reconstruction uses it (line 904, the S5:V-SO3 paragraph): $\mathrm{rank}\,SO(3) = 1$."""
+    return sp.Integer(1)
