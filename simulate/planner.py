@@ -8,8 +8,10 @@ Models, cheapest first (each applies to every initial condition of the scene):
 2. ``vertical`` — $M_0\gamma_0 = 0$ (eq:def-H-V), Th:Re with $\zeta$ from :mod:`generated`;
 3. ``horizontal-4D`` — $n = 4$, $M_0 = (M_0\gamma_0)\wedge\gamma_0$ and only reduced outputs
    (S5:H-linear, from :mod:`generated`);
-4. ``reduced-7D`` — $n = 4$ and only reduced invariants / $x$ / integrals asked (eq:red-system);
-5. ``full`` — eq:motion-general with $L_\gamma^{-1}$ from :mod:`generated`.
+4. ``horizontal`` — any $n \ge 3$, $M_0 = (M_0\gamma_0)\wedge\gamma_0$ and only $x$ and the
+   horizontal invariants $(x, G, A, B)$ asked (S5:H-linear-nD, from :mod:`generated`);
+5. ``reduced-7D`` — $n = 4$ and only reduced invariants / $x$ / integrals asked (eq:red-system);
+6. ``full`` — eq:motion-general with $L_\gamma^{-1}$ from :mod:`generated`.
 
 The reconstruction ($g$, contact path) is added only when ``orientation`` or ``contact_path`` is
 asked for; the closed forms 1–2 reconstruct in closed form (:mod:`simulate.closed_forms`), the
@@ -29,9 +31,11 @@ from simulate.scene import Scene
 
 __all__ = ["Plan", "plan", "REDUCED_OUTPUTS", "MODELS"]
 
-MODELS = ("constant-Omega", "vertical", "horizontal-4D", "reduced-7D", "full")
+MODELS = ("constant-Omega", "vertical", "horizontal-4D", "horizontal", "reduced-7D", "full")
 #: Outputs a reduced (SO(3)-invariant) model can produce.
 REDUCED_OUTPUTS = frozenset({"reduced", "x", "integrals"})
+#: Outputs the horizontal closed form for any n determines (S5:H-linear-nD).
+HORIZONTAL_OUTPUTS = frozenset({"x", "horizontal"})
 RECONSTRUCTION = frozenset({"orientation", "contact_path"})
 
 
@@ -57,7 +61,7 @@ class Plan:
 
 
 def _method(scene: Scene, model: str) -> str:
-    if model in ("constant-Omega", "vertical", "horizontal-4D"):
+    if model in ("constant-Omega", "vertical", "horizontal-4D", "horizontal"):
         return "closed form"
     if scene.method == "auto":
         return "dop853"
@@ -106,12 +110,18 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
         skipped.append("vertical closed form (Th:Re): the zeta kernel is not in generated/")
     reduced_only = wants <= REDUCED_OUTPUTS and scene.n == 4
     needs = ["reduced_integrals"] if "integrals" in wants else []
-    if reduced_only and all(families.claim_residual("horizontal", M, g) <= tol
-                            for M, g in zip(scene.M0, scene.gamma0, strict=True)):
+    horizontal = all(families.claim_residual("horizontal", M, g) <= tol
+                     for M, g in zip(scene.M0, scene.gamma0, strict=True))
+    if reduced_only and horizontal:
         if all(k.has(x) for x in ("horizontal", "horizontal_A", "reduced_integrals")):
             return make("horizontal-4D", "n = 4, horizontal momentum and only reduced outputs: "
                         "the linear system for (x, G) (S5:H-linear)")
         skipped.append("horizontal closed form (S5:H-linear): its kernels are not in generated/")
+    if horizontal and wants <= HORIZONTAL_OUTPUTS:
+        if all(k.has(x) for x in ("horizontal", "horizontal_blocks")):
+            return make("horizontal", f"n = {scene.n}, horizontal momentum and only x, (x, G, A, B) "
+                        "asked: the linear system for (x, G) holds for every n (S5:H-linear-nD)")
+        skipped.append("horizontal closed form (S5:H-linear-nD): its kernels are not in generated/")
     if reduced_only:
         missing = [x for x in ["reduced_field"] + needs if not k.has(x)]
         if not missing:

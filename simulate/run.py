@@ -2,7 +2,8 @@ r"""Execute a plan: produce the trajectory of a scene with the model the planner
 
 The result is a :class:`Trajectory`: sample times and, as the model provides them,
 $M, \Omega$ ``(S, count, n, n)``, $\gamma$ ``(S, count, n)``, $g$, $c$ (reconstruction),
-the reduced invariants $r = (A, B, E, G, F_1, x, \delta)$ ``(S, count, 7)`` and $\zeta$ ``(count, n, n)``;
+the reduced invariants $r = (A, B, E, G, F_1, x, \delta)$ ``(S, count, 7)``, the horizontal
+invariants $(x, G, A, B)$ ``(S, count, 4)`` and $\zeta$ ``(count, n, n)``;
 plus the cost (steps, right-hand-side calls, seconds).
 """
 
@@ -15,10 +16,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from simulate import so
-from simulate.closed_forms import horizontal, relative_equilibrium
+from simulate.closed_forms import horizontal, horizontal_nd, relative_equilibrium
+from simulate.dispatch import active
 from simulate.field import FullField, ReducedField
 from simulate.integrators import dop853, lie, taylor
-from simulate.dispatch import active
 from simulate.planner import Plan
 from simulate.scene import Scene
 
@@ -96,6 +97,10 @@ def execute(scene: Scene, plan: Plan, progress: bool = True) -> Trajectory:
         traj.data["reduced"] = horizontal(reduced_invariants(scene.M0, scene.gamma0),
                                           scene.a, scene.b, t)
         traj.calls = 3
+    elif plan.model == "horizontal":
+        traj.data["horizontal"] = horizontal_nd(scene.M0, scene.gamma0, plan.Omega0,
+                                                scene.a, scene.b, t)
+        traj.calls = 2
     elif plan.model == "reduced-7D":
         f = ReducedField(scene.a, scene.b)
         r0 = reduced_invariants(scene.M0, scene.gamma0)

@@ -48,8 +48,8 @@ from simulate import families
 __all__ = ["Scene", "SceneError", "OUTPUTS", "METHODS", "load", "loads"]
 
 #: Output names a scene may ask for.
-OUTPUTS = ("M", "Omega", "gamma", "x", "integrals", "zeta", "reduced", "orientation",
-           "contact_path")
+OUTPUTS = ("M", "Omega", "gamma", "x", "integrals", "zeta", "reduced", "horizontal",
+           "orientation", "contact_path")
 METHODS = ("auto", "dop853", "lie", "reference")
 _TOP = {"title", "n", "a", "b", "radius", "initial", "times", "outputs", "accuracy"}
 _INITIAL = {"family", "seed", "count", "scale", "M", "Omega", "gamma", "tolerance"}
