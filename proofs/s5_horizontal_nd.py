@@ -58,7 +58,7 @@ $\mathbb{R}^n$ *is* a 3D horizontal motion inside $W$. The ledger also checks $n
 exact rational point of $\mathcal{H}$ for each $n = 3..12$, where $\Omega$ and $\dot\Omega$ come from
 exact linear solves of eq:M-O (a route to $L_\gamma^{-1}$ independent of the closed form of
 P:inversion used symbolically). tests/test_section5_horizontal_nd.py (slow) repeats the symbolic
-check for $n = 5, 6$ and with fully generic $\gamma$ for $n = 3, 4$.
+check for $n = 5, 6$ and with fully generic $\gamma$ for $n = 3$.
 
 The closed form solves the linear system: proved with $c = \cos\nu t$, $s = \sin\nu t$,
 $\dot c = -\nu s$, $\dot s = \nu c$, $\omega^2 = S\nu^2$.
@@ -87,7 +87,7 @@ from symbolic.reduced import horizontal_solution
 SECTION = "Section 5 — n = 4"
 SYMBOLIC_N = (3, 4)
 #: Also proved symbolically, in tests/test_section5_horizontal_nd.py (slow): n = 5, 6 and a
-#: fully generic gamma at n = 3, 4.
+#: fully generic gamma at n = 3.
 SLOW_SYMBOLIC_N = (5, 6)
 POINT_N = tuple(range(3, 13))
 S = a + b + 2
@@ -172,7 +172,7 @@ def _at_point(pt, which: slice):
 
 SYMBOLIC_METHOD = ("exact symbolic identity on H (M = v ^ gamma, v generic) modulo ||gamma||^2 = 1 "
                    "for n in {3, 4} (gamma = (0,..,0,s,x), no loss by SO(n-1)-naturality; n = 5, 6 "
-                   "and fully generic gamma at n = 3, 4 in the slow tests)")
+                   "and fully generic gamma at n = 3 in the slow tests)")
 
 
 def _points(which: slice, label: str):
