@@ -26,6 +26,13 @@ S5:H-SO3): $(x(t), G(t))$ and $A(x, G; h)$ come from :mod:`generated` (with $F_2
 reduced integrals at $t = 0$); the remaining invariants follow from the equations that define
 $\mathcal H/SO(3)$ (row S5:H-SO3, verdict holds) and from $F_2 = A + B$ (S5:red-integrals):
 $E = F_1 = 0$, $\delta = -xA$, $B = F_2 - A$.
+
+Horizontal momentum, any $n \ge 3$ (S5:H-linear-nD): $x(t)$, $G(t)$ from the same kernel with
+$x_0 = \gamma_{0,n}$, $G_0 = \langle M_0E_n, \gamma_0\rangle$, $F_2 = \lVert M_0\rVert_\kappa^2$,
+$H = \tfrac12\langle M_0, \Omega_0\rangle_\kappa$ (definitions, evaluated once at $t = 0$), and the
+blocks $A = \lVert M - (ME_n)\wedge E_n\rVert_\kappa^2$, $B = \lVert ME_n\rVert^2$ from the generated
+``horizontal_blocks``. Nothing else of $(M, \gamma)$ is determined by $(x, G)$: the output is
+$(x, G, A, B)$.
 """
 
 from __future__ import annotations
@@ -35,7 +42,7 @@ import numpy as np
 from simulate import so
 from simulate.dispatch import active
 
-__all__ = ["relative_equilibrium", "horizontal"]
+__all__ = ["relative_equilibrium", "horizontal", "horizontal_invariants", "horizontal_nd"]
 
 
 def relative_equilibrium(X: np.ndarray, M0: np.ndarray, gamma0: np.ndarray, Omega0: np.ndarray,
@@ -68,3 +75,28 @@ def horizontal(r0: np.ndarray, a: float, b: float, t: np.ndarray) -> np.ndarray:
     A = k.require("horizontal_A")(x, G, H, a, b)[..., 0]
     zero = np.zeros_like(x)
     return np.stack([A, F2 - A, zero, G, zero, x, -x * A], axis=-1)
+
+
+def horizontal_invariants(M: np.ndarray, gamma: np.ndarray) -> np.ndarray:
+    r"""$(x, G, A, B)$ of $(M, \gamma)$ by their definitions (S5:H-linear-nD): $x = \gamma_n$,
+    $G = \langle ME_n, \gamma\rangle$, $A = \lVert M - (ME_n)\wedge E_n\rVert_\kappa^2$,
+    $B = \lVert ME_n\rVert^2$; any $n$, batched (``(..., n, n)``, ``(..., n)`` -> ``(..., 4)``)."""
+    Me = M[..., :, -1]
+    G = np.einsum("...i,...i->...", Me, gamma)
+    B = np.einsum("...i,...i->...", Me, Me)
+    A = so.killing(M, M) - B
+    return np.stack([gamma[..., -1], G, A, B], axis=-1)
+
+
+def horizontal_nd(M0: np.ndarray, gamma0: np.ndarray, Omega0: np.ndarray, a: float, b: float,
+                  t: np.ndarray) -> np.ndarray:
+    r"""$(x, G, A, B)(t)$ on $\mathcal H$ for any $n \ge 3$ from ``(count, n, n)``, ``(count, n)`` initial
+    conditions, sampled at ``t``; shape ``(S, count, 4)``. Domain: $(M_0, \gamma_0)\in\mathcal H$,
+    $\Omega_0 = L_{\gamma_0}^{-1}M_0$ (S5:H-linear-nD; see the module docstring)."""
+    k = active()
+    x0, G0 = gamma0[..., -1], np.einsum("...i,...i->...", M0[..., :, -1], gamma0)
+    F2, H = so.killing(M0, M0), 0.5 * so.killing(M0, Omega0)
+    xG = k.require("horizontal")(x0, G0, F2, H, a, b, t[:, None])
+    x, G = xG[..., 0], xG[..., 1]
+    AB = k.require("horizontal_blocks")(x, G, np.broadcast_to(F2, x.shape))
+    return np.stack([x, G, AB[..., 0], AB[..., 1]], axis=-1)

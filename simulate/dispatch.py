@@ -12,7 +12,9 @@ $a, b$: floats):
   optional;
 * ``reduced_integrals(r, a, b) -> (F1, F2, F3, H)`` — S5:red-integrals, optional;
 * ``horizontal(x0, G0, F2, H, a, b, t) -> (x, G)`` — S5:H-linear solution (corrected), optional;
-* ``horizontal_A(x, G, h, a, b) -> A`` — eq:A-on-J, $A$ on $\mathcal H/SO(3)\cap\{H = h\}$, optional.
+* ``horizontal_A(x, G, h, a, b) -> A`` — eq:A-on-J, $A$ on $\mathcal H/SO(3)\cap\{H = h\}$, optional;
+* ``horizontal_blocks(x, G, F2) -> (A, B)`` — the blocks of $M$ on $\mathcal H$, any $n$
+  (S5:H-linear-nD), optional.
 
 A missing optional kernel is reported by :meth:`Kernels.missing`; the planner then falls back to a
 model that does not need it and says so. :func:`active` returns the kernels in use (by default those
@@ -29,7 +31,8 @@ from dataclasses import dataclass, fields
 
 __all__ = ["Kernels", "KernelMissing", "active", "use", "from_generated", "OPTIONAL"]
 
-OPTIONAL = ("zeta", "reduced_field", "reduced_integrals", "horizontal", "horizontal_A")
+OPTIONAL = ("zeta", "reduced_field", "reduced_integrals", "horizontal", "horizontal_A",
+            "horizontal_blocks")
 
 
 class KernelMissing(RuntimeError):
@@ -48,6 +51,7 @@ class Kernels:
     reduced_integrals: Callable | None = None
     horizontal: Callable | None = None
     horizontal_A: Callable | None = None
+    horizontal_blocks: Callable | None = None
     note: str = ""
 
     def missing(self) -> tuple[str, ...]:

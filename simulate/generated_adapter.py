@@ -132,5 +132,6 @@ def bind() -> Kernels:
                    zeta=zeta, reduced_field=reduced_field, reduced_integrals=reduced_integrals,
                    horizontal=horizontal,
                    horizontal_A=getattr(red, "horizontal_A", None) if red is not None else None,
+                   horizontal_blocks=getattr(red, "horizontal_blocks", None) if red is not None else None,
                    note="generated/axisym.py" + (f" + {runtime.__name__}" if runtime else "")
                    + (" + generated/reduced.py" if red is not None else ""))

@@ -5,6 +5,8 @@ Output arrays (``S`` samples, ``count`` initial conditions):
 * ``M``, ``Omega``, ``orientation`` ($g$): ``(S, count, n, n)``; ``gamma``: ``(S, count, n)``;
 * ``x`` $= \gamma_n$: ``(S, count)``; ``zeta`` (Th:Re): ``(count, n, n)``;
 * ``reduced`` $= (A, B, E, G, F_1, x, \delta)$ (Section 5): ``(S, count, 7)``;
+* ``horizontal`` $= (x, G, A, B)$, $G = \langle ME_n, \gamma\rangle$, $A = \lVert M - (ME_n)\wedge E_n\rVert_\kappa^2$,
+  $B = \lVert ME_n\rVert^2$ (S5:H-linear-nD; any $n$): ``(S, count, 4)``;
 * ``contact_path``: the first $n-1$ coordinates of the centre $c$ (= the contact point), ``(S, count, n-1)``;
 * ``integrals``: energy $H = \tfrac12\langle M, \Omega\rangle_\kappa$ (S2.2:energy), the coefficients of
   $p(\lambda, \sigma)$ (eq:pol-first-integrals), $\|\gamma\|^2$; or, from the reduced model,
@@ -68,7 +70,14 @@ def collect(scene, traj) -> dict[str, np.ndarray]:
         if name in ("M", "Omega", "gamma", "zeta"):
             out[name] = d[name]
         elif name == "x":
-            out["x"] = d["gamma"][..., -1] if "gamma" in d else d["reduced"][..., 5]
+            out["x"] = (d["gamma"][..., -1] if "gamma" in d else d["horizontal"][..., 0]
+                        if "horizontal" in d else d["reduced"][..., 5])
+        elif name == "horizontal":
+            if "horizontal" in d:
+                out["horizontal"] = d["horizontal"]
+            else:
+                from simulate.closed_forms import horizontal_invariants
+                out["horizontal"] = horizontal_invariants(d["M"], d["gamma"])
         elif name == "reduced":
             if "reduced" in d:
                 out["reduced"] = d["reduced"]

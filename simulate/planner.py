@@ -8,8 +8,10 @@ Models, cheapest first (each applies to every initial condition of the scene):
 2. ``vertical`` — $M_0\gamma_0 = 0$ (eq:def-H-V), Th:Re with $\zeta$ from :mod:`generated`;
 3. ``horizontal-4D`` — $n = 4$, $M_0 = (M_0\gamma_0)\wedge\gamma_0$ and only reduced outputs
    (S5:H-linear, from :mod:`generated`);
-4. ``reduced-7D`` — $n = 4$ and only reduced invariants / $x$ / integrals asked (eq:red-system);
-5. ``full`` — eq:motion-general with $L_\gamma^{-1}$ from :mod:`generated`.
+4. ``horizontal`` — any $n \ge 3$, $M_0 = (M_0\gamma_0)\wedge\gamma_0$ and only $x$ and the
+   horizontal invariants $(x, G, A, B)$ asked (S5:H-linear-nD, from :mod:`generated`);
+5. ``reduced-7D`` — $n = 4$ and only reduced invariants / $x$ / integrals asked (eq:red-system);
+6. ``full`` — eq:motion-general with $L_\gamma^{-1}$ from :mod:`generated`.
 
 Membership tests (steady rotation, $\mathcal V$, $\mathcal H$) are relative residuals, so they do not
 depend on the scale of $M_0$; a point passes when its residual is at most
@@ -37,9 +39,11 @@ from simulate.stops import check_finite
 
 __all__ = ["Plan", "plan", "REDUCED_OUTPUTS", "MODELS"]
 
-MODELS = ("constant-Omega", "vertical", "horizontal-4D", "reduced-7D", "full")
+MODELS = ("constant-Omega", "vertical", "horizontal-4D", "horizontal", "reduced-7D", "full")
 #: Outputs a reduced (SO(3)-invariant) model can produce.
 REDUCED_OUTPUTS = frozenset({"reduced", "x", "integrals", "poincare"})
+#: Outputs the horizontal closed form for any n determines (S5:H-linear-nD).
+HORIZONTAL_OUTPUTS = frozenset({"x", "horizontal"})
 RECONSTRUCTION = frozenset({"orientation", "contact_path"})
 #: Largest relative residual at which a point counts as on a family with a closed form (about
 #: 4500 ulp: the rounding of a point built in float64, e.g. M0 = P A P or L_gamma(Omega0)).
@@ -77,7 +81,7 @@ class Plan:
 
 
 def _method(scene: Scene, model: str) -> str:
-    if model in ("constant-Omega", "vertical", "horizontal-4D"):
+    if model in ("constant-Omega", "vertical", "horizontal-4D", "horizontal"):
         return "closed form"
     if scene.method == "auto":
         return "dop853"
@@ -138,11 +142,11 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
         skipped.append(f"vertical closed form (Th:Re): {v_text}")
     reduced_only = wants <= REDUCED_OUTPUTS and scene.n == 4
     needs = ["reduced_integrals"] if "integrals" in wants else []
+    is_horizontal, h_text = _residual_test(
+        "max |M0 - (M0 gamma0) ^ gamma0|/|M0|",
+        [families.claim_residual("horizontal", M, g) for M, g in zip(scene.M0, scene.gamma0)],
+        tol)
     if reduced_only:
-        is_horizontal, h_text = _residual_test(
-            "max |M0 - (M0 gamma0) ^ gamma0|/|M0|",
-            [families.claim_residual("horizontal", M, g) for M, g in zip(scene.M0, scene.gamma0)],
-            tol)
         if not is_horizontal:
             skipped.append(f"horizontal closed form (S5:H-linear): {h_text}")
         elif all(k.has(x) for x in ("horizontal", "horizontal_A", "reduced_integrals")):
@@ -150,6 +154,15 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
                         "reduced outputs: the linear system for (x, G) (S5:H-linear)")
         else:
             skipped.append("horizontal closed form (S5:H-linear): its kernels are not in generated/")
+    if wants <= HORIZONTAL_OUTPUTS:
+        if not is_horizontal:
+            skipped.append(f"horizontal closed form (S5:H-linear-nD): {h_text}")
+        elif all(k.has(x) for x in ("horizontal", "horizontal_blocks")):
+            return make("horizontal", f"n = {scene.n}, horizontal momentum ({h_text}) and only x, "
+                        "(x, G, A, B) asked: the linear system for (x, G) holds for every n "
+                        "(S5:H-linear-nD)")
+        else:
+            skipped.append("horizontal closed form (S5:H-linear-nD): its kernels are not in generated/")
     if reduced_only:
         missing = [x for x in ["reduced_field"] + needs if not k.has(x)]
         if not missing:

@@ -2,7 +2,8 @@ r"""Execute a plan: produce the trajectory of a scene with the model the planner
 
 The result is a :class:`Trajectory`: sample times and, as the model provides them,
 $M, \Omega$ ``(S, count, n, n)``, $\gamma$ ``(S, count, n)``, $g$, $c$ (reconstruction),
-the reduced invariants $r = (A, B, E, G, F_1, x, \delta)$ ``(S, count, 7)`` and $\zeta$ ``(count, n, n)``;
+the reduced invariants $r = (A, B, E, G, F_1, x, \delta)$ ``(S, count, 7)``, the horizontal
+invariants $(x, G, A, B)$ ``(S, count, 4)`` and $\zeta$ ``(count, n, n)``;
 plus the cost (steps, right-hand-side calls, seconds).
 """
 
@@ -17,7 +18,7 @@ import numpy as np
 
 from simulate import so
 from simulate.budget import Projection
-from simulate.closed_forms import horizontal, relative_equilibrium
+from simulate.closed_forms import horizontal, horizontal_nd, relative_equilibrium
 from simulate.dispatch import active
 from simulate.field import FullField, ReducedField
 from simulate.integrators import dop853, lie, taylor
@@ -118,6 +119,10 @@ def _execute(scene, plan, progress, force):
         traj.data["reduced"] = horizontal(reduced_invariants(scene.M0, scene.gamma0),
                                           scene.a, scene.b, elapsed)
         traj.calls = 3
+    elif plan.model == "horizontal":
+        traj.data["horizontal"] = horizontal_nd(scene.M0, scene.gamma0, plan.Omega0,
+                                                scene.a, scene.b, elapsed)
+        traj.calls = 2
     elif plan.model == "reduced-7D":
         f = ReducedField(scene.a, scene.b)
         r0 = reduced_invariants(scene.M0, scene.gamma0)

@@ -73,8 +73,8 @@ from simulate.ball import (
 __all__ = ["Scene", "SceneError", "OUTPUTS", "METHODS", "load", "loads", "find", "builtin_scenes"]
 
 #: Output names a scene may ask for.
-OUTPUTS = ("M", "Omega", "gamma", "x", "integrals", "zeta", "reduced", "orientation",
-           "contact_path", "frequencies", "poincare")
+OUTPUTS = ("M", "Omega", "gamma", "x", "integrals", "zeta", "reduced", "horizontal",
+           "orientation", "contact_path", "frequencies", "poincare")
 METHODS = ("auto", "dop853", "lie", "reference")
 _TOP = {"title", "n", "a", "b", "radius", "ball", "initial", "times", "outputs", "accuracy"}
 _BALL = {"mass", "radius", "inertia", "mass_tensor"}

@@ -137,6 +137,17 @@ def horizontal_solution(t, x0, G0, nu):
     return x0 * c + G0 / (S * nu) * s_, G0 * c - S * x0 * nu * s_
 
 
+def horizontal_blocks(x_, G_, f2):
+    r"""$(A, B)$ on $\mathcal{H}$ for every $n \ge 3$ (S5:H-linear-nD; for $n = 4$ the $A, B$ of
+    Section 5): $A = \lVert M - (ME_n)\wedge E_n\rVert_\kappa^2$, $B = \lVert ME_n\rVert^2$ from
+    $x = \gamma_n$, $G = \langle ME_n, \gamma\rangle$, $f_2 = \lVert M\rVert_\kappa^2 = A + B$.
+    Derivation: on $\mathcal{H}$, $M = m\wedge\gamma$ with $m = M\gamma \perp \gamma$, so $f_2 = \lVert m\rVert^2$,
+    $ME_n = x\,m - m_n\gamma$, $G = -m_n$ and $B = x^2\lVert m\rVert^2 + m_n^2 = x^2f_2 + G^2$;
+    $A = f_2 - B = (1-x^2)f_2 - G^2$ (proved exactly in row S5:H-linear-nD, eq:A-on-J second form)."""
+    B_ = x_**2 * f2 + G_**2
+    return f2 - B_, B_
+
+
 def steady_rotation(Omega0, M0, gamma0, t):
     r"""P:steady-rot closed form for $\eta_0\times\xi_0 = 0$ (then $\Omega \equiv \Omega_0$):
     $M(t) = e^{-\Omega_0 t}M_0e^{\Omega_0 t}$, $\gamma(t) = e^{-\Omega_0 t}\gamma_0$ (SymPy matrices)."""

@@ -23,6 +23,8 @@ def _expected(stem: str) -> str:
         "spherical6d": "constant-Omega",  # a = 0
         "horizontal4d": "horizontal-4D" if k.has("horizontal") and k.has("horizontal_A")
         and k.has("reduced_integrals") else reduced,
+        "horizontal6d": "horizontal" if k.has("horizontal") and k.has("horizontal_blocks")
+        else "full",                    # S5:H-linear-nD: any n
         "reduced4d": reduced,
         "ensemble3d": "full",
         "long4d": "full",               # method = "lie" asks for the full system

@@ -3,7 +3,8 @@ r"""Kernels of the $SO(3)$-reduced 4D sphere on $r = (A, B, E, G, F_1, x, \delta
 Sources (derived): :mod:`symbolic.reduced` — the reduced field (eq:red-system, derived from
 scratch), the integrals $F_1, F_2, F_3, H$ (S5:red-integrals), the measure densities
 (S5:red-measure), $A$ on $\mathcal{H}/SO(3)$ (eq:A-on-J) and the horizontal solution
-(S5:H-linear, corrected). Rational quantities are numerators over $D = 2(2+a+b)\Delta(x)$ with
+(S5:H-linear, corrected; for every n, S5:H-linear-nD, with the blocks $A, B$ of
+:func:`symbolic.reduced.horizontal_blocks`). Rational quantities are numerators over $D = 2(2+a+b)\Delta(x)$ with
 $\Delta$ in the stable form of row K:Delta. The horizontal solution uses
 $\sin(\nu t)/\nu = t\,\operatorname{sinc}(\nu t)$ (row K:horizontal-sinc): no $0/0$ as $\nu \to 0$.
 """
@@ -62,9 +63,15 @@ def kernels() -> list[Kernel]:
                "A on H/SO(3) at H = h as a function of (x, G) (eq:A-on-J, derived); |x| < 1.",
                (Argument("x", (x,), True), Argument("G", (G,), True), Argument("h", (h,), True), A_, B_),
                sp.Matrix([A_level]), (1,)),
-        Kernel("horizontal_solution", ("S5:H-linear", "K:horizontal-sinc"),
+        Kernel("horizontal_solution", ("S5:H-linear", "S5:H-linear-nD", "K:horizontal-sinc"),
                "(x(t), G(t)) on H/SO(3) with x(0) = x0, G(0) = G0 at F2, H (S5:H-linear, corrected):\n"
-               "    nu^2 = (F2 - 2bH)/((2+a)(2+a+b)) >= 0, sin(nu t)/nu as t sinc(nu t) (K:horizontal-sinc).",
+               "    nu^2 = (F2 - 2bH)/((2+a)(2+a+b)) >= 0, sin(nu t)/nu as t sinc(nu t) (K:horizontal-sinc).\n"
+               "    Every n >= 3 (S5:H-linear-nD): x = gamma_n, G = <M E_n, gamma>, F2 = ||M||_kappa^2, H.",
                tuple(Argument(n_, (s_,), True) for n_, s_ in (("x0", x0), ("G0", G0), ("F2", F2s), ("H", Hs)))
                + (A_, B_, Argument("t", (t,), True)), sp.Matrix([xt, Gt]), (2,)),
+        Kernel("horizontal_blocks", ("S5:H-linear-nD",),
+               "(A, B) on H for every n >= 3 (S5:H-linear-nD): A = ||M - (M E_n) ^ E_n||_kappa^2,\n"
+               "    B = ||M E_n||^2 from x = gamma_n, G = <M E_n, gamma>, F2 = ||M||_kappa^2 (n = 4: A, B of Section 5).",
+               (Argument("x", (x,), True), Argument("G", (G,), True), Argument("F2", (F2s,), True)),
+               sp.Matrix(list(reduced.horizontal_blocks(x, G, F2s))), (2,)),
     ]
