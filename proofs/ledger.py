@@ -41,6 +41,8 @@ class Part:
     printed_latex: str | None = None
     correction_latex: str | None = None
     notes: str = ""
+    #: True when the part is argued in prose (a mathematical fact we state), not computed.
+    argued: bool = False
 
     def __post_init__(self):
         if self.verdict not in VERDICTS:
@@ -75,6 +77,8 @@ class Verdict:
     correction_latex: str | None = None
     notes: str = ""
     parts: tuple[Part, ...] = ()
+    #: True when the row (or, via :meth:`as_part`, the part) is argued in prose, not computed.
+    argued: bool = False
 
     def __post_init__(self):
         if self.verdict not in VERDICTS:
@@ -86,30 +90,34 @@ class Verdict:
     @classmethod
     def decide(cls, printed: Check, *, n_values: Sequence[int] = (), method: str = "",
                corrected: Check | None = None, correction_latex: str | None = None,
-               printed_latex: str | None = None, notes: str = "") -> Verdict:
+               printed_latex: str | None = None, notes: str = "", argued: bool = False) -> Verdict:
         """Compare the printed formula (``printed``: the check of printed == derived) and, if it
-        fails, a proposed correction (``corrected``: the check of corrected == derived)."""
+        fails, a proposed correction (``corrected``: the check of corrected == derived).
+        ``argued``: the check rests on a step argued in prose, not computed (said in the method)."""
         verdict, cx, cx_latex, fix = _decide(printed, corrected, correction_latex)
         how = method or printed.method
         if verdict == "corrected" and corrected is not None:
             how = f"{how}; correction: {corrected.method}"
         return cls(verdict, how, tuple(n_values), cx, cx_latex,
-                   printed_latex if verdict != "holds" else None, fix, notes)
+                   printed_latex if verdict != "holds" else None, fix, notes, argued=argued)
 
     @classmethod
     def all_of(cls, checks: Iterable[tuple[str, Check]], *, n_values: Sequence[int] = (),
-               method: str = "", notes: str = "") -> Verdict:
+               method: str = "", notes: str = "", argued: bool = False) -> Verdict:
         """``holds`` iff every named check holds; otherwise ``fails`` with the first counterexample.
-        The method lists each check's method unless ``method`` is given."""
+        The method lists each check's method unless ``method`` is given. No checks: ``ValueError``
+        (an empty conjunction proves nothing)."""
         checks = list(checks)
+        if not checks:
+            raise ValueError("all_of needs at least one check")
         methods = "; ".join(f"{name}: {c.method}" for name, c in checks)
         for name, c in checks:
             if not c.ok:
                 cx = c.counterexample
                 return cls("fails", method or methods, tuple(n_values),
                            f"{name}: {cx.text()}" if cx else name,
-                           cx.latex() if cx else None, None, None, notes)
-        return cls("holds", method or methods, tuple(n_values), notes=notes)
+                           cx.latex() if cx else None, None, None, notes, argued=argued)
+        return cls("holds", method or methods, tuple(n_values), notes=notes, argued=argued)
 
     @classmethod
     def definition(cls, method: str, *, n_values: Sequence[int] = (), notes: str = "",
@@ -122,6 +130,16 @@ class Verdict:
         if checks:
             method = method + "; " + "; ".join(f"{name}: {c.method}" for name, c in checks)
         return cls("definition", method, tuple(n_values), notes=notes)
+
+    @classmethod
+    def by_argument(cls, argument: str, *, n_values: Sequence[int] = (), notes: str = "") -> Verdict:
+        """A step argued in prose (a mathematical fact we state), not computed: ``holds`` with
+        ``argued=True``; the method says "argued, not machine-checked". Reports count such parts
+        apart; use it only for what no computation here decides."""
+        if not argument.strip():
+            raise ValueError("an argued step must state its argument")
+        return cls("holds", f"argued, not machine-checked: {argument}", tuple(n_values),
+                   notes=notes, argued=True)
 
     @classmethod
     def open(cls, reason: str) -> Verdict:
@@ -154,7 +172,7 @@ class Verdict:
         """This verdict as a named part of a larger row."""
         return Part(name, self.verdict, self.method, self.counterexample,
                     self.counterexample_latex, self.printed_latex, self.correction_latex,
-                    self.notes)
+                    self.notes, self.argued)
 
     def to_dict(self) -> dict:
         d = asdict(self)

@@ -27,6 +27,7 @@ import sympy as sp
 
 from proofs.ledger import Verdict, claim
 from proofs.s5_common import ring_on_P
+from symbolic.exact import Check
 from symbolic import fourd
 from symbolic.printed import section5 as printed
 
@@ -49,11 +50,17 @@ def divergence_residual(rho):
 def s5_measure4d() -> Verdict:
     shown = ring_on_P(divergence_residual(printed.measure_density(a, b, x)), "measure4D")
     Delta = printed.Delta(a, b, x)
-    controls = [not ring_on_P(divergence_residual(r), f"measure4D control {i}")
-                for i, r in enumerate((sp.Integer(1), Delta**-2))]
-    notes = ("dq dx = round measure of S^3 (chart (k,u,q), x>0: density 1/(Delta(x) x)); "
-             "controls rho = 1 and rho = Delta^-2 are not invariant: "
-             + ("confirmed" if all(controls) else "NOT confirmed"))
-    return Verdict.decide(shown, n_values=(4,), notes=notes, method=(
-        "exact: ambient divergence of rho X (field tangent to all spheres) vanishes modulo "
-        "|gamma|^2 = 1; sparse-polynomial normal form"))
+    # Controls: the same test must reject densities that are not invariant, or it proves nothing.
+    controls = []
+    for i, (name, r) in enumerate((("rho = 1", sp.Integer(1)), ("rho = Delta^-2", Delta**-2))):
+        chk = ring_on_P(divergence_residual(r), f"measure4D control {i}")
+        controls.append((f"control: {name} is not invariant",
+                         Check(not chk.ok, f"{name}: div(rho X) != 0 ({chk.method})")))
+    return Verdict.of_parts([
+        Verdict.decide(shown, n_values=(4,), method=(
+            "exact: ambient divergence of rho X (field tangent to all spheres) vanishes modulo "
+            "|gamma|^2 = 1; sparse-polynomial normal form")).as_part("1/Delta(x) invariant"),
+        Verdict.all_of(controls, n_values=(4,)).as_part("controls (the test rejects rho = 1, "
+                                                          "Delta^-2)"),
+    ], n_values=(4,), notes="dq dx = round measure of S^3 (chart (k,u,q), x>0: density "
+                            "1/(Delta(x) x))")
