@@ -49,6 +49,11 @@ def main(argv: list[str] | None = None) -> int:
             problems.append(f"{r.row.id}: fails ({r.verdict.counterexample})")
         elif r.status == "open" and not r.verdict.notes.strip():
             problems.append(f"{r.row.id}: open without a reason")
+    if not args.ids:  # every printed formula must be checked by some row (DESIGN rule 1)
+        from proofs.reach import unreached
+
+        missing = unreached({r.row.id: list(r.printed) for r in results})
+        problems += [f"printed function {f} is reached by no ledger row" for f in missing]
     unknown = unknown_registrations()
     problems += [f"{i}: registered by a proof but not a ledger row" for i in unknown]
     if args.check_generated:

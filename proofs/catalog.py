@@ -18,7 +18,7 @@ CLAIMS_PATH = ROOT / "paper" / "CLAIMS.md"
 PAPER_PATH = ROOT / "paper" / "chaplygin-sphere-nd.tex"
 
 #: Modules of the ``proofs`` package that hold machinery, not proofs.
-MACHINERY = {"ledger", "catalog", "runner", "report", "__main__"}
+MACHINERY = {"ledger", "catalog", "runner", "report", "reach", "mutate", "__main__"}
 
 
 @dataclass(frozen=True)

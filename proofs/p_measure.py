@@ -42,10 +42,10 @@ from sympy.polys.matrices import DomainMatrix
 
 from proofs.ledger import Verdict, claim
 from proofs.s4_common import a, b, combine, gamma_symbols, point_checks, sym_checks, sym_gamma
+from symbolic import points
 from symbolic.algebra import commutator, skew_symbols, vec, vector_symbols, wedge
 from symbolic.axisym_inverse import inverse_closed_form
 from symbolic.axisymmetric import (
-    Delta,
     E_n,
     L_gamma_axisym,
     L_matrix_axisym,
@@ -55,8 +55,8 @@ from symbolic.axisymmetric import (
     mass_tensor,
     x,
 )
-from symbolic.exact import rational_identity
-from symbolic.measure import chaplygin_divergence_at, measure_residual
+from symbolic.exact import rational_identity, zero_at_points
+from symbolic.measure import chaplygin_divergence_at, divergence
 from symbolic.printed import section4 as printed
 
 
@@ -139,23 +139,47 @@ def _parallel_checks():
                                   "(direct determinant, no continuity argument)")
 
 
+def _log_derivative(n: int, av=a, bv=b):
+    r"""$\rho'(x)/\rho(x)$ for the printed density $\rho$ of $\mu$ with respect to $dM\,d\gamma$
+    (P:Measure, line 398), as a rational function of $x$ (the powers of $\Delta$ combine)."""
+    rho = printed.measure_density_M(n, x, av, bv)
+    return sp.diff(rho, x) / rho
+
+
 def _divergence_residual(p: dict):
     n, g = p["n"], p["gamma"]
     info = chaplygin_divergence_at(p["M"], g, mass_tensor(n, p["a"]), p["b"])
-    xv = g[n - 1]
-    D = printed.Delta(xv, p["a"], p["b"])
-    dlog_rho = -sp.Rational(n - 2, 2) * sp.diff(printed.Delta(x, p["a"], p["b"]), x).subs(x, xv) / D
+    dlog_rho = _log_derivative(n, p["a"], p["b"]).subs(x, g[n - 1])
     return info["div"] + info["gamma_dot"][n - 1] * dlog_rho
 
 
 def _divergence_symbolic(n: int):
-    r"""$\operatorname{div}X - \frac{n-2}{2}X(\Delta)/\Delta$ for the ambient field
-    $X = ([M, \Omega], -\Omega\gamma)$, $\Omega$ the derived closed form, fully generic $M, \gamma$."""
+    r"""$\operatorname{div}X + X(\rho)/\rho$ for the ambient field $X = ([M, \Omega], -\Omega\gamma)$,
+    $\Omega$ the derived closed form, fully generic $M, \gamma$, and $\rho$ the printed density."""
     M, g = skew_symbols("m", n), gamma_symbols(n)
     Omega = inverse_closed_form(M, g)
     field = list(vec(commutator(M, Omega))) + list(-Omega * g)
     coords = list(vec(M)) + list(g)
-    return measure_residual(field, coords, [(Delta(g[n - 1]), -sp.Rational(n - 2, 2))])
+    return divergence(field, coords) + field[-1] * _log_derivative(n).subs(x, g[n - 1])
+
+
+def _densities_positive():
+    r"""Both printed densities are positive (a measure, not a signed form): exact at seeded
+    rational $(x, a, b)$ in the domain, $n = 3..8$ (the values are exact square roots)."""
+    def sample(rng):
+        par = points.axisymmetric_parameters(rng)
+        return {"x": points.rational(rng, -1, 1, 8), "a": par["a"], "b": par["b"]}
+
+    def residual(pt):
+        bad = []
+        for n in range(3, 9):
+            for rho in (printed.measure_density_M, printed.measure_density_Omega):
+                value = rho(n, pt["x"], pt["a"], pt["b"])
+                if not value.is_positive:
+                    bad.append(value)
+        return bad or 0
+    return zero_at_points(residual, sample, count=4, label="density>0",
+                          describe="(x, a, b) in [-1,1] x [-1,1] x (0,4], n = 3..8 (positivity)")
 
 
 @claim("P:Measure", uses=("eq:M-O-axi-symm", "eq:Delta", "eq:invmeasuredet"))
@@ -175,15 +199,18 @@ def p_measure() -> Verdict:
     parallel = _parallel_checks()
     invariant = combine([sym_checks(_divergence_symbolic, (3, 4, 5), label="div-sym",
                                     generic_gamma=True),
-                         point_checks(_divergence_residual, range(6, 9), label="div")])
-    # the two printed forms: Delta^{-(n-2)/2} det L_gamma must equal Delta^{(n-2)/2}; squared (both > 0)
+                         point_checks(_divergence_residual, range(6, 9), label="div"),
+                         _densities_positive()])
+    # the two printed forms: rho_M dM = rho_M det(L_gamma) dOmega must equal rho_Omega dOmega;
+    # compared squared (both densities > 0), so half-integer powers of Delta become integers
     forms_printed, forms_fixed = [], []
     for n in range(3, 9):
-        D = printed.Delta(x, a, b)
-        lhs_sq = D ** (-(n - 2)) * det_L_axisym(n) ** 2
-        forms_printed.append(lhs_sq - D ** (n - 2))
+        rho_M = printed.measure_density_M(n, x, a, b)
+        rho_Omega = printed.measure_density_Omega(n, x, a, b)
+        lhs_sq = (rho_M * det_L_axisym(n)) ** 2
+        forms_printed.append(lhs_sq - rho_Omega**2)
         c_n = (2 + a + b) * sp.Integer(2) ** ((n - 2) * (n - 3) // 2)
-        forms_fixed.append(lhs_sq - c_n**2 * D ** (n - 2))
+        forms_fixed.append(lhs_sq - c_n**2 * rho_Omega**2)
     samplers = {a: lambda r: sp.Rational(1, 2), b: lambda r: sp.Integer(1)}
     forms = Verdict.decide(
         rational_identity(forms_printed, samplers=samplers),

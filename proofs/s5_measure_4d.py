@@ -27,8 +27,8 @@ import sympy as sp
 
 from proofs.ledger import Verdict, claim
 from proofs.s5_common import ring_on_P
-from symbolic.exact import Check
 from symbolic import fourd
+from symbolic.exact import Check
 from symbolic.printed import section5 as printed
 
 a, b, x = fourd.a, fourd.b, fourd.x
