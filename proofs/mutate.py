@@ -126,7 +126,6 @@ def _edits(fn_node: ast.FunctionDef):
                 yield "sign", node, ast.BinOp(node.left, new_op, node.right)
             if op is ast.Mult:
                 yield "factor", node, ast.BinOp(node.right, ast.Mult(), node.left)
-                yield "factor", node, ast.BinOp(node.left, ast.Div(), node.right)
                 yield "factor", node, node.left
                 yield "factor", node, node.right
             if op is ast.Div:
@@ -367,7 +366,7 @@ def evaluate(task: tuple[Mutant, list[tuple[str, tuple, float]]]) -> dict:
 
 def _difference(base: tuple, got: tuple) -> str:
     if got[0] in ("error", "timeout"):
-        return f"row {got[0]}"
+        return f"row {got[0]}"  # (run_row's note, "raised ...", is preferred when present)
     if base[0] != got[0]:
         return f"verdict {base[0]} -> {got[0]}"
     if base[1] != got[1]:
@@ -442,9 +441,13 @@ def select_all(per_function: int = PER_FUNCTION) -> list[Mutant]:
 def summary(records: list[dict], functions: int, seconds: float) -> str:
     count = {k: sum(r["outcome"] == k for r in records)
              for k in ("killed", "equivalent", "survived", "error")}
+    raised = sum(r["outcome"] == "killed" and r["reason"].startswith(("raised", "row error",
+                                                                         "the mutant does not"))
+                 for r in records)
     covered = len({r["function"] for r in records})
     return (f"{len(records)} mutants of {covered}/{functions} printed functions: "
-            f"{count['killed']} killed, {count['equivalent']} equivalent, {count['survived']} "
+            f"{count['killed']} killed ({raised} of them because a row raised or timed out), "
+            f"{count['equivalent']} equivalent, {count['survived']} "
             f"survived, {count['error']} errors; score {count['killed']}/"
             f"{len(records) - count['equivalent']} non-equivalent killed; {seconds:.0f} s")
 
