@@ -63,7 +63,7 @@ PARTNERS = {"a": "b", "b": "a", "k": "u", "u": "k", "q": "k", "xi": "eta", "eta"
 #: Mutants per function at most (chosen round-robin over the operators, seeded).
 PER_FUNCTION = 8
 #: A row's time budget under a mutant: this many times its unmutated time, at least MIN_BUDGET s.
-BUDGET_FACTOR, MIN_BUDGET = 10.0, 20.0
+BUDGET_FACTOR, MIN_BUDGET = 5.0, 15.0
 #: Rows tried per mutant: cheapest first, until the summed unmutated time passes this (s).
 ROW_TIME_CAP = 25.0
 
