@@ -20,7 +20,7 @@ __all__ = [
     "SOURCE", "J_axisymm", "inertia_3d", "inertia_axisymm", "L_axisymm", "velocity_form_rhs",
     "velocity_form_lhs", "Delta", "images_of_basis", "C_block", "det_L", "measure_density_M",
     "measure_density_Omega", "Omega_inverse", "K", "aux_inversion", "system_U_Z", "U_solution",
-    "Y_solution", "action", "V_velocity", "Itilde_3d", "euler_3d_rhs", "zeta_3d_matrix",
+    "Y_solution", "action", "tori_generic_dimension", "V_velocity", "Itilde_3d", "euler_3d_rhs", "zeta_3d_matrix",
     "zeta_3d_wedge", "zeta_Th_Re", "Omega0_Th_Re", "zeta_xiVnD", "mu_n3", "mu_n3_equation",
     "Itilde", "Itilde_gamma", "Itilde_gamma_En", "chi", "Omega0_Manakov",
 ]
@@ -31,7 +31,7 @@ SOURCE = {
     "P:Measure": (398, 410, 411, 412, 422, 428, 430), "P:inversion": (441, 446, 447, 448),
     "eq:aux-inversion": (460, 466, 467, 472, 479), "eq:action": (495,),
     "eq:V-velocity": (514, 515), "eq:xiV3D": (522, 525, 526, 527, 539, 540, 541, 542, 543, 558),
-    "Th:Re": (591, 592, 610, 614), "eq:xiVnD": (642, 643, 644), "P:n3special": (666, 671, 674),
+    "Th:Re": (591, 592, 610, 614), "Th:Re-tori": (544, 545, 546, 904, 905, 906), "eq:xiVnD": (642, 643, 644), "P:n3special": (666, 671, 674),
     "eq:itildendim": (708, 712), "eq:solManakov": (728, 736),
 }
 
@@ -236,6 +236,16 @@ def zeta_Th_Re(M0, gamma0, a, b):
     D = Delta(x0, a, b)
     return (-a * (2 + b * (1 - x0**2)) / (2 * D) * M0
             + (a * (2 + b) * wedge(M0 * E, E) - a * b * x0 * wedge(M0 * E, gamma0)) / (2 * D))
+
+
+# -- Th:Re-tori, lines 544-546 (prose) and lines 904-906 (n = 4)
+def tori_generic_dimension(n):
+    """Th:Re-tori (lines 544-546), prose — the claim as a number. The sentence: ``Since $\\SO(n-1)$ is
+    compact, the corresponding solutions on $P$ are quasi-periodic on tori whose generic dimension
+    is $\\mbox{rank}(\\SO(n-1))=[\\frac{n-1}{2}]$``; for $n = 4$ (lines 904-906): ``Considering that
+    $\\SO(3)$ has rank 1, we conclude that $\\mathcal{V}$ is foliated by periodic orbits``. Returned:
+    the claimed generic torus dimension $[\\frac{n-1}{2}]$ (for every $-1 \\le a \\le 1$, $b > 0$)."""
+    return (n - 1) // 2
 
 
 # -- Th:Re, line 610
