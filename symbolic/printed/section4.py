@@ -20,7 +20,7 @@ __all__ = [
     "SOURCE", "J_axisymm", "inertia_3d", "inertia_axisymm", "L_axisymm", "velocity_form_rhs",
     "velocity_form_lhs", "Delta", "images_of_basis", "C_block", "det_L", "measure_density_M",
     "measure_density_Omega", "Omega_inverse", "K", "aux_inversion", "system_U_Z", "U_solution",
-    "Y_solution", "action", "tori_generic_dimension", "V_velocity", "Itilde_3d", "euler_3d_rhs", "zeta_3d_matrix",
+    "Y_solution", "action", "tori_generic_dimension", "curve_Th_Re", "Omega_corollary", "V_velocity", "Itilde_3d", "euler_3d_rhs", "zeta_3d_matrix",
     "zeta_3d_wedge", "zeta_Th_Re", "Omega0_Th_Re", "zeta_xiVnD", "mu_n3", "mu_n3_equation",
     "Itilde", "Itilde_gamma", "Itilde_gamma_En", "chi", "Omega0_Manakov",
 ]
@@ -31,7 +31,7 @@ SOURCE = {
     "P:Measure": (398, 410, 411, 412, 422, 428, 430), "P:inversion": (441, 446, 447, 448),
     "eq:aux-inversion": (460, 466, 467, 472, 479), "eq:action": (495,),
     "eq:V-velocity": (514, 515), "eq:xiV3D": (522, 525, 526, 527, 539, 540, 541, 542, 543, 558),
-    "Th:Re": (591, 592, 610, 614), "Th:Re-tori": (544, 545, 546, 904, 905, 906), "eq:xiVnD": (642, 643, 644), "P:n3special": (666, 671, 674),
+    "Th:Re": (587, 591, 592, 610, 614), "Th:Re-corollary": (628,), "Th:Re-tori": (544, 545, 546, 904, 905, 906), "eq:xiVnD": (642, 643, 644), "P:n3special": (666, 671, 674),
     "eq:itildendim": (708, 712), "eq:solManakov": (728, 736),
 }
 
@@ -246,6 +246,18 @@ def tori_generic_dimension(n):
     $\\SO(3)$ has rank 1, we conclude that $\\mathcal{V}$ is foliated by periodic orbits``. Returned:
     the claimed generic torus dimension $[\\frac{n-1}{2}]$ (for every $-1 \\le a \\le 1$, $b > 0$)."""
     return (n - 1) // 2
+
+
+# -- Th:Re, line 587: M(t) = \exp(\zeta t) M_0 \exp(-\zeta t), \gamma(t)= \exp(\zeta t) \gamma_0
+def curve_Th_Re(zeta, M0, gamma0, t):
+    """Th:Re (line 587): $M(t) = \\exp(\\zeta t) M_0 \\exp(-\\zeta t)$, $\\gamma(t) = \\exp(\\zeta t)\\gamma_0$."""
+    return (zeta * t).exp() * M0 * (-zeta * t).exp(), (zeta * t).exp() * gamma0
+
+
+# -- Th:Re-corollary, line 628: \Omega(t) = \exp(\zeta t) \Omega_0 \exp(-\zeta t)
+def Omega_corollary(zeta, Omega0, t):
+    """Th:Re-corollary (line 628): $\\Omega(t) = \\exp(\\zeta t)\\Omega_0\\exp(-\\zeta t)$."""
+    return (zeta * t).exp() * Omega0 * (-zeta * t).exp()
 
 
 # -- Th:Re, line 610
