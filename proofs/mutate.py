@@ -61,7 +61,7 @@ PARTNERS = {"a": "b", "b": "a", "k": "u", "u": "k", "q": "k", "xi": "eta", "eta"
             "U": "Z", "Z": "U", "M0": "Omega0", "Omega0": "M0", "f2": "h", "h": "f2",
             "x0": "x", "x": "x0", "Omega_dot": "Omega", "gamma": "E", "O3": "O1"}
 #: Mutants per function at most (chosen round-robin over the operators, seeded).
-PER_FUNCTION = 8
+PER_FUNCTION = 4
 #: A row's time budget under a mutant: this many times its unmutated time, at least MIN_BUDGET s.
 BUDGET_FACTOR, MIN_BUDGET = 5.0, 15.0
 #: Rows tried per mutant: cheapest first, until the summed unmutated time passes this (s).

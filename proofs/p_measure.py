@@ -98,20 +98,18 @@ def _block_form_residual(p: dict):
     e = E_n(n)
     xv = g[n - 1]
     ws = _complement_basis(g)
-    basis, blocks = [], []
+    basis = []
     for w in ws:
         basis += [wedge(e, w), wedge(g, w)]
-        blocks.append(printed.C_block(xv, av, bv))
     basis.append(wedge(e, g))
-    blocks.append(sp.Matrix([[2 + av + bv]]))
     for i in range(len(ws)):
         for j in range(i + 1, len(ws)):
             basis.append(wedge(ws[i], ws[j]))
-            blocks.append(sp.Matrix([[2]]))
     B = _qq(sp.Matrix.hstack(*[vec(Bk) for Bk in basis]))
     if B.rank() != B.shape[0]:
         raise ArithmeticError("the printed basis is not a basis at this point")
-    return (_qq(L_matrix_axisym(g, av, bv)) * B - B * _qq(sp.diag(*blocks))).to_Matrix()
+    blocks = printed.block_diagonal(n, xv, av, bv)
+    return (_qq(L_matrix_axisym(g, av, bv)) * B - B * _qq(blocks)).to_Matrix()
 
 
 def _qq(matrix: sp.Matrix) -> DomainMatrix:
@@ -188,7 +186,8 @@ def p_measure() -> Verdict:
     fc = frame_coefficients()
     block = combine([
         rational_identity(list(block_C() - printed.C_block(x, a, b))
-                          + [fc["c0"] - (2 + a + b), fc["c2"] - 2]),
+                          + [fc["c0"] - printed.block_diagonal(4, x, a, b)[4, 4],
+                             fc["c2"] - printed.block_diagonal(4, x, a, b)[5, 5]]),
         point_checks(_block_form_residual, range(3, 13), label="block"),
     ])
     det = combine([

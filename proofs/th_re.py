@@ -211,7 +211,7 @@ def eq_xivnd() -> Verdict:
 
     def inline_sym(n):
         M0, g, Om, _ = _sym(n)
-        return Om * ((2 + b) * g + a * g[n - 1] * E_n(n))
+        return printed.V_velocity(Om, g, a, b)[0]   # = Omega_0((2+b) gamma_0 + a x_0 E_n)
 
     same = _both(sym, pt, "xiVnD")
     inline = sym_checks(inline_sym, NS, label="xiVnD-inline")
