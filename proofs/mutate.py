@@ -52,6 +52,7 @@ import sympy as sp
 
 from proofs.catalog import ROOT
 from proofs.reach import printed_functions, rows_by_function, unreached, write_json_atomic
+from proofs.reach import save as save_reach
 
 OUT_PATH = ROOT / "mutation.json"
 #: Name pairs swapped by the ``swap`` operator (each direction).
@@ -174,8 +175,8 @@ def _apply(fn_node: ast.FunctionDef, target, replacement) -> ast.FunctionDef:
 
 
 def _describe(target, replacement) -> str:
-    line = getattr(target, "lineno", "?")
-    return f"line {line}: {ast.unparse(target)} -> {ast.unparse(replacement)}"
+    line, col = getattr(target, "lineno", "?"), getattr(target, "col_offset", "?")
+    return f"line {line} col {col}: {ast.unparse(target)} -> {ast.unparse(replacement)}"
 
 
 def all_mutants(key: str, fn) -> list[tuple[Mutant, ast.FunctionDef]]:
@@ -465,7 +466,10 @@ def main(argv: list[str] | None = None) -> int:
 
     discover()
     base = baseline(jobs=args.jobs)
-    missing = unreached({row: info[2] for row, info in base.items()})
+    reach = {row: info[2] for row, info in base.items()}
+    missing = unreached(reach)
+    if not args.function:
+        save_reach(reach, {row: info[1] for row, info in base.items()})
     selection = [m for m in select_all(args.per_function)
                  if not args.function or m.function in args.function]
     tasks = plan(base, selection)

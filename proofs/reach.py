@@ -116,31 +116,51 @@ def write_json_atomic(data: dict, path: Path) -> None:
         raise
 
 
-def compute(jobs: int | None = 2) -> dict[str, list[str]]:
-    """Run every registered ledger row and return row -> printed functions it reached."""
+def compute(jobs: int | None = 2) -> tuple[dict[str, list[str]], dict[str, float]]:
+    """Run every registered ledger row: (row -> printed functions it reached, row -> seconds)."""
     from proofs.runner import run, select
 
     results = run(select(), jobs=jobs)
     bad = [r.row.id for r in results if r.error]
     if bad:
         raise RuntimeError(f"rows raised while mapping reach: {', '.join(bad)}")
-    return {r.row.id: list(r.printed) for r in results if r.module}
+    done = [r for r in results if r.module]
+    return {r.row.id: list(r.printed) for r in done}, {r.row.id: r.seconds for r in done}
 
 
-def load(path: Path = MAP_PATH) -> dict[str, list[str]]:
-    """The stored map row -> functions (written by ``python -m proofs.reach``)."""
-    return json.loads(path.read_text(encoding="utf-8"))["rows"]
+def load(path: Path = MAP_PATH) -> tuple[dict[str, list[str]], dict[str, float]]:
+    """The stored map (row -> functions, row -> seconds), written by ``python -m proofs.reach``."""
+    data = json.loads(path.read_text(encoding="utf-8"))
+    return data["rows"], data.get("seconds", {})
 
 
-def save(printed_by_row: dict[str, list[str]], path: Path = MAP_PATH) -> None:
-    write_json_atomic({"rows": printed_by_row,
-                       "functions": rows_by_function(printed_by_row)}, path)
+def cover(printed_by_row: dict[str, list[str]], seconds: dict[str, float]) -> list[str]:
+    """A small set of rows reaching every function the map reaches (greedy: most new functions
+    per second first) — what a test re-runs live to show every printed function is reached."""
+    todo = {f for fs in printed_by_row.values() for f in fs}
+    chosen: list[str] = []
+    while todo:
+        best = max(printed_by_row, key=lambda r: (len(todo & set(printed_by_row[r]))
+                                                  / (0.2 + seconds.get(r, 1.0)), r))
+        gain = todo & set(printed_by_row[best])
+        if not gain:
+            break
+        chosen.append(best)
+        todo -= gain
+    return chosen
+
+
+def save(printed_by_row: dict[str, list[str]], seconds: dict[str, float] | None = None,
+         path: Path = MAP_PATH) -> None:
+    """Write the map (and each row's seconds, to choose cheap rows) atomically."""
+    write_json_atomic({"rows": printed_by_row, "functions": rows_by_function(printed_by_row),
+                       "seconds": {r: round(t, 2) for r, t in (seconds or {}).items()}}, path)
 
 
 def main(argv: list[str] | None = None) -> int:
     """``python -m proofs.reach``: map every row, write proofs/reach.json, exit 1 if unreached."""
-    reach = compute()
-    save(reach)
+    reach, seconds = compute()
+    save(reach, seconds)
     missing = unreached(reach)
     n_fn = len(printed_functions())
     print(f"{len(reach)} rows reach {n_fn - len(missing)} of {n_fn} printed functions; "
