@@ -69,6 +69,26 @@ BUDGET_FACTOR, MIN_BUDGET = 5.0, 15.0
 ROW_TIME_CAP = 25.0
 
 
+#: Printed functions whose *claim* cannot see a non-zero constant factor of the value: a zero set
+#: ({c f = 0} = {f = 0}) or a first integral (c F is conserved iff F is). A mutant equal to c times
+#: the original (c a non-zero number) at every call is ``equivalent`` for this reason.
+SCALE_INVARIANT = {
+    **{f: "a zero set: {c f = 0} = {f = 0} for a constant c != 0"
+       for f in ("section3.V_3d", "section3.V_nd", "section3.H_nd", "section5.H_set",
+                 "section5.V_set", "section5.H_SO3", "section5.V_SO3")},
+    "section2.characteristic_polynomial": "first integrals: the coefficients of c p are conserved "
+                                          "iff those of p are (p is not normalised by the claim)",
+    "section2.energy_nd": "a first integral: c H is conserved iff H is (the row checks "
+                          "conservation, not the normalisation 1/2 of the energy)",
+}
+#: Printed functions whose claim is invariant under a sign change of one argument.
+ARGUMENT_SIGN_INVARIANT = {
+    "section2.characteristic_polynomial": ("sigma", "the claim (coefficients of p(lambda, sigma) "
+                                                    "are first integrals for every sigma) is "
+                                                    "invariant under sigma -> -sigma"),
+}
+
+
 @dataclass(frozen=True)
 class Mutant:
     """One one-symbol change of one printed function."""
@@ -281,26 +301,67 @@ def _same(x, y) -> bool:
     return x == y
 
 
-def _equivalence(fn, mutant_code, claim_id: str, budget: float) -> tuple[bool, int]:
+def _flat(value) -> list:
+    if isinstance(value, dict):
+        return [v for k in sorted(value, key=str) for v in _flat(value[k])]
+    if isinstance(value, (tuple, list)):
+        return [v for item in value for v in _flat(item)]
+    if isinstance(value, sp.MatrixBase):
+        return list(value)
+    return [value]
+
+
+def _proportional(want, got) -> bool:
+    """``got`` = c * ``want`` for one number c != 0 (exact)."""
+    a, b = _flat(want), _flat(got)
+    if len(a) != len(b):
+        return False
+    try:
+        pivot = next(i for i, v in enumerate(a) if sp.expand(sp.sympify(v)) != 0)
+    except StopIteration:
+        return all(sp.expand(sp.sympify(v)) == 0 for v in b)
+    c = sp.cancel(sp.sympify(b[pivot]) / sp.sympify(a[pivot]))
+    if c == 0 or c.free_symbols or not c.is_number:
+        return False
+    return all(sp.expand(sp.together(sp.sympify(v) - c * sp.sympify(u))) == 0 for u, v in zip(a, b))
+
+
+def _equivalence(fn, mutant_code, claim_id: str, budget: float, key: str = "",
+                 ) -> tuple[bool, int, str]:
     """Run ``claim_id`` with a wrapper computing both the original and the mutant at every call
-    of ``fn``; (all equal, number of calls compared)."""
+    of ``fn``; (all equal, number of calls compared, the kind of equality: "exact", or a declared
+    invariance of the claim: "scale", "sign of <argument>")."""
     original = fn.__code__
     orig_fn = FunctionType(original, fn.__globals__, fn.__name__, fn.__defaults__)
     orig_fn.__kwdefaults__ = fn.__kwdefaults__
     mut_fn = FunctionType(mutant_code, fn.__globals__, fn.__name__, fn.__defaults__)
     mut_fn.__kwdefaults__ = fn.__kwdefaults__
-    state = {"calls": 0, "equal": True}
+    kinds = ["exact"] + (["scale"] if key in SCALE_INVARIANT else []) + (
+        ["sign"] if key in ARGUMENT_SIGN_INVARIANT else [])
+    state = {"calls": 0, "ok": dict.fromkeys(kinds, True)}
     hook_name = "__mutate_compare_hook__"
 
     def hook(*args, **kwargs):
         want = orig_fn(*args, **kwargs)
+        state["calls"] += 1
         try:
             got = mut_fn(*args, **kwargs)
-            equal = _same(want, got)
         except Exception:  # noqa: BLE001 - a mutant that raises where the original does not
-            equal = False
-        state["calls"] += 1
-        state["equal"] = state["equal"] and equal
+            state["ok"] = dict.fromkeys(kinds, False)
+            return want
+        for kind in kinds:
+            if not state["ok"][kind]:
+                continue
+            if kind == "exact":
+                same = _same(want, got)
+            elif kind == "scale":
+                same = _proportional(want, got)
+            else:
+                bound = inspect.signature(orig_fn).bind(*args, **kwargs)
+                name = ARGUMENT_SIGN_INVARIANT[key][0]
+                bound.arguments[name] = -bound.arguments[name]
+                same = _same(orig_fn(*bound.args, **bound.kwargs), got)
+            state["ok"][kind] = same
         return want
 
     src = f"def {fn.__name__}(*args, **kwargs):\n    return {hook_name}(*args, **kwargs)\n"
@@ -313,7 +374,8 @@ def _equivalence(fn, mutant_code, claim_id: str, budget: float) -> tuple[bool, i
     finally:
         fn.__code__ = original
         fn.__globals__.pop(hook_name, None)
-    return state["equal"] and state["calls"] > 0, state["calls"]
+    kind = next((k for k in kinds if state["ok"][k]), "")
+    return bool(kind) and state["calls"] > 0, state["calls"], kind
 
 
 def evaluate(task: tuple[Mutant, list[tuple[str, tuple, float]]]) -> dict:
@@ -347,11 +409,17 @@ def evaluate(task: tuple[Mutant, list[tuple[str, tuple, float]]]) -> dict:
         # Nothing changed: equivalent only if the mutant's value equals the original's exactly
         # at every call the cheapest row makes.
         claim_id, _base, seconds = rows[0]
-        equal, calls = _equivalence(fn, code, claim_id, max(MIN_BUDGET, BUDGET_FACTOR * seconds))
+        equal, calls, kind = _equivalence(fn, code, claim_id,
+                                          max(MIN_BUDGET, BUDGET_FACTOR * seconds), mutant.function)
         if equal:
+            what = {"exact": "exactly the original value",
+                    "scale": "a non-zero constant times the original value ("
+                             + SCALE_INVARIANT.get(mutant.function, "") + ")",
+                    "sign": "the original value with its argument negated ("
+                            + ARGUMENT_SIGN_INVARIANT.get(mutant.function, ("", ""))[1] + ")"}[kind]
             record.update(outcome="equivalent", row=claim_id, reason=(
-                f"the mutant returns exactly the original value (exact SymPy comparison) at all "
-                f"{calls} calls made by row {claim_id}; no row ({', '.join(tried)}) changed"))
+                f"the mutant returns {what} (exact SymPy comparison) at all {calls} calls made by "
+                f"row {claim_id}; no row ({', '.join(tried)}) changed"))
         else:
             record.update(outcome="survived", row=", ".join(tried), reason=(
                 f"value differs from the original but no row changed "
