@@ -78,8 +78,6 @@ SCALE_INVARIANT = {
                  "section5.V_set", "section5.H_SO3", "section5.V_SO3")},
     "section2.characteristic_polynomial": "first integrals: the coefficients of c p are conserved "
                                           "iff those of p are (p is not normalised by the claim)",
-    "section2.energy_nd": "a first integral: c H is conserved iff H is (the row checks "
-                          "conservation, not the normalisation 1/2 of the energy)",
 }
 #: Printed functions whose claim is invariant under a sign change of one argument.
 ARGUMENT_SIGN_INVARIANT = {
