@@ -1,14 +1,16 @@
 """Every printed formula is reached by a ledger row, and the reach tracer sees every route.
 
-The full map is written by ``python -m proofs.reach`` / ``make mutate`` into proofs/reach.json;
-here it only chooses a small set of rows, which are re-run *live* under the tracer: the assertion
-that every public function of symbolic/printed/ is reached rests on that live run, so a stale map
-makes the test fail, never pass. ``make verify`` repeats the check over all rows at no extra cost.
+Most printed functions are reached by their own row only, so a live run covering all of them is
+nearly the whole ledger (~90 s): that complete live check is done by ``make verify`` (the runner
+records every row's printed calls at no extra cost and the run fails on an unreached function) and
+by ``make mutate``, which also writes the map proofs/reach.json. Here: the tracer sees every
+route; the stored map reaches every *current* public printed function (a new transcription no row
+calls fails at once); and the stored map is what the tracer records, live, for a deterministic
+sample of cheap rows (so the map is not a hand-written list).
 """
 
 from __future__ import annotations
 
-import pytest
 import sympy as sp
 
 from proofs import reach
@@ -40,17 +42,21 @@ def test_unreached_flags_a_function_no_row_calls():
     assert reach.unreached(fake) == [fns[0]]
 
 
-@pytest.mark.slow
 def test_every_printed_function_is_reached_by_a_ledger_row():
+    stored, _ = reach.load()
+    missing = reach.unreached(stored)
+    assert missing == [], (f"printed functions reached by no row: {missing} (a new transcription "
+                           "needs a row that calls it; if a row does, refresh the map with "
+                           "`python -m proofs.reach`)")
+
+
+def test_the_stored_map_is_what_the_tracer_records():
     discover()
     stored, seconds = reach.load()
-    rows = reach.cover({r: fs for r, fs in stored.items() if r in registry()}, seconds)
-    seen = set()
-    for claim_id in rows:
+    cheap = sorted((r for r in stored if r in registry() and seconds.get(r, 99) < 0.5),
+                   key=lambda r: (seconds[r], r))[:8]
+    assert cheap
+    for claim_id in cheap:
         with reach.Recorder() as rec:
             registry()[claim_id].run()
-        seen |= rec.calls
-    missing = sorted(set(reach.printed_functions()) - seen)
-    assert missing == [], (f"printed functions reached by none of the rows {rows}: {missing} "
-                           "(a new transcription needs a row that calls it; if a row does, "
-                           "refresh proofs/reach.json with `python -m proofs.reach`)")
+        assert sorted(rec.calls) == sorted(stored[claim_id]), claim_id
