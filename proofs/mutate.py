@@ -66,7 +66,7 @@ PER_FUNCTION = 4
 #: A row's time budget under a mutant: this many times its unmutated time, at least MIN_BUDGET s.
 BUDGET_FACTOR, MIN_BUDGET = 5.0, 15.0
 #: Rows tried per mutant: cheapest first, until the summed unmutated time passes this (s).
-ROW_TIME_CAP = 25.0
+ROW_TIME_CAP = 90.0
 
 
 #: Printed functions whose *claim* cannot see a non-zero constant factor of the value: a zero set
@@ -76,8 +76,16 @@ SCALE_INVARIANT = {
     **{f: "a zero set: {c f = 0} = {f = 0} for a constant c != 0"
        for f in ("section3.V_3d", "section3.V_nd", "section3.H_nd", "section5.H_set",
                  "section5.V_set", "section5.H_SO3", "section5.V_SO3")},
+    "section5.F1": "a first integral (c F_1 is conserved iff F_1 is; p(lambda, sigma) contains "
+                   "F_1 only squared, so only the sign c = -1 can occur unseen)",
     "section2.characteristic_polynomial": "first integrals: the coefficients of c p are conserved "
                                           "iff those of p are (p is not normalised by the claim)",
+}
+#: Densities of invariant measures: a measure is defined up to a *positive* constant factor
+#: (the rows check positivity separately, so only c > 0 counts as equivalent).
+POSITIVE_SCALE_INVARIANT = {
+    "section5.measure_density": "the density of an invariant measure, defined up to a positive "
+                                "constant factor",
 }
 #: Printed functions whose claim is invariant under a sign change of one argument.
 ARGUMENT_SIGN_INVARIANT = {
@@ -309,8 +317,8 @@ def _flat(value) -> list:
     return [value]
 
 
-def _proportional(want, got) -> bool:
-    """``got`` = c * ``want`` for one number c != 0 (exact)."""
+def _proportional(want, got, positive: bool = False) -> bool:
+    """``got`` = c * ``want`` for one number c != 0 (c > 0 if ``positive``), exactly."""
     a, b = _flat(want), _flat(got)
     if len(a) != len(b):
         return False
@@ -319,7 +327,7 @@ def _proportional(want, got) -> bool:
     except StopIteration:
         return all(sp.expand(sp.sympify(v)) == 0 for v in b)
     c = sp.cancel(sp.sympify(b[pivot]) / sp.sympify(a[pivot]))
-    if c == 0 or c.free_symbols or not c.is_number:
+    if c == 0 or c.free_symbols or not c.is_number or (positive and not c.is_positive):
         return False
     return all(sp.expand(sp.together(sp.sympify(v) - c * sp.sympify(u))) == 0 for u, v in zip(a, b))
 
@@ -335,6 +343,7 @@ def _equivalence(fn, mutant_code, claim_id: str, budget: float, key: str = "",
     mut_fn = FunctionType(mutant_code, fn.__globals__, fn.__name__, fn.__defaults__)
     mut_fn.__kwdefaults__ = fn.__kwdefaults__
     kinds = ["exact"] + (["scale"] if key in SCALE_INVARIANT else []) + (
+        ["positive scale"] if key in POSITIVE_SCALE_INVARIANT else []) + (
         ["sign"] if key in ARGUMENT_SIGN_INVARIANT else [])
     state = {"calls": 0, "ok": dict.fromkeys(kinds, True)}
     hook_name = "__mutate_compare_hook__"
@@ -354,6 +363,8 @@ def _equivalence(fn, mutant_code, claim_id: str, budget: float, key: str = "",
                 same = _same(want, got)
             elif kind == "scale":
                 same = _proportional(want, got)
+            elif kind == "positive scale":
+                same = _proportional(want, got, positive=True)
             else:
                 bound = inspect.signature(orig_fn).bind(*args, **kwargs)
                 name = ARGUMENT_SIGN_INVARIANT[key][0]
@@ -413,6 +424,8 @@ def evaluate(task: tuple[Mutant, list[tuple[str, tuple, float]]]) -> dict:
             what = {"exact": "exactly the original value",
                     "scale": "a non-zero constant times the original value ("
                              + SCALE_INVARIANT.get(mutant.function, "") + ")",
+                    "positive scale": "a positive constant times the original value ("
+                                      + POSITIVE_SCALE_INVARIANT.get(mutant.function, "") + ")",
                     "sign": "the original value with its argument negated ("
                             + ARGUMENT_SIGN_INVARIANT.get(mutant.function, ("", ""))[1] + ")"}[kind]
             record.update(outcome="equivalent", row=claim_id, reason=(
