@@ -4,7 +4,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
-.PHONY: setup verify test generate bench clean
+.PHONY: setup verify test generate bench mutate clean
 
 setup: $(STAMP)
 
@@ -25,6 +25,11 @@ verify: setup
 ## test: the pytest suite (engine, proofs, kernels against mpmath, hard cases).
 test: setup
 	$(PY) -m pytest -q
+
+## mutate: mutation testing of every printed formula (one-symbol AST mutants, each run against the
+## rows that reach it); writes mutation.json and proofs/reach.json; fails on a surviving mutant.
+mutate: setup
+	$(PY) -m proofs.mutate
 
 ## generate: rewrite generated/ from the derived (proved) expressions.
 generate: setup

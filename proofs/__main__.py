@@ -66,6 +66,11 @@ def main(argv: list[str] | None = None) -> int:
             problems.append(f"{r.row.id}: open without a reason")
     problems += [f"{i}: a finding without a kind (formula/proof/scope/reading): an error of the "
                  "ledger" for i in report.missing_kind(results)]
+    if not args.ids:  # every printed formula must be checked by some row (DESIGN rule 1)
+        from proofs.reach import unreached
+
+        missing = unreached({r.row.id: list(r.printed) for r in results})
+        problems += [f"printed function {f} is reached by no ledger row" for f in missing]
     unknown = unknown_registrations()
     problems += [f"{i}: registered by a proof but not a ledger row" for i in unknown]
     generated = "not checked"

@@ -28,7 +28,7 @@ def is_checkout() -> bool:
     return (ROOT / "pyproject.toml").is_file() and (ROOT / "proofs" / "catalog.py").is_file()
 
 #: Modules of the ``proofs`` package that hold machinery, not proofs.
-MACHINERY = {"ledger", "catalog", "runner", "report", "graph", "__main__"}
+MACHINERY = {"ledger", "catalog", "runner", "report", "graph", "reach", "mutate", "__main__"}
 
 
 @dataclass(frozen=True)

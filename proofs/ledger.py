@@ -132,33 +132,39 @@ class Verdict:
     def decide(cls, printed: Check, *, n_values: Sequence[int] = (), method: str = "",
                corrected: Check | None = None, correction_latex: str | None = None,
                printed_latex: str | None = None, notes: str = "", kind: str | None = None,
-               remark: str = "") -> Verdict:
+               remark: str = "", argued: bool = False) -> Verdict:
         """Compare the printed formula (``printed``: the check of printed == derived) and, if it
         fails, a proposed correction (``corrected``: the check of corrected == derived).
         ``kind`` (one of :data:`KINDS`) says what a failure of ``printed`` means; it is kept only
-        when the verdict is ``corrected`` or ``fails``."""
+        when the verdict is ``corrected`` or ``fails``. ``argued``: the check rests on a step
+        argued in prose, not computed (said in the method)."""
         verdict, cx, cx_latex, fix = _decide(printed, corrected, correction_latex)
         how = method or printed.method
         if verdict == "corrected" and corrected is not None:
             how = f"{how}; correction: {corrected.method}"
         return cls(verdict, how, tuple(n_values), cx, cx_latex,
                    printed_latex if verdict != "holds" else None, fix, notes,
-                   kind=_kind_for(verdict, kind), remark=remark)
+                   kind=_kind_for(verdict, kind), remark=remark, argued=argued)
 
     @classmethod
     def all_of(cls, checks: Iterable[tuple[str, Check]], *, n_values: Sequence[int] = (),
-               method: str = "", notes: str = "", kind: str | None = None) -> Verdict:
+               method: str = "", notes: str = "", kind: str | None = None,
+               argued: bool = False) -> Verdict:
         """``holds`` iff every named check holds; otherwise ``fails`` (of ``kind``) with the first
-        counterexample. The method lists each check's method unless ``method`` is given."""
+        counterexample. The method lists each check's method unless ``method`` is given. No
+        checks: ``ValueError`` (an empty conjunction proves nothing)."""
         checks = list(checks)
+        if not checks:
+            raise ValueError("all_of needs at least one check")
         methods = "; ".join(f"{name}: {c.method}" for name, c in checks)
         for name, c in checks:
             if not c.ok:
                 cx = c.counterexample
                 return cls("fails", method or methods, tuple(n_values),
                            f"{name}: {cx.text()}" if cx else name,
-                           cx.latex() if cx else None, None, None, notes, kind=kind)
-        return cls("holds", method or methods, tuple(n_values), notes=notes)
+                           cx.latex() if cx else None, None, None, notes, kind=kind,
+                           argued=argued)
+        return cls("holds", method or methods, tuple(n_values), notes=notes, argued=argued)
 
     @classmethod
     def definition(cls, method: str, *, n_values: Sequence[int] = (), notes: str = "",
@@ -192,6 +198,16 @@ class Verdict:
                else "the measurement does not support the statement")
         return cls("open", method, tuple(n_values),
                    notes=f"{why}: {measured}; {notes}".strip("; "), evidence=record)
+
+    @classmethod
+    def by_argument(cls, argument: str, *, n_values: Sequence[int] = (), notes: str = "") -> Verdict:
+        """A step argued in prose (a mathematical fact we state), not computed: ``holds`` with
+        ``argued=True``; the method says "argued, not machine-checked". Reports count such parts
+        apart; use it only for what no computation here decides."""
+        if not argument.strip():
+            raise ValueError("an argued step must state its argument")
+        return cls("holds", f"argued, not machine-checked: {argument}", tuple(n_values),
+                   notes=notes, argued=True)
 
     @classmethod
     def open(cls, reason: str) -> Verdict:

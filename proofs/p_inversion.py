@@ -32,7 +32,7 @@ from sympy.polys.matrices import DomainMatrix
 
 from proofs.ledger import Verdict, claim
 from proofs.s4_common import REDUCTION, a, b, combine, generic, point_checks, sym_checks
-from symbolic.algebra import unvec, vec, wedge
+from symbolic.algebra import skew_symbols, unvec, vec, wedge
 from symbolic.axisym_inverse import inverse_closed_form, inverse_denominator, inverse_numerator
 from symbolic.axisymmetric import Delta, E_n, L_gamma_axisym, L_matrix_axisym, x
 from symbolic.exact import rational_identity
@@ -77,6 +77,15 @@ def _parts(n: int):
     return M, g, e, Omega
 
 
+def _system_matrix() -> sp.Matrix:
+    r"""The $2\times2$ coefficient matrix of the printed system (lines 466-467) in $(U, Z)$, read off
+    the printed residuals with $U = u\,\mathrm{Id}$, $Z = z\,\mathrm{Id}$ at $\gamma = (0, s, x)$."""
+    u_, z_, s_ = sp.symbols("u_ z_ s_")
+    g = sp.Matrix([0, s_, x])
+    r1, r2 = printed.system_U_Z(u_ * sp.eye(3), z_ * sp.eye(3), skew_symbols("m", 3), g, a, b)
+    return sp.Matrix([[sp.diff(r[0, 0], v) for v in (u_, z_)] for r in (r1, r2)])
+
+
 @claim("eq:aux-inversion", uses=("eq:M-O-axi-symm", "P:inversion", "eq:Delta"))
 def eq_aux_inversion() -> Verdict:
     def aux(n):
@@ -107,7 +116,7 @@ def eq_aux_inversion() -> Verdict:
         return wedge(Om * g, g) - printed.Y_solution(p["M"], g, p["a"], p["b"])
 
     ns = (3, 4)
-    det = rational_identity(sp.Matrix([[2 + a, b * x], [a * x, 2 + b]]).det() - Delta())
+    det = rational_identity(_system_matrix().det() - Delta())
     checks = [
         ("<Omega gamma, E_n> = <M gamma, E_n>/(2+a+b)", sym_checks(aux, ns, label="aux")),
         ("the linear system for U, Z", sym_checks(system, ns, label="aux-sys")),

@@ -43,10 +43,10 @@ from sympy.polys.matrices import DomainMatrix
 
 from proofs.ledger import Verdict, claim
 from proofs.s4_common import a, b, combine, gamma_symbols, point_checks, sym_checks, sym_gamma
+from symbolic import points
 from symbolic.algebra import commutator, skew_symbols, vec, vector_symbols, wedge
 from symbolic.axisym_inverse import inverse_closed_form
 from symbolic.axisymmetric import (
-    Delta,
     E_n,
     L_gamma_axisym,
     L_matrix_axisym,
@@ -56,8 +56,8 @@ from symbolic.axisymmetric import (
     mass_tensor,
     x,
 )
-from symbolic.exact import rational_identity
-from symbolic.measure import chaplygin_divergence_at, measure_residual
+from symbolic.exact import rational_identity, zero_at_points
+from symbolic.measure import chaplygin_divergence_at, divergence
 from symbolic.printed import section4 as printed
 
 
@@ -99,20 +99,18 @@ def _block_form_residual(p: dict):
     e = E_n(n)
     xv = g[n - 1]
     ws = _complement_basis(g)
-    basis, blocks = [], []
+    basis = []
     for w in ws:
         basis += [wedge(e, w), wedge(g, w)]
-        blocks.append(printed.C_block(xv, av, bv))
     basis.append(wedge(e, g))
-    blocks.append(sp.Matrix([[2 + av + bv]]))
     for i in range(len(ws)):
         for j in range(i + 1, len(ws)):
             basis.append(wedge(ws[i], ws[j]))
-            blocks.append(sp.Matrix([[2]]))
     B = _qq(sp.Matrix.hstack(*[vec(Bk) for Bk in basis]))
     if B.rank() != B.shape[0]:
         raise ArithmeticError("the printed basis is not a basis at this point")
-    return (_qq(L_matrix_axisym(g, av, bv)) * B - B * _qq(sp.diag(*blocks))).to_Matrix()
+    blocks = printed.block_diagonal(n, xv, av, bv)
+    return (_qq(L_matrix_axisym(g, av, bv)) * B - B * _qq(blocks)).to_Matrix()
 
 
 def _qq(matrix: sp.Matrix) -> DomainMatrix:
@@ -140,23 +138,47 @@ def _parallel_checks():
                                   "(direct determinant, no continuity argument)")
 
 
+def _log_derivative(n: int, av=a, bv=b):
+    r"""$\rho'(x)/\rho(x)$ for the printed density $\rho$ of $\mu$ with respect to $dM\,d\gamma$
+    (P:Measure, line 398), as a rational function of $x$ (the powers of $\Delta$ combine)."""
+    rho = printed.measure_density_M(n, x, av, bv)
+    return sp.diff(rho, x) / rho
+
+
 def _divergence_residual(p: dict):
     n, g = p["n"], p["gamma"]
     info = chaplygin_divergence_at(p["M"], g, mass_tensor(n, p["a"]), p["b"])
-    xv = g[n - 1]
-    D = printed.Delta(xv, p["a"], p["b"])
-    dlog_rho = -sp.Rational(n - 2, 2) * sp.diff(printed.Delta(x, p["a"], p["b"]), x).subs(x, xv) / D
+    dlog_rho = _log_derivative(n, p["a"], p["b"]).subs(x, g[n - 1])
     return info["div"] + info["gamma_dot"][n - 1] * dlog_rho
 
 
 def _divergence_symbolic(n: int):
-    r"""$\operatorname{div}X - \frac{n-2}{2}X(\Delta)/\Delta$ for the ambient field
-    $X = ([M, \Omega], -\Omega\gamma)$, $\Omega$ the derived closed form, fully generic $M, \gamma$."""
+    r"""$\operatorname{div}X + X(\rho)/\rho$ for the ambient field $X = ([M, \Omega], -\Omega\gamma)$,
+    $\Omega$ the derived closed form, fully generic $M, \gamma$, and $\rho$ the printed density."""
     M, g = skew_symbols("m", n), gamma_symbols(n)
     Omega = inverse_closed_form(M, g)
     field = list(vec(commutator(M, Omega))) + list(-Omega * g)
     coords = list(vec(M)) + list(g)
-    return measure_residual(field, coords, [(Delta(g[n - 1]), -sp.Rational(n - 2, 2))])
+    return divergence(field, coords) + field[-1] * _log_derivative(n).subs(x, g[n - 1])
+
+
+def _densities_positive():
+    r"""Both printed densities are positive (a measure, not a signed form): exact at seeded
+    rational $(x, a, b)$ in the domain, $n = 3..8$ (the values are exact square roots)."""
+    def sample(rng):
+        par = points.axisymmetric_parameters(rng)
+        return {"x": points.rational(rng, -1, 1, 8), "a": par["a"], "b": par["b"]}
+
+    def residual(pt):
+        bad = []
+        for n in range(3, 9):
+            for rho in (printed.measure_density_M, printed.measure_density_Omega):
+                value = rho(n, pt["x"], pt["a"], pt["b"])
+                if not value.is_positive:
+                    bad.append(value)
+        return bad or 0
+    return zero_at_points(residual, sample, count=4, label="density>0",
+                          describe="(x, a, b) in [-1,1] x [-1,1] x (0,4], n = 3..8 (positivity)")
 
 
 @claim("P:Measure", uses=("eq:M-O-axi-symm", "eq:Delta", "eq:invmeasuredet"))
@@ -165,7 +187,8 @@ def p_measure() -> Verdict:
     fc = frame_coefficients()
     block = combine([
         rational_identity(list(block_C() - printed.C_block(x, a, b))
-                          + [fc["c0"] - (2 + a + b), fc["c2"] - 2]),
+                          + [fc["c0"] - printed.block_diagonal(4, x, a, b)[4, 4],
+                             fc["c2"] - printed.block_diagonal(4, x, a, b)[5, 5]]),
         point_checks(_block_form_residual, range(3, 13), label="block"),
     ])
     det = combine([
@@ -176,17 +199,19 @@ def p_measure() -> Verdict:
     parallel = _parallel_checks()
     invariant = combine([sym_checks(_divergence_symbolic, (3, 4, 5), label="div-sym",
                                     generic_gamma=True),
-                         point_checks(_divergence_residual, range(6, 9), label="div")])
+                         point_checks(_divergence_residual, range(6, 9), label="div"),
+                         _densities_positive()])
     # The two printed forms describe one invariant measure, and invariant measures are defined up to
     # a constant factor; the proof names it (line 430). Checked exactly: the ratio of the two
-    # densities, Delta^{-(n-2)/2} det L_gamma / Delta^{(n-2)/2}, is the constant c_n (squares
-    # compared, both densities > 0). That c_n != 1 is the remark, not a finding.
+    # printed densities, rho_M det L_gamma / rho_Omega (dM = det L_gamma dOmega), is the constant
+    # c_n (squares compared, both densities > 0). That c_n != 1 is the remark, not a finding.
     forms_ratio = []
     for n in range(3, 9):
-        D = printed.Delta(x, a, b)
-        lhs_sq = D ** (-(n - 2)) * det_L_axisym(n) ** 2
+        rho_M = printed.measure_density_M(n, x, a, b)
+        rho_Omega = printed.measure_density_Omega(n, x, a, b)
+        lhs_sq = (rho_M * det_L_axisym(n)) ** 2
         c_n = (2 + a + b) * sp.Integer(2) ** ((n - 2) * (n - 3) // 2)
-        forms_ratio.append(lhs_sq - c_n**2 * D ** (n - 2))
+        forms_ratio.append(lhs_sq - c_n**2 * rho_Omega**2)
     forms = Verdict.decide(
         rational_identity(forms_ratio),
         method="dM = det(L_gamma) dOmega with the proved det: the two densities differ by the "

@@ -68,6 +68,16 @@ def p_n3special() -> Verdict:
         B = wedge(W0 * E3, g - g[2] * E3)
         return mu * A * g - B * g - printed.mu_n3_equation(mu, g[2], a, b) * (W0 * E3)
 
+    def case_x0_zero():
+        """Case x_0 = 0 of the proof: on V both printed expressions vanish (gamma_0 = (g1, g2, 0))."""
+        M0, g = generic_vertical(3)
+        sub = {g[2]: 0}
+        M0, g0 = M0.xreplace(sub).applyfunc(sp.expand), g.xreplace(sub)
+        W0 = inverse_closed_form(M0, g0)
+        both = list(printed.zeta_xiVnD(W0, g0, a, b)) + list(printed.zeta_3d_wedge(unhat(W0), a, b))
+        return rational_identity(both, sphere=(g[0], g[1]), samplers=SAMPLERS, label="n3-x0")
+
+    x0_zero = case_x0_zero()
     agree = combine([sym_checks(printed_agree, (3,), label="n3-printed"),
                      sym_checks(derived_agree, (3,), label="n3-derived")])
     mu = sym_checks(mu_identity, (3,), label="n3-mu")
@@ -77,6 +87,12 @@ def p_n3special() -> Verdict:
         Verdict.decide(mu, method=mu.method + " (identity B = mu A on V, x_0 != 0)").as_part(
             "mu = -(1-x_0^2)(2+b)/(x_0(2+a+b))"),
         Verdict.decide(factor).as_part("the scalar factor of line 671"),
+        Verdict.decide(x0_zero, method=x0_zero.method + " (generic point of V with x_0 = 0)")
+        .as_part("case x_0 = 0: both expressions vanish"),
+        Verdict.by_argument("the proof's case split (x_0 = 0; hat(Omega_0) E_3 = 0; otherwise) "
+                            "covers V, and two matrices of so(3) with the same null vector are "
+                            "proportional (the step that introduces mu)")
+        .as_part("case split and proportionality"),
     ], n_values=(3,), notes="The proof's case Omega_0 E_3 = 0 is mis-stated; see row "
                             "P:n3special:case-OmegaE3.")
 

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from proofs.catalog import Row, all_rows, discover, pending_reason
 from proofs.ledger import Verdict, registry
 from symbolic import points
+from proofs.reach import Recorder
 
 
 @dataclass(frozen=True)
@@ -25,6 +26,8 @@ class Result:
     module: str = ""
     uses: tuple[str, ...] = ()
     error: str = ""
+    #: the public functions of symbolic/printed/ this row called (proofs.reach.Recorder)
+    printed: tuple[str, ...] = ()
 
     @property
     def status(self) -> str:
@@ -33,25 +36,31 @@ class Result:
     def to_dict(self) -> dict:
         d = {"id": self.row.id, "section": self.row.section, "claim": self.row.claim,
              "seconds": round(self.seconds, 3), "proof_module": self.module,
-             "uses": list(self.uses), "error": self.error or None}
+             "uses": list(self.uses), "error": self.error or None,
+             "printed": list(self.printed)}
         d.update(self.verdict.to_dict())
         d["verdict"] = self.status
         return d
 
 
-def _run_one(claim_id: str, seed: int = points.DEFAULT_SEED) -> tuple[Verdict, float, str]:
-    """Decide one row with ``seed`` as the seed of its seeded checks (in this process)."""
+def _run_one(claim_id: str, seed: int = points.DEFAULT_SEED
+             ) -> tuple[Verdict, float, str, tuple[str, ...]]:
+    """Decide one row with ``seed`` as the seed of its seeded checks (in this process);
+    also the printed functions it called (:mod:`proofs.reach`)."""
     spec = registry()[claim_id]
     previous = points.set_ledger_seed(seed)
     start = time.perf_counter()
+    recorder = Recorder()
     try:
-        verdict = spec.run()
+        with recorder:
+            verdict = spec.run()
         if not isinstance(verdict, Verdict):
             raise TypeError(f"proof of {claim_id} returned {type(verdict).__name__}, not Verdict")
-        return verdict, time.perf_counter() - start, ""
+        return verdict, time.perf_counter() - start, "", tuple(sorted(recorder.calls))
     except Exception:  # a proof that raises is an error row, never a silent pass
         return (Verdict("fails", "raised an exception", notes="see error"),
-                time.perf_counter() - start, traceback.format_exc(limit=8))
+                time.perf_counter() - start, traceback.format_exc(limit=8),
+                tuple(sorted(recorder.calls)))
     finally:
         points.set_ledger_seed(previous)
 
@@ -101,9 +110,9 @@ def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFA
             if row.id in specs:
                 claim_id = next(pending)
                 assert claim_id == row.id
-                verdict, seconds, error = next(iterator)
+                verdict, seconds, error, printed = next(iterator)
                 spec = specs[row.id]
-                result = Result(row, verdict, seconds, spec.module, spec.uses, error)
+                result = Result(row, verdict, seconds, spec.module, spec.uses, error, printed)
             else:
                 reason = pending_reason(row)
                 # No proof and no section owner: an open row WITHOUT a reason (fails the run).

@@ -172,4 +172,4 @@ def measure_3d() -> Verdict:
         [("div((det L)^(-1/2) X) = 0 on S^2 (ambient divergence, Leray form)", invariant),
          ("Jacobian of (Omega, gamma) -> (M, gamma) is det L_gamma", jacobian),
          ("exponent shift dOmega vs dM is 1",
-          _identity(sp.Integer(shift) - 1, sphere=False))], n_values=N3)
+          _identity(sp.Rational(shift) - 1, sphere=False))], n_values=N3)

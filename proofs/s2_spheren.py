@@ -276,15 +276,31 @@ def _energy_symbolic(n):
     return sp.expand(dH), J
 
 
+def _momentum_is_gradient(n: int = 4):
+    r"""The printed $H$ is the energy whose $\Omega$-gradient (for $\langle\,,\rangle_\kappa$) is the
+    momentum $M = L_\gamma(\Omega)$ of eq:M-O: $\partial H/\partial\Omega_{ij} = M_{ij}$ ($i < j$) with
+    $M = L_\gamma(\Omega)$ substituted, symbolic in general $J$, $b$, $\gamma$ (as for any quadratic
+    kinetic energy). Conservation alone would not see a factor or another integral such as
+    $\lVert M\rVert^2$."""
+    J, Om, gamma = mass_tensor_symbols(n), skew_symbols("Omega", n), vector_symbols("gamma", n)
+    M = L_gamma(Om, gamma, J, b)
+    H = printed.energy_nd(M, Om)
+    return rational_identity([sp.diff(H, Om[i, j]) - M[i, j]
+                              for i in range(n) for j in range(i + 1, n)])
+
+
 @claim("S2.2:energy", uses=("eq:motion-general", "eq:M-O"))
 def energy() -> Verdict:
     checks = _both("dH/dt", _energy_symbolic, _energy_at, sphere=True, symbolic_n=(3,),
                    point_n=range(3, 13))
+    checks.append(("dH/dOmega = M = L_gamma(Omega) (H is the energy of eq:M-O), n = 4",
+                   _momentum_is_gradient()))
     return Verdict.all_of(
         checks, n_values=_ns((3,)),
         method="exact symbolic for n=3 (general J, in coordinates (Omega, gamma), modulo "
                "||gamma||^2=1); exact at 2 seeded rational points each for n=3..12 (Omega and "
-               "Omega' by exact linear solves of eq:M-O)")
+               "Omega' by exact linear solves of eq:M-O); the Omega-gradient of H is M, exact "
+               "symbolic n = 4")
 
 
 def _measure_at(n, p):
@@ -301,7 +317,7 @@ def invariant_measure() -> Verdict:
     # dM = det(L_gamma) dOmega (coordinates vec), so the exponent in front of dOmega is one more.
     exps = printed.measure_nd_exponents()
     checks.append(("exponent shift dOmega vs dM is 1", rational_identity(
-        sp.Integer(exps["dOmega dgamma"] - exps["dM dgamma"]) - 1)))
+        sp.Rational(exps["dOmega dgamma"] - exps["dM dgamma"]) - 1)))
     return Verdict.all_of(
         checks, n_values=tuple(range(3, 13)),
         method="ambient divergence of (det L)^(-1/2) X at seeded exact points (2 for n<=8, 1 above) of "

@@ -109,10 +109,13 @@ def vertical_horizontal_3d() -> Verdict:
                        n_values=(3,)).as_part("H = {<M,gamma> = 0} invariant"),
         Verdict.decide(name_printed, corrected=name_fixed, n_values=(3,), kind="formula",
                        printed_latex=r"\mathcal{H} = \{ (M,\gamma) \in P : f_2=\langle M, \gamma \rangle=0\},\quad f_2 = \|M\|^2",
-                       correction_latex=r"\mathcal{H} = \{ (M,\gamma) \in P : f_1=\langle M, \gamma \rangle=0\}",
-                       notes="Literally {f_2 = 0} = {M = 0} has dimension 2, not the stated 4: "
-                             + ("confirmed" if not literal.ok else "NOT confirmed")
-                             + " by the exact fibre computation.").as_part("name of the integral in H"),
+                       correction_latex=r"\mathcal{H} = \{ (M,\gamma) \in P : f_1=\langle M, \gamma \rangle=0\}")
+        .as_part("name of the integral in H"),
+        Verdict.decide(literal, corrected=dims_check, n_values=(3,),
+                       printed_latex=r"\dim\{f_2 = \|M\|^2 = 0\} = 4",
+                       correction_latex=r"\dim\{f_1 = \langle M,\gamma\rangle = 0\} = 4 \quad "
+                                        r"(\{f_2 = 0\} = \{M = 0\} \text{ has dimension } 2)")
+        .as_part("literal reading {f_2 = 0} has the stated dimension 4"),
         Verdict.all_of([("dim V = 3, dim H = 4, V∩H = {M = 0} (fibres over S^2)", dims_check)],
                        n_values=(3,)).as_part("dimensions and intersection"),
     ]

@@ -178,8 +178,11 @@ def point_checks(residual: Callable[[dict], object], ns: Iterable[int], *, count
 
 
 def combine(checks: Sequence[Check], *, method: str = "") -> Check:
-    """One :class:`Check` that holds iff all do; the first failure's counterexample is kept."""
+    """One :class:`Check` that holds iff all do; the first failure's counterexample is kept.
+    No checks: ``ValueError`` (an empty conjunction would hold vacuously and prove nothing)."""
     checks = list(checks)
+    if not checks:
+        raise ValueError("combine needs at least one check: an empty list proves nothing")
     seconds = sum(c.seconds for c in checks)
     how = method or "; ".join(dict.fromkeys(c.method for c in checks))
     for c in checks:

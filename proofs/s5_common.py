@@ -68,10 +68,14 @@ def invariants_at(pt: dict) -> dict:
             ri.delta: d(qq, kk.cross(uu)), a: pt["a"], b: pt["b"], x: pt["x"]}
 
 
-def reduced_check(residual: sp.Expr, label: str, *, point=phase_point, count: int = 6) -> Check:
+def reduced_check(residual: sp.Expr, label: str, *, point=phase_point, count: int = 40) -> Check:
     r"""``residual`` (a rational function of $a, b, x$ and the invariants) vanishes on the reduced
-    space. Proved when its $\delta$-linear normal form is zero (numerator reduced by $\delta^2 \to
-    \det\Lambda$); otherwise refuted at exact points of $P$ pushed to $\mathcal{R}$."""
+    space $\mathcal{R}$. Proved when its $\delta$-linear normal form is zero (numerator reduced by
+    $\delta^2 \to \det\Lambda$). The normal form is unique, so a *non-zero* normal form already
+    refutes the identity on $\mathcal{R}$; the check then looks for an exact witness: up to
+    ``count`` seeded points of $P$ pushed to $\mathcal{R}$ by the quotient map. If none of them
+    gives a non-zero value, ``ArithmeticError`` is raised (the row becomes an error): there is no
+    path from a non-zero normal form to ``holds``."""
     num, _den = sp.fraction(sp.together(residual))
     poly = ri.reduce_delta(ri.INV_RING(sp.expand(num)))
     if not poly:
@@ -80,8 +84,14 @@ def reduced_check(residual: sp.Expr, label: str, *, point=phase_point, count: in
 
     def value(pt):
         return sp.expand(residual.xreplace(invariants_at(pt)))
-    return zero_at_points(value, point, count=count, label=label,
-                          describe="P pushed to the reduced space")
+    found = zero_at_points(value, point, count=count, label=label,
+                           describe="P pushed to the reduced space")
+    if found.ok:
+        raise ArithmeticError(
+            f"{label}: the delta-linear normal form is non-zero (so the identity is false on R), "
+            f"but no exact counterexample was found at {count} seeded points of P; refusing to decide")
+    return Check(False, "exact: the numerator's delta-linear normal form is non-zero (unique normal "
+                        "form, so false on R); witness " + found.method, found.counterexample)
 
 
 def ring_on_P(p, label: str, *, sphere: bool = True) -> Check:

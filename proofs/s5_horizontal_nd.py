@@ -180,7 +180,7 @@ def _points(which: slice, label: str):
                           describe=f"H in so({n}) x S^{n - 1}") for n in POINT_N]
     return combine(pts, method=f"exact at 1 seeded rational point of H for each n in 3..12, Omega "
                                f"(and Omega_dot) by exact linear solves of eq:M-O (seed "
-                               f"{points.DEFAULT_SEED})")
+                               f"{points.ledger_seed()})")
 
 
 def _checks(which: slice, label: str):

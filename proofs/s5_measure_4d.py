@@ -27,7 +27,8 @@ import sympy as sp
 
 from proofs.ledger import Verdict, claim
 from proofs.s5_common import ring_on_P
-from symbolic import fourd
+from symbolic import fourd, points
+from symbolic.exact import Check, Counterexample
 from symbolic.printed import section5 as printed
 
 a, b, x = fourd.a, fourd.b, fourd.x
@@ -49,11 +50,28 @@ def divergence_residual(rho):
 def s5_measure4d() -> Verdict:
     shown = ring_on_P(divergence_residual(printed.measure_density(a, b, x)), "measure4D")
     Delta = printed.Delta(a, b, x)
-    controls = [not ring_on_P(divergence_residual(r), f"measure4D control {i}")
-                for i, r in enumerate((sp.Integer(1), Delta**-2))]
-    notes = ("dq dx = round measure of S^3 (chart (k,u,q), x>0: density 1/(Delta(x) x)); "
-             "controls rho = 1 and rho = Delta^-2 are not invariant: "
-             + ("confirmed" if all(controls) else "NOT confirmed"))
-    return Verdict.decide(shown, n_values=(4,), notes=notes, method=(
-        "exact: ambient divergence of rho X (field tangent to all spheres) vanishes modulo "
-        "|gamma|^2 = 1; sparse-polynomial normal form"))
+    # Controls: the same test must reject densities that are not invariant, or it proves nothing.
+    controls = []
+    for i, (name, r) in enumerate((("rho = 1", sp.Integer(1)), ("rho = Delta^-2", Delta**-2))):
+        chk = ring_on_P(divergence_residual(r), f"measure4D control {i}")
+        controls.append((f"control: {name} is not invariant",
+                         Check(not chk.ok, f"{name}: div(rho X) != 0 ({chk.method})")))
+    # A density, not a signed form: positive at seeded exact (x, a, b) in the domain.
+    values = []
+    for i in range(6):
+        rng = points.generator(points.ledger_seed(), "measure4D positive", i)
+        par = points.axisymmetric_parameters(rng)
+        values.append(printed.measure_density(par["a"], par["b"], points.rational(rng, -1, 1, 8)))
+    bad = [v for v in values if not v.is_positive]
+    positive = Check(not bad, "exact sign at 6 seeded (x, a, b) in [-1,1] x [-1,1] x (0,4]",
+                     Counterexample((("values", tuple(values)),), bad[0], "density <= 0")
+                     if bad else None)
+    return Verdict.of_parts([
+        Verdict.all_of([("1/Delta > 0", positive)], n_values=(4,)).as_part("a positive density"),
+        Verdict.decide(shown, n_values=(4,), method=(
+            "exact: ambient divergence of rho X (field tangent to all spheres) vanishes modulo "
+            "|gamma|^2 = 1; sparse-polynomial normal form")).as_part("1/Delta(x) invariant"),
+        Verdict.all_of(controls, n_values=(4,)).as_part("controls (the test rejects rho = 1, "
+                                                          "Delta^-2)"),
+    ], n_values=(4,), notes="dq dx = round measure of S^3 (chart (k,u,q), x>0: density "
+                            "1/(Delta(x) x))")

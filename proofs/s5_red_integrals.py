@@ -78,15 +78,15 @@ def red_integrals() -> Verdict:
         "delta-linear normal forms; exact Jacobian rank"))
 
 
-def chart_residual(f):
-    r"""$\sum_y \tfrac{d}{dy}\big(f(x)\,\delta^{-1}X_y\big)$ over the chart $y = (A,B,E,G,F_1,x)$ of a
-    sheet of $\mathcal{R}$, with $\partial_y\delta = \partial_y\det\Lambda/(2\delta)$."""
+def chart_residual(rho):
+    r"""$\sum_y \tfrac{d}{dy}\big(\rho\,X_y\big)$ over the chart $y = (A,B,E,G,F_1,x)$ of a sheet of
+    $\mathcal{R}$, for a density $\rho(x, \delta)$, with $\partial_y\delta = \partial_y\det\Lambda/(2\delta)$."""
     X = reduced.field()
     total = sp.Integer(0)
     for n, y in zip(reduced.COORDS, COORDS, strict=False):
         if n == "delta":
             continue
-        F = f * X[n] / delta
+        F = rho * X[n]
         total += sp.diff(F, y) + sp.diff(F, delta) * sp.diff(DET, y) / (2 * delta)
     return total
 
@@ -98,8 +98,9 @@ def red_measure() -> Verdict:
     ambient = exact(measure_residual([X[n] for n in reduced.COORDS], COORDS, [(rho7, 1)]),
                     "red-measure R7")
     Dl = printed.Delta(a, b, x)
-    naive = reduced_check(chart_residual(rho7 / 2), "red-measure naive residue")
-    fixed = reduced_check(chart_residual(1 / (2 * Dl)), "red-measure Leray residue")
+    naive = reduced_check(chart_residual(printed.red_measure_on_R(a, b, x, delta)),
+                          "red-measure naive residue")
+    fixed = reduced_check(chart_residual(1 / (2 * Dl * delta)), "red-measure Leray residue")
     c = -2 * a * b * x * G / ((2 + a + b) * Dl)          # = X(Delta)/Delta
     xphi = exact(_lie(delta**2 - DET, X) - c * (delta**2 - DET), "red-measure XPhi")
     xdelta = exact(_lie(Dl, X) - c * Dl, "red-measure XDelta")

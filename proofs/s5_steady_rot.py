@@ -26,8 +26,10 @@ import sympy as sp
 
 from proofs.ledger import Verdict, claim
 from proofs.s5_common import exact, on_P, ring_on_P
-from symbolic import fourd
+from proofs.trig_common import T, trig_identity
+from symbolic import fourd, points
 from symbolic.algebra import commutator
+from symbolic.axisymmetric import L_gamma_axisym
 from symbolic.printed import section5 as printed
 
 a, b, x, k, u, q, eta, xi = (fourd.a, fourd.b, fourd.x, fourd.k, fourd.u, fourd.q, fourd.eta,
@@ -78,6 +80,26 @@ def _exponential_solves():
                  "steady exp")
 
 
+def _printed_solution():
+    r"""The printed curve (line 961) evaluated exactly: for two $\Omega_0$ with $\eta_0\times\xi_0 = 0$
+    and integer rotation rates ($\eta_0 = E_1$, $\xi_0 \in \{2\eta_0, 0\}$), a seeded
+    rational $\gamma_0 \in S^3$, symbolic $a, b$, $M_0 = L_{\gamma_0}(\Omega_0)$: $\dot M = [M, \Omega_0]$,
+    $\dot\gamma = -\Omega_0\gamma$, the initial values, and $L_{\gamma(t)}(\Omega_0) = M(t)$ (so the
+    angular velocity of the curve is $\Omega_0$ for all $t$) — identities in $(\cos t, \sin t)$."""
+    eta0 = sp.Matrix([1, 0, 0])
+    checks = []
+    for i, xi0 in enumerate((2 * eta0, sp.zeros(3, 1))):
+        g0 = points.sphere_point(points.generator(points.ledger_seed(), "steady printed", i), 4)
+        Om0 = sp.Matrix(fourd.block(tuple(eta0), tuple(xi0)))
+        M0 = L_gamma_axisym(Om0, g0, a, b)
+        Mt, gt = printed.steady_rotation(Om0, M0, g0, T)
+        residual = [*(Mt.diff(T) - commutator(Mt, Om0)), *(gt.diff(T) + Om0 * gt),
+                    *(Mt.subs(T, 0) - M0), *(gt.subs(T, 0) - g0),
+                    *(L_gamma_axisym(Om0, gt, a, b) - Mt)]
+        checks.append(trig_identity(residual, label=f"steady printed {i}"))
+    return next((c for c in checks if not c), checks[0])
+
+
 def _collinear_parallel():
     al, be = sp.symbols("alpha beta", real=True)
     xi_c, eta_c = fourd.xi_eta()
@@ -114,9 +136,12 @@ def steady_rot() -> Verdict:
     return Verdict.all_of([
         ("eta x xi = 0 => Omega_dot = 0 (derived velocity form)", _omega_dot_vanishes()),
         ("the exponentials solve eq:motion-general with Omega = Omega0", _exponential_solves()),
+        ("the printed curve (line 961) at two Omega0: solves it, Omega(t) = Omega0",
+         _printed_solution()),
         ("k, u, q collinear => xi, eta parallel to q", _collinear_parallel()),
         ("a steady rotation outside H and V (witness)", _witness()),
     ], n_values=(4,), method=(
         "exact: derived Omega_dot vanishes for xi = c eta (c = -2, 1/3, 5/2) and eta = 0 modulo "
-        "|gamma|^2 = 1; exponential solution with a generic R, R' = -Omega0 R; collinear case "
+        "|gamma|^2 = 1; exponential solution with a generic R, R' = -Omega0 R; the printed "
+        "exp(-Omega0 t) curve exactly at two Omega0 (identities in cos t, sin t); collinear case "
         "symbolic in (alpha, beta, q, x); an explicit rational witness"))

@@ -32,11 +32,25 @@ Uses: eq:def-H-V, P:inversion, eq:action, eq:V-velocity, eq:aux-inversion.
 
 from __future__ import annotations
 
+import sympy as sp
+
 from proofs.ledger import Verdict, claim
-from proofs.s4_common import REDUCTION, a, b, combine, generic_vertical, point_checks, sym_checks
+from proofs.s4_common import (
+    REDUCTION,
+    a,
+    b,
+    combine,
+    generic_vertical,
+    point_checks,
+    random_vertical_point,
+    sym_checks,
+)
+from proofs.trig_common import T, trig_identity
+from symbolic import points
 from symbolic.algebra import commutator, wedge
 from symbolic.axisym_inverse import inverse_closed_form
 from symbolic.axisymmetric import E_n, L_gamma_axisym
+from symbolic.exact import Check, Counterexample
 from symbolic.printed import section4 as printed
 from symbolic.vertical import zeta
 
@@ -98,9 +112,10 @@ def th_re() -> Verdict:
     comm = _both(comm_sym, comm_pt, "ThRe-comm")
     gam = _both(gam_sym, gam_pt, "ThRe-gam")
     xdot = sym_checks(xdot_sym, NS, label="ThRe-x")
-    curve = combine([comm, gam], method="velocity of the curve at t = 0 equals the field "
-                    "(both identities above) + SO(n-1)-equivariance (eq:action), exp(zeta t) in "
-                    "SO(n-1) since zeta E_n = 0")
+    printed_curve = _printed_curves()
+    curve = combine([comm, gam, printed_curve], method="velocity of the curve at t = 0 equals the "
+                    "field (both identities above) + SO(n-1)-equivariance (eq:action), exp(zeta t) "
+                    "in SO(n-1) since zeta E_n = 0; " + printed_curve.method)
     parts = [
         Verdict.decide(zeta_same, method=zeta_same.method + LINEAR).as_part("zeta (printed = derived)"),
         Verdict.decide(zeta_E, method=zeta_E.method + LINEAR).as_part("zeta E_n = 0"),
@@ -127,16 +142,61 @@ def _corollary(M0, g, av, bv):
             + bv * wedge(Om * g, zg) - commutator(z, M0))
 
 
+def _rate_points():
+    r"""Exact points of $\mathcal{V}$ whose $\zeta$ rotates one plane at a rational rate $\omega$:
+    two seeded points for $n = 3$ ($\zeta \in \mathfrak{so}(2)$), and for $n = 4$ the frame
+    $\gamma_0 = (0, 0, s, x)$ with $M_0 = E_1\wedge f$, $f = (0, 0, x, -s)$ ($\zeta = \mu_2 E_1\wedge E_3$).
+    Yields (n, a, b, M_0, gamma_0, zeta, omega)."""
+    found = 0
+    for i in range(20):   # the first two seeded points with zeta != 0 (a = 0 gives zeta = 0)
+        p = random_vertical_point(points.generator(points.ledger_seed(), "ThRe curve", i), 3)
+        z = zeta(p["M"], p["gamma"], p["a"], p["b"])
+        if z[1, 0] != 0 and found < 2:
+            found += 1
+            yield 3, p["a"], p["b"], p["M"], p["gamma"], z, z[1, 0]
+    rng = points.generator(points.ledger_seed(), "ThRe curve", "n4")
+    par = {"a": points.rational(rng, -1, 1, 8, nonzero=True),
+           "b": points.rational(rng, 0, 4, 8, open_lo=True)}
+    sx = points.sphere_point(rng, 2)
+    g = sp.Matrix([0, 0, sx[0], sx[1]])
+    M0 = wedge(sp.eye(4)[:, 0], sp.Matrix([0, 0, sx[1], -sx[0]]))
+    z = zeta(M0, g, par["a"], par["b"])
+    yield 4, par["a"], par["b"], M0, g, z, z[2, 0]
+
+
+def _printed_curves() -> Check:
+    r"""The printed curve (line 587) and the corollary's $\Omega(t)$ (line 628) evaluated exactly with
+    $t = \tau/\omega$ (so every entry is a polynomial in $\cos\tau, \sin\tau$): they solve
+    eq:motion-general, $\Omega(t)$ is the angular velocity of the curve ($L_{\gamma(t)}\Omega(t) =
+    M(t)$), and all three start at $(M_0, \gamma_0, \Omega_0)$."""
+    checks = []
+    for n, av, bv, M0, g0, z, omega in _rate_points():
+        if omega == 0 or z * E_n(n) != sp.zeros(n, 1):
+            return Check(False, "rate points", Counterexample((("n", n),), omega, "rate"))
+        Om0 = inverse_closed_form(M0, g0, av, bv)
+        Mt, gt = printed.curve_Th_Re(z, M0, g0, T / omega)
+        Omt = printed.Omega_corollary(z, Om0, T / omega)
+        residual = [*(omega * Mt.diff(T) - commutator(Mt, Omt)), *(omega * gt.diff(T) + Omt * gt),
+                    *(L_gamma_axisym(Omt, gt, av, bv) - Mt), *(Mt.subs(T, 0) - M0),
+                    *(gt.subs(T, 0) - g0), *(Omt.subs(T, 0) - Om0)]
+        checks.append(trig_identity(residual, label=f"ThRe curve n{n}"))
+    return combine(checks, method="exact identities in (cos tau, sin tau), t = tau/omega, at 2 "
+                                  "seeded points of V (n = 3) and a frame point (n = 4): the printed "
+                                  "curve and Omega(t) solve eq:motion-general with L_gamma(t) "
+                                  "Omega(t) = M(t)")
+
+
 @claim("Th:Re-corollary", uses=("Th:Re", "eq:action"))
 def th_re_corollary() -> Verdict:
     sym = sym_checks(lambda n: _corollary(*generic_vertical(n, frame=True), a, b), (3, 4),
                      label="cor", frame_n3=True)
     inf = combine([sym, point_checks(lambda p: _corollary(p["M"], p["gamma"], p["a"], p["b"]),
-                                     range(5, 13), vertical=True, label="cor")])
+                                     range(5, 13), vertical=True, label="cor"), _printed_curves()])
     return Verdict.decide(inf, n_values=(3, 4, 12), method=inf.method + " (infinitesimal form: "
                           "d/dt Omega(M(t), gamma(t)) = [zeta, Omega] at t = 0)" + LINEAR + "; for all t "
                           "it is the equivariance Omega -> h Omega h^{-1} (eq:action) with "
-                          "h = exp(zeta t) in SO(n-1)")
+                          "h = exp(zeta t) in SO(n-1); the printed curve and Omega(t) exactly for all "
+                          "t at n = 3, 4 points (cos/sin identities)")
 
 
 @claim("eq:xiVnD", uses=("Th:Re", "eq:M-O-axi-symm", "eq:V-velocity"))
@@ -151,7 +211,7 @@ def eq_xivnd() -> Verdict:
 
     def inline_sym(n):
         M0, g, Om, _ = _sym(n)
-        return Om * ((2 + b) * g + a * g[n - 1] * E_n(n))
+        return printed.V_velocity(Om, g, a, b)[0]   # = Omega_0((2+b) gamma_0 + a x_0 E_n)
 
     same = _both(sym, pt, "xiVnD")
     inline = sym_checks(inline_sym, NS, label="xiVnD-inline")

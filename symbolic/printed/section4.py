@@ -18,9 +18,9 @@ from symbolic.algebra import basis_vector, commutator, hat, wedge
 
 __all__ = [
     "SOURCE", "J_axisymm", "inertia_3d", "inertia_axisymm", "L_axisymm", "velocity_form_rhs",
-    "velocity_form_lhs", "Delta", "images_of_basis", "C_block", "det_L", "measure_density_M",
+    "velocity_form_lhs", "Delta", "images_of_basis", "C_block", "block_diagonal", "det_L", "measure_density_M",
     "measure_density_Omega", "Omega_inverse", "K", "aux_inversion", "system_U_Z", "U_solution",
-    "Y_solution", "action", "V_velocity", "Itilde_3d", "euler_3d_rhs", "zeta_3d_matrix",
+    "Y_solution", "action", "tori_generic_dimension", "curve_Th_Re", "Omega_corollary", "V_velocity", "Itilde_3d", "euler_3d_rhs", "zeta_3d_matrix",
     "zeta_3d_wedge", "zeta_Th_Re", "Omega0_Th_Re", "zeta_xiVnD", "mu_n3", "mu_n3_equation",
     "Itilde", "Itilde_gamma", "Itilde_gamma_En", "chi", "Omega0_Manakov",
     "vertical_torus_dimension",
@@ -29,10 +29,10 @@ __all__ = [
 #: claim id -> LaTeX source lines transcribed in this module.
 SOURCE = {
     "eq:axisymm": (366, 368), "eq:M-O-axi-symm": (372, 376, 380), "eq:Delta": (389,),
-    "P:Measure": (398, 410, 411, 412, 422, 428, 430), "P:inversion": (441, 446, 447, 448),
+    "P:Measure": (398, 410, 411, 412, 421, 422, 423, 424, 428, 430), "P:inversion": (441, 446, 447, 448),
     "eq:aux-inversion": (460, 466, 467, 472, 479), "eq:action": (495,),
     "eq:V-velocity": (514, 515), "eq:xiV3D": (522, 525, 526, 527, 539, 540, 541, 542, 543, 558),
-    "Th:Re": (591, 592, 610, 614), "eq:xiVnD": (642, 643, 644), "P:n3special": (666, 671, 674),
+    "Th:Re": (587, 591, 592, 610, 614), "Th:Re-corollary": (628,), "Th:Re-tori": (544, 545, 546, 904, 905, 906), "eq:xiVnD": (642, 643, 644), "P:n3special": (666, 671, 674),
     "eq:itildendim": (708, 712), "eq:solManakov": (728, 736),
     "Th:Re-tori:frequencies": (579, 580),
 }
@@ -110,6 +110,16 @@ def images_of_basis(gamma, w_i, w_j, a, b):
 def C_block(x, a, b):
     """P:Measure (line 428): $C = \\begin{pmatrix} 2+a & ax \\\\ bx & 2+b\\end{pmatrix}$."""
     return sp.Matrix([[2 + a, a * x], [b * x, 2 + b]])
+
+
+# -- P:Measure, lines 421-424: the block-diagonal form of L_gamma
+def block_diagonal(n, x, a, b):
+    """P:Measure (lines 421-424): ``\\begin{pmatrix} C_1 & 0 & 0 & \\cdots & 0 \\\\ [...] & C_{n-2} &0 & 0
+    \\\\ 0 & \\cdots & 0 & 2+a+b & 0 \\\\ 0 & \\cdots & 0 & 0 & 2 \\mbox{Id}_{(n-2)(n-3)/2}\\end{pmatrix}``
+    with all $C_j = C$ (line 428)."""
+    blocks = [C_block(x, a, b)] * (n - 2) + [sp.Matrix([[2 + a + b]])]
+    blocks += [sp.Matrix([[2]])] * ((n - 2) * (n - 3) // 2)
+    return sp.diag(*blocks)
 
 
 # -- P:Measure, line 430: det L_gamma = (2+a+b) 2^{(n-2)(n-3)/2} Delta(x)^{n-2}
@@ -238,6 +248,28 @@ def zeta_Th_Re(M0, gamma0, a, b):
     D = Delta(x0, a, b)
     return (-a * (2 + b * (1 - x0**2)) / (2 * D) * M0
             + (a * (2 + b) * wedge(M0 * E, E) - a * b * x0 * wedge(M0 * E, gamma0)) / (2 * D))
+
+
+# -- Th:Re-tori, lines 544-546 (prose) and lines 904-906 (n = 4)
+def tori_generic_dimension(n):
+    """Th:Re-tori (lines 544-546), prose — the claim as a number. The sentence: ``Since $\\SO(n-1)$ is
+    compact, the corresponding solutions on $P$ are quasi-periodic on tori whose generic dimension
+    is $\\mbox{rank}(\\SO(n-1))=[\\frac{n-1}{2}]$``; for $n = 4$ (lines 904-906): ``Considering that
+    $\\SO(3)$ has rank 1, we conclude that $\\mathcal{V}$ is foliated by periodic orbits``. Returned:
+    the claimed generic torus dimension $[\\frac{n-1}{2}]$ (for every $-1 \\le a \\le 1$, $b > 0$)."""
+    return (n - 1) // 2
+
+
+# -- Th:Re, line 587: M(t) = \exp(\zeta t) M_0 \exp(-\zeta t), \gamma(t)= \exp(\zeta t) \gamma_0
+def curve_Th_Re(zeta, M0, gamma0, t):
+    """Th:Re (line 587): $M(t) = \\exp(\\zeta t) M_0 \\exp(-\\zeta t)$, $\\gamma(t) = \\exp(\\zeta t)\\gamma_0$."""
+    return (zeta * t).exp() * M0 * (-zeta * t).exp(), (zeta * t).exp() * gamma0
+
+
+# -- Th:Re-corollary, line 628: \Omega(t) = \exp(\zeta t) \Omega_0 \exp(-\zeta t)
+def Omega_corollary(zeta, Omega0, t):
+    """Th:Re-corollary (line 628): $\\Omega(t) = \\exp(\\zeta t)\\Omega_0\\exp(-\\zeta t)$."""
+    return (zeta * t).exp() * Omega0 * (-zeta * t).exp()
 
 
 # -- Th:Re, line 610

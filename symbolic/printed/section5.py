@@ -16,8 +16,9 @@ import sympy as sp
 
 __all__ = [
     "SOURCE", "Delta", "motion_n4", "F1", "F2", "F3", "charpoly", "H", "H_set", "V_set",
-    "k_of", "u_of", "xi_of", "eta_of", "measure_density", "action", "Lambda", "princ_minors",
-    "red_system", "red_F2", "red_F3", "red_H", "red_measure_density", "H_SO3", "V_SO3", "A_on_J",
+    "k_of", "u_of", "xi_of", "eta_of", "measure_density", "action", "velocity_action",
+    "isotropy_dimension", "Lambda", "princ_minors",
+    "red_system", "red_F2", "red_F3", "red_H", "red_measure_density", "red_measure_on_R", "H_SO3", "V_SO3", "A_on_J",
     "H_linear_system", "H_linear_solution", "omega_squared", "motion_velocity", "steady_rotation",
     "euler_jacobi_torus_dimension", "reconstruction_statement", "so3_rank",
 ]
@@ -26,9 +27,9 @@ __all__ = [
 SOURCE = {
     "eq:motion-n4": (764, 765), "S5:F123": (771, 772, 776), "S5:H4D": (780,),
     "S5:HV4D": (787, 788, 789), "S5:ku": (798,), "eq:inverse-Leg": (804, 805),
-    "S5:measure4D": (811,), "S5:SO3-action": (819, 825), "eq:PrincMinors": (837, 842),
+    "S5:measure4D": (811,), "S5:SO3-action": (819, 821, 825, 971), "eq:PrincMinors": (837, 842),
     "eq:red-system": (857, 858, 859, 860, 862, 863, 864, 865), "S5:red-integrals": (872, 873, 874),
-    "S5:red-measure": (880,), "S5:H-SO3": (894,), "S5:V-SO3": (898,), "eq:A-on-J": (916,),
+    "S5:red-measure": (878, 880, 882), "S5:H-SO3": (894,), "S5:V-SO3": (898,), "eq:A-on-J": (916,),
     "S5:H-linear": (922, 926, 930), "eq:Motion-Velocity": (947, 948, 949),
     "P:steady-rot": (958, 961), "S5:EJ-tori": (884, 885), "S5:reconstruction": (885, 904),
 }
@@ -140,6 +141,25 @@ def action(h, k, u, q, x):
     return h * k, h * u, h * q, x
 
 
+# -- S5:SO3-action, lines 821-822: (\xi, \eta) transform to (h\xi, h\eta)
+def velocity_action(h, xi, eta):
+    """S5:SO3-action (lines 821-822): ``It is seen from \\eqref{eq:inverse-Leg} that $(\\xi, \\eta)$
+    transform to $(h\\xi, h\\eta)$``."""
+    return h * xi, h * eta
+
+
+# -- S5:SO3-action, line 825 (prose, our reading): isotropy of the action
+def isotropy_dimension(k, u, q, x):
+    """S5:SO3-action (lines 825-826), prose — *our reading*, not a displayed formula. The sentence:
+    ``The action is not free since points in $P$ where $k$, $u$ and $q$ are parallel have a
+    one-dimensional isotropy subgroup isomorphic to $\\SO(2)$``, with line 971: ``points in $P$ with
+    non-trivial $\\SO(3)$ isotropy are those for which $k, u$ and $q$ are collinear``. Read as: the
+    dimension of the isotropy group of $(k, u, (q, x))$ is 1 when $k, u, q$ are parallel (all on one
+    line, zero vectors included) and 0 otherwise."""
+    parallel = sp.Matrix.hstack(k, u, q).rank() <= 1
+    return 1 if parallel else 0
+
+
 # -- eq:PrincMinors, lines 837, 842
 def Lambda(A, B, E, G, F1, x):
     """eq:PrincMinors (line 837): $\\Lambda = \\begin{pmatrix} A & F_1 & E \\\\ F_1 & B & G \\\\ E & G & 1-x^2
@@ -198,6 +218,18 @@ def red_H(A, B, E, G, x, delta, a, b):
 def red_measure_density(a, b, x):
     """S5:red-measure (line 880): density $\\Delta(x)^{-2}$ of $\\mu_r$ on $\\mathbb{R}^7$."""
     return 1 / Delta(a, b, x)**2
+
+
+# -- S5:red-measure, lines 878-882 (prose, our reading of "restriction")
+def red_measure_on_R(a, b, x, delta):
+    """S5:red-measure (lines 878-882), prose — *our reading*, not a displayed formula. The sentence:
+    ``The invariant measure also passes to the quotient. It is the restriction of the volume form
+    $\\mu_r$ [...] on the ambient space $\\R^7$ to $\\mathcal{R}$.`` A 7-form has no restriction to
+    the 6-dimensional $\\mathcal{R} = \\{\\delta^2 = \\det\\Lambda\\}$; we read "restriction" as the
+    induced (Leray residue) measure along the relation the paper writes, $\\Phi = \\delta^2 - \\det
+    \\Lambda$: density $\\Delta(x)^{-2}/|\\partial_\\delta\\Phi| = \\Delta(x)^{-2}/(2\\delta)$ with respect to
+    $dA\\,dB\\,dE\\,dG\\,dF_1\\,dx$ on the sheet $\\delta > 0$ (built from :func:`red_measure_density`)."""
+    return red_measure_density(a, b, x) / (2 * delta)
 
 
 # -- S5:H-SO3, line 894 / S5:V-SO3, line 898 (equations as expressions that must vanish)
