@@ -14,9 +14,9 @@ Compiled integrators are cached on disk (:mod:`simulate.integrators.heyoka_cache
 reports the compile or load time in ``compile_seconds`` apart from the run time ``seconds``.
 
 Compact mode (heyoka's loop-based code generation) compiles several times faster and runs slower;
-``compact=None`` chooses it for multiprecision (where compiling the unrolled code is slow and the
-arithmetic dominates) and for systems with more than 40 variables, and not otherwise (measured:
-``bench/bench_heyoka.py``).
+``compact=None`` chooses it for ``real128`` and ``real`` (where compiling the unrolled code is slow
+and the arithmetic dominates) and for systems with more than 20 variables (e.g. with the
+reconstruction), and not otherwise (measured: ``bench/bench_heyoka.py``).
 """
 
 from __future__ import annotations
@@ -98,7 +98,7 @@ def compiled_integrator(system, precision="double", tol=None, compact=None, batc
     kind, bits = _kind(precision)
     tol = default_tol(precision) if tol is None else float(tol)
     if compact is None:
-        compact = kind == "real" or system.dim > 40
+        compact = kind != "double" or system.dim > 20
     if batch > 1 and kind != "double":
         raise ValueError("batch mode needs double precision")
     ops = heyoka_systems.Arithmetic(hy, kind, bits)
