@@ -17,9 +17,9 @@ import numpy as np
 
 from simulate import so
 from simulate.closed_forms import horizontal, relative_equilibrium
+from simulate.dispatch import active
 from simulate.field import FullField, ReducedField
 from simulate.integrators import dop853, heyoka_taylor, lie, taylor
-from simulate.dispatch import active
 from simulate.planner import Plan, heyoka_tolerance
 from simulate.scene import Scene
 

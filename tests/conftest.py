@@ -1,8 +1,27 @@
 """Shared pytest setup: mpmath precision is reset before every test (mpmath's own habit), so a
-test may raise ``mp.dps`` freely without leaking it into the next one."""
+test may raise ``mp.dps`` freely without leaking it into the next one; compiled heyoka integrators
+go to one temporary cache folder per test session (each system compiles once per run, and the
+tests never write into the user's cache)."""
+
+import os
 
 import mpmath
 import pytest
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _session_heyoka_cache(tmp_path_factory):
+    from simulate.integrators import heyoka_cache
+
+    old = os.environ.get(heyoka_cache.ENV)
+    os.environ[heyoka_cache.ENV] = str(tmp_path_factory.mktemp("heyoka-cache"))
+    heyoka_cache.forget_memory()
+    yield
+    heyoka_cache.forget_memory()
+    if old is None:
+        os.environ.pop(heyoka_cache.ENV, None)
+    else:
+        os.environ[heyoka_cache.ENV] = old
 
 
 @pytest.fixture(autouse=True)

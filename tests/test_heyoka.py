@@ -2,14 +2,13 @@
 agree to 28 digits; heyoka double agrees with DOP853; batch equals single runs; a corrupt or stale
 cache entry is rebuilt, never trusted.
 
-JIT work is kept small: compact mode, short horizons, and one cache folder per test session (so
-each system is compiled once per session, in a temporary folder, never in the user's cache).
+JIT work is kept small: compact mode, short horizons, and one cache folder per test session
+(tests/conftest.py: each system compiles once per run, never into the user's cache).
 """
 
 from __future__ import annotations
 
 import math
-import os
 import pickle
 
 import mpmath
@@ -34,20 +33,6 @@ class FloatOps:
 
     rational = staticmethod(lambda p, q: p / q)
     sqrt = staticmethod(math.sqrt)
-
-
-@pytest.fixture(scope="module", autouse=True)
-def session_cache(tmp_path_factory):
-    """A cache folder of this test module (compiled once per run; never the user's cache)."""
-    old = os.environ.get(heyoka_cache.ENV)
-    os.environ[heyoka_cache.ENV] = str(tmp_path_factory.mktemp("heyoka-cache"))
-    heyoka_cache.forget_memory()
-    yield
-    heyoka_cache.forget_memory()
-    if old is None:
-        del os.environ[heyoka_cache.ENV]
-    else:
-        os.environ[heyoka_cache.ENV] = old
 
 
 @pytest.mark.parametrize("n", [3, 4, 5, 7])
