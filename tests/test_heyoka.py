@@ -20,9 +20,9 @@ from generated import reduced as gred
 from generated import sphere3d as g3
 from runtime import axisym
 from runtime import expressions as rx
+from runtime import jit_cache as heyoka_cache
 from simulate import families, so
 from simulate.field import FullField, ReducedField
-from runtime import jit_cache as heyoka_cache
 from simulate.integrators import dop853, heyoka_systems, heyoka_taylor, taylor
 
 heyoka_only = pytest.mark.skipif(not heyoka_taylor.available(),
