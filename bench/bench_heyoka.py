@@ -244,7 +244,8 @@ def throughput_rows(points=(10**3, 10**4, 10**5, 10**6), n: int = 4) -> list[dic
     M, g = families.draw("generic", n, 0.5, 1.0, 1, 1000)
     base = np.concatenate([M[:, *np.triu_indices(n, 1)], g], -1)
     with tempfile.TemporaryDirectory() as tmp, _cache(tmp):
-        _, compile_seconds, _ = compiled.angular_velocity_function(n)
+        with no_heyoka_diskcache():
+            _, compile_seconds, _ = compiled.angular_velocity_function(n)
         for N in points:
             cols = np.ascontiguousarray(np.resize(base, (N, d + n)).T)
             out, pars = np.empty((d, N)), np.empty((2, N))
