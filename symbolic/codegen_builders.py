@@ -42,23 +42,22 @@ BUILDERS: tuple[tuple[str, tuple[str, ...]], ...] = (
 STEM = "expression_builders"
 
 #: Builders whose outputs are emitted with each numerator collected over the monomials of the state
-#: (the first argument), coefficients factored in the parameters: fewer nonlinear terms for a
+#: (the first argument), coefficients polynomials in the parameters: fewer nonlinear terms for a
 #: Taylor integrator, where a product of two series costs O(order) per order and a product with a
 #: parameter O(1). Measured on the reduced field (tol 1e-13, T = 50): heyoka decomposition 217 -> 121
 #: terms, run 0.26 -> 0.17 ms. An identity of rational functions (numerator expanded and regrouped).
-COLLECT = frozenset({"reduced_field", "vector_field_3d"})
+COLLECT = frozenset({"reduced_field"})
 
 
 def collected(expr: sp.Expr, symbols) -> sp.Expr:
-    """``expr`` = N/D with N regrouped as a sum over monomials of ``symbols`` with factored
-    coefficients, D factored (the same rational function)."""
+    """``expr`` = N/D with N regrouped as a sum over monomials of ``symbols`` (coefficients
+    polynomials in the other symbols), D as ``sympy.together`` gives it (the same rational function)."""
     num, den = sp.fraction(sp.together(expr))
     if num == 0:
         return sp.Integer(0)
     poly = sp.Poly(sp.expand(num), *symbols)
-    regrouped = sp.Add(*[sp.factor(c) * sp.Mul(*[s**e for s, e in zip(symbols, m)])
-                         for m, c in poly.terms()])
-    return regrouped / sp.factor(den)
+    regrouped = sp.Add(*[c * sp.Mul(*[s**e for s, e in zip(symbols, m)]) for m, c in poly.terms()])
+    return regrouped / den  # no sp.factor: on the 3D determinant it runs for minutes
 
 
 class BuilderPrinter(StrPrinter):
