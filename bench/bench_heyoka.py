@@ -274,8 +274,9 @@ def targets(wp: list[dict], tp: list[dict]) -> list[str]:
     lines = []
     ok = [r for r in pick("generic4d", "heyoka", "(warm)") if r["error"] <= 1e-12]
     fastest = min(ok, key=lambda r: r["seconds"]) if ok else None
-    dop = pick("generic4d", "dop853", "1e-13")[0]
-    if fastest:
+    dops = pick("generic4d", "dop853", "1e-13")
+    dop = dops[0] if dops else None
+    if fastest and dop:
         ratio = dop["seconds"] / fastest["seconds"]
         lines.append(f"generic4d T=100, error <= 1e-12: heyoka {fastest['setting']} "
                      f"{fastest['seconds'] * 1e3:.2f} ms (error {fastest['error']:.1e}) vs DOP853 "
