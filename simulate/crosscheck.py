@@ -5,7 +5,7 @@ The independent run:
 * for a closed form or the reduced 7D model: the full system eq:motion-general with DOP853;
 * for the full system integrated by DOP853: the same equations with a *different* integrator,
   SciPy's RK45 (Dormand–Prince 5(4), Hairer–Nørsett–Wanner §II.5);
-* for the full system integrated by the Lie-group or the Taylor method: DOP853.
+* for the full system integrated by heyoka, the Lie-group or the Taylor method: DOP853.
 
 Each runs at a tighter tolerance than the scene asks: ``rtol = atol = min(target/1000, 1e-10)``
 clamped at SciPy's floor $100\varepsilon$. Per output the difference is $\max|a - b|$ over all

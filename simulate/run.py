@@ -4,7 +4,8 @@ The result is a :class:`Trajectory`: sample times and, as the model provides the
 $M, \Omega$ ``(S, count, n, n)``, $\gamma$ ``(S, count, n)``, $g$, $c$ (reconstruction),
 the reduced invariants $r = (A, B, E, G, F_1, x, \delta)$ ``(S, count, 7)``, the horizontal
 invariants $(x, G, A, B)$ ``(S, count, 4)`` and $\zeta$ ``(count, n, n)``;
-plus the cost (steps, right-hand-side calls, seconds).
+plus the cost (steps, right-hand-side calls, seconds of the run, and apart from them the seconds
+of a JIT compile or a compiled-cache load).
 """
 
 from __future__ import annotations
@@ -21,8 +22,8 @@ from simulate.budget import Projection
 from simulate.closed_forms import horizontal, horizontal_nd, relative_equilibrium
 from simulate.dispatch import active
 from simulate.field import FullField, ReducedField
-from simulate.integrators import dop853, lie, taylor
-from simulate.planner import Plan
+from simulate.integrators import dop853, heyoka_taylor, lie, taylor
+from simulate.planner import Plan, heyoka_tolerance
 from simulate.scene import Scene
 from simulate.stops import NonFinite, check_finite, fmt
 
@@ -40,6 +41,7 @@ class Trajectory:
     steps: int = 0
     calls: int = 0
     seconds: float = 0.0
+    compile_seconds: float = 0.0  # JIT compile (cold) or cache load (warm), not in ``seconds``
 
 
 class Progress:
@@ -103,6 +105,7 @@ def _execute(scene, plan, progress, force):
     traj = Trajectory(t=t, model=plan.model, method=plan.method)
     g0 = np.array([so.rotation_to(g) for g in scene.gamma0])
     start = time.perf_counter()
+    sol = None
     if plan.model in ("constant-Omega", "vertical"):
         if plan.model == "vertical":
             X = active().require("zeta")(scene.M0, scene.gamma0, scene.a, scene.b)
@@ -129,6 +132,7 @@ def _execute(scene, plan, progress, force):
         sol = _integrate(f, r0, t, plan, scene, progress, force)
         traj.data["reduced"] = sol.y
         traj.steps, traj.calls = sol.steps, sol.calls
+        traj.method, traj.compile_seconds = sol.method, sol.compile_seconds
     else:
         f = FullField(scene.n, scene.a, scene.b, plan.reconstruct, scene.radius)
         y0 = f.pack(scene.M0, scene.gamma0, g0, np.zeros_like(scene.gamma0)) \
@@ -139,11 +143,12 @@ def _execute(scene, plan, progress, force):
         if plan.reconstruct:
             traj.data["g"], traj.data["c"] = parts[2], parts[3]
         traj.steps, traj.calls = sol.steps, sol.calls
-        traj.method = sol.method
+        traj.method, traj.compile_seconds = sol.method, sol.compile_seconds
     for key, v in traj.data.items():
         if key != "zeta":
             check_finite(key, v, t)
-    traj.seconds = time.perf_counter() - start
+    # integrators: their own run time (no imports, no JIT compile or load); closed forms: wall time
+    traj.seconds = sol.seconds if sol is not None else time.perf_counter() - start
     return traj
 
 
@@ -171,6 +176,10 @@ def _integrate(f, y0, t, plan, scene, progress=True, force=False):
     bar = Progress(t[-1], label, stream=sys.stderr if progress else _Null(),
                    projection=Projection(t[0], t[-1], label, force), t0=t[0])
     try:
+        if plan.method == "heyoka":
+            _checked(f)(t[0], y0)  # a non-finite start is named here (heyoka would only say nan)
+            return heyoka_taylor.integrate(f, y0, t, tol=heyoka_tolerance(scene.target),
+                                           progress=bar)
         if plan.method in ("dop853", "rk45"):
             rtol = max(scene.target / 100, 2.3e-14)  # global error ~ 10-100 x rtol (bench)
             return dop853.integrate(_checked(f), y0, t, rtol=rtol, atol=rtol, progress=bar,
