@@ -217,11 +217,19 @@ def _run(block, args, comps, shape, names):
 '''
 
 
+def kernels_of(producer: str, _memo: dict[str, list[Kernel]] = {}) -> list[Kernel]:  # noqa: B006
+    """The Kernel list a producer ``"module:function"`` returns (derived once per process)."""
+    if producer not in _memo:
+        module, func = producer.split(":")
+        make: Callable[[], list[Kernel]] = getattr(importlib.import_module(module), func)
+        _memo[producer] = make()
+    return _memo[producer]
+
+
 def render(stem: str, producer: str) -> str:
     """The full text of ``generated/{stem}.py`` from the kernels that ``producer`` returns."""
-    module, func = producer.split(":")
-    make: Callable[[], list[Kernel]] = getattr(importlib.import_module(module), func)
-    kernels = make()
+    module = producer.split(":")[0]
+    kernels = kernels_of(producer)
     title = (importlib.import_module(module).__doc__ or stem).strip().splitlines()[0]
     digest = hashlib.sha256(("\n\n".join([CODEGEN_VERSION] + [k.fingerprint() for k in kernels]))
                             .encode()).hexdigest()
@@ -250,6 +258,11 @@ def write(target: Path = GENERATED) -> list[Path]:
         path = target / f"{stem}.py"
         path.write_text(render(stem, producer), encoding="utf-8")
         paths.append(path)
+    from symbolic.codegen_builders import STEM, render_builders
+
+    path = target / f"{STEM}.py"
+    path.write_text(render_builders(kernels_of, CODEGEN_VERSION), encoding="utf-8")
+    paths.append(path)
     return paths
 
 

@@ -4,7 +4,9 @@ r"""The narrow interface shared by every integrator.
 ``(count, dim)`` to its derivative; ``y0`` has shape ``(count, dim)``; ``t`` is the increasing array
 of output times with ``t[0]`` the initial time. The solution holds ``y`` of shape
 ``(len(t), count, dim)`` and the cost: steps, right-hand-side calls (one call evaluates the
-whole ensemble), seconds of wall time.
+whole ensemble), seconds of wall time of the run, and, for compiled integrators, the seconds of
+the compilation (cold) or of loading it from the cache (warm) in ``compile_seconds`` (not part of
+``seconds``).
 """
 
 from __future__ import annotations
@@ -28,3 +30,4 @@ class Solution:
     seconds: float
     note: str = ""
     y_high: np.ndarray | None = None  # mpmath values (object array) from a reference method
+    compile_seconds: float = 0.0  # JIT compile (cold) or cache load (warm); not in ``seconds``

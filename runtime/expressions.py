@@ -1,0 +1,126 @@
+r"""The axisymmetric field for any $n$ as an expression graph over any arithmetic (runtime around
+``generated.expression_builders``).
+
+:mod:`runtime.axisym` applies the generated NumPy kernels to batches of $n\times n$ arrays; this
+module does the same assembly on *scalars of any kind* — heyoka expressions (to build a Taylor
+integrator or a compiled function), floats or mpmath numbers (to test the assembly) — from the
+generated builder of the derived coefficients $c_0..c_5$ (P:inversion):
+
+.. math::
+    \Omega = L_\gamma^{-1}M = c_0M + c_1(M\gamma)\wedge\gamma + c_2(ME_n)\wedge E_n + c_3(M\gamma)\wedge E_n
+    + c_4(ME_n)\wedge\gamma + c_5\langle M\gamma, E_n\rangle\,\gamma\wedge E_n,
+
+    \dot M = [M, \Omega], \quad \dot\gamma = -\Omega\gamma, \quad
+    (\text{reconstruction}) \ \dot g = g\Omega, \ \dot c = r\,g\Omega\gamma \quad (\text{eq:motion-general}).
+
+Matrices are nested lists; a structural zero is the Python integer ``0`` and is never multiplied
+(so the graph has no ``0*x`` nodes). ``ops`` supplies ``rational(p, q)`` and ``sqrt`` in the
+target arithmetic (see :mod:`symbolic.codegen_builders`). The state order is that of
+:class:`simulate.field.FullField`: $\mathrm{vec}\,M$ (entries $i<j$, lexicographic), $\gamma$,
+then $g$ row-major and $c$.
+"""
+
+from __future__ import annotations
+
+from generated import expression_builders as eb
+
+__all__ = ["pairs", "unvec", "angular_velocity", "vector_field", "energy"]
+
+
+def pairs(n: int) -> list[tuple[int, int]]:
+    """The basis order of vec: $(i, j)$, $i<j$, lexicographic."""
+    return [(i, j) for i in range(n) for j in range(i + 1, n)]
+
+
+def _zero(v) -> bool:
+    return isinstance(v, int) and v == 0
+
+
+def _mul(*factors):
+    out = 1
+    for f in factors:
+        if _zero(f):
+            return 0
+        out = f if (isinstance(out, int) and out == 1) else out * f
+    return out
+
+
+def _sum(terms):
+    terms = [t for t in terms if not _zero(t)]
+    if not terms:
+        return 0
+    out = terms[0]
+    for t in terms[1:]:
+        out = out + t
+    return out
+
+
+def _neg(v):
+    return 0 if _zero(v) else -v
+
+
+def unvec(m, n: int) -> list[list]:
+    """The skew $n\\times n$ matrix (nested lists) with vec-coordinates ``m``."""
+    M = [[0] * n for _ in range(n)]
+    for v, (i, j) in zip(m, pairs(n)):
+        M[i][j] = v
+        M[j][i] = _neg(v)
+    return M
+
+
+def _matvec(A, v):
+    return [_sum(_mul(A[i][k], v[k]) for k in range(len(v))) for i in range(len(A))]
+
+
+def _matmul(A, B):
+    n = len(B)
+    return [[_sum(_mul(A[i][k], B[k][j]) for k in range(n)) for j in range(len(B[0]))]
+            for i in range(len(A))]
+
+
+def angular_velocity(M, gamma, a, b, ops) -> list[list]:
+    r"""$\Omega = L_\gamma^{-1}M$ (P:inversion) as a skew nested list; $M$ skew (nested lists),
+    $\gamma$ on $S^{n-1}$, $x = \gamma_n$; domain $\Delta(x)(2+a+b) \ne 0$; any $n \ge 3$."""
+    n = len(gamma)
+    c = eb.inverse_coefficients(gamma[-1], a, b, ops)
+    Mg = _matvec(M, gamma)
+    Me = [M[i][n - 1] for i in range(n)]
+    e = [0] * (n - 1) + [1]
+
+    def wedge(u, v, i, j):
+        return _sum([_mul(u[i], v[j]), _neg(_mul(v[i], u[j]))])
+
+    Omega = [[0] * n for _ in range(n)]
+    for i, j in pairs(n):
+        w = _sum([_mul(c[0], M[i][j]), _mul(c[1], wedge(Mg, gamma, i, j)),
+                  _mul(c[2], wedge(Me, e, i, j)), _mul(c[3], wedge(Mg, e, i, j)),
+                  _mul(c[4], wedge(Me, gamma, i, j)), _mul(c[5], Mg[n - 1], wedge(gamma, e, i, j))])
+        Omega[i][j] = w
+        Omega[j][i] = _neg(w)
+    return Omega
+
+
+def vector_field(m, gamma, a, b, ops, g=None, radius=None) -> list:
+    r"""The right-hand side of eq:motion-general in the state order of FullField: $\mathrm{vec}[M, \Omega]$,
+    $-\Omega\gamma$ and, when ``g`` (nested $n\times n$) is given, $g\Omega$ row-major and
+    $r\,g\Omega\gamma$. ``m``: vec-coordinates of $M$. Domain as :func:`angular_velocity`."""
+    n = len(gamma)
+    M = unvec(m, n)
+    Omega = angular_velocity(M, gamma, a, b, ops)
+    MO, OM = _matmul(M, Omega), _matmul(Omega, M)
+    Og = _matvec(Omega, gamma)
+    out = [_sum([MO[i][j], _neg(OM[i][j])]) for i, j in pairs(n)]
+    out += [_neg(v) for v in Og]
+    if g is not None:
+        gO = _matmul(g, Omega)
+        out += [gO[i][j] for i in range(n) for j in range(n)]
+        out += [_mul(radius, v) for v in _matvec(g, Og)]
+    return out
+
+
+def energy(m, gamma, a, b, ops):
+    r"""$H = \tfrac12\langle M, \Omega\rangle_\kappa = \tfrac12\sum_{i<j}M_{ij}\Omega_{ij}$ (S2.2:energy);
+    domain as :func:`angular_velocity`."""
+    n = len(gamma)
+    Omega = angular_velocity(unvec(m, n), gamma, a, b, ops)
+    return _mul(ops.rational(1, 2), _sum(_mul(v, Omega[i][j]) for v, (i, j) in zip(m, pairs(n))))

@@ -1,0 +1,202 @@
+r"""Taylor's method compiled with LLVM (heyoka, Biscani & Izzo, MNRAS 504 (2021) 2614) on the derived fields.
+
+heyoka integrates $\dot y = f(y)$ with an adaptive Taylor method of order $p = \lceil -\ln(\varepsilon)/2 + 1\rceil$
+for tolerance $\varepsilon$ (its paper, eq. 31), choosing each step from the last two Taylor
+coefficients so that the local error stays below $\varepsilon$ (relative for large states,
+absolute for small). The systems are those of :mod:`simulate.integrators.heyoka_systems`, built from
+``generated/expression_builders.py`` (derived expressions only).
+
+Precision: ``"double"``, ``"real128"`` (quadruple, 113 bits) or an ``int`` number of bits for
+heyoka's multiprecision ``real`` (:func:`bits_for_digits` converts digits). Ensembles in double
+precision run in heyoka's batch (SIMD) mode, ``recommended_simd_size()`` trajectories per compiled
+step; the threaded ensemble functions are not used (2–9× slower than batch mode on 2 cores).
+Compiled integrators are cached on disk (:mod:`simulate.integrators.heyoka_cache`); the solution
+reports the compile or load time in ``compile_seconds`` apart from the run time ``seconds``.
+
+Compact mode (heyoka's loop-based code generation) compiles several times faster and runs slower;
+``compact=None`` chooses it for multiprecision (where compiling the unrolled code is slow and the
+arithmetic dominates) and for systems with more than 40 variables, and not otherwise (measured:
+``bench/bench_heyoka.py``).
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import math
+import time
+
+import numpy as np
+
+from simulate.integrators import heyoka_cache, heyoka_systems
+from simulate.integrators.base import Solution
+
+__all__ = ["available", "integrate", "order_for", "bits_for_digits", "compiled_integrator",
+           "default_tol"]
+
+
+def available() -> bool:
+    """True when heyoka can be imported (checked without importing it)."""
+    return importlib.util.find_spec("heyoka") is not None
+
+
+def order_for(tol: float) -> int:
+    r"""heyoka's Taylor order for tolerance ``tol``: $p = \lceil -\ln(\mathrm{tol})/2 + 1\rceil$."""
+    return int(math.ceil(-math.log(tol) / 2 + 1))
+
+
+def bits_for_digits(digits: int) -> int:
+    """Bits of a multiprecision ``real`` carrying ``digits`` decimal digits plus 8 guard bits."""
+    return int(math.ceil(digits * math.log2(10))) + 8
+
+
+def _kind(precision) -> tuple[str, int]:
+    if precision in ("double", "float64"):
+        return "double", 53
+    if precision in ("real128", "quad"):
+        return "real128", 113
+    if isinstance(precision, int) and not isinstance(precision, bool) and precision >= 2:
+        return "real", precision
+    raise ValueError(f"precision {precision!r}: use 'double', 'real128' or a number of bits (int)")
+
+
+def default_tol(precision) -> float:
+    """Machine epsilon of the precision (heyoka's default tolerance)."""
+    return 2.0 ** (1 - _kind(precision)[1])
+
+
+class _Numbers:
+    """Conversions between floats/strings and the integrator's floating-point type."""
+
+    def __init__(self, hy, kind: str, bits: int):
+        self.hy, self.kind, self.bits = hy, kind, bits
+
+    def scalar(self, v):
+        if self.kind == "double":
+            return float(v)
+        if self.kind == "real128":
+            return self.hy.real128(str(v) if not isinstance(v, float) else v)
+        return self.hy.real(v if isinstance(v, float) else str(v), self.bits)
+
+    def array(self, values):
+        values = np.asarray(values, dtype=object if self.kind != "double" else float)
+        if self.kind == "double":
+            return np.array(values, dtype=float)
+        flat = [self.scalar(v) for v in values.ravel()]
+        if self.kind == "real128":
+            return np.array(flat, dtype=self.hy.real128).reshape(values.shape)
+        return np.array(flat).reshape(values.shape)
+
+
+def compiled_integrator(system, precision="double", tol=None, compact=None, batch: int = 1,
+                        cache: bool = True):
+    r"""``(integrator, seconds, how)``: a heyoka Taylor integrator of ``system``
+    (:class:`heyoka_systems.System`) at ``precision``, tolerance ``tol`` (default: epsilon),
+    ``batch`` trajectories per step (double only), from the disk cache when possible
+    (``how`` = "cold compile" / "warm load" / "in memory"; ``seconds`` of that)."""
+    import heyoka as hy
+
+    kind, bits = _kind(precision)
+    tol = default_tol(precision) if tol is None else float(tol)
+    if compact is None:
+        compact = kind == "real" or system.dim > 40
+    if batch > 1 and kind != "double":
+        raise ValueError("batch mode needs double precision")
+    ops = heyoka_systems.Arithmetic(hy, kind, bits)
+    numbers = _Numbers(hy, kind, bits)
+    key = {"source": system.fingerprint(hy, ops), "system": system.name, "tol": repr(tol),
+           "precision": f"{kind}:{bits}", "compact": bool(compact), "batch": int(batch),
+           "heyoka": hy.__version__}
+
+    def build():
+        eqs = system.equations(hy, ops)
+        npar = len(system.parameters)
+        if batch > 1:
+            return hy.taylor_adaptive_batch(eqs, np.zeros((system.dim, batch)),
+                                            pars=np.zeros((npar, batch)), tol=tol,
+                                            compact_mode=compact)
+        state = numbers.array(np.zeros(system.dim))
+        pars = numbers.array(np.zeros(npar))
+        if kind == "double":
+            return hy.taylor_adaptive(eqs, state, pars=pars, tol=tol, compact_mode=compact)
+        if kind == "real128":
+            return hy.taylor_adaptive(eqs, state, pars=pars, tol=hy.real128(tol),
+                                      compact_mode=compact, fp_type=hy.real128)
+        return hy.taylor_adaptive(eqs, state, pars=pars, tol=hy.real(tol, bits),
+                                  compact_mode=compact, fp_type=hy.real, prec=bits)
+
+    return heyoka_cache.load_or_build(key, build, use_disk=cache)
+
+
+def integrate(field, y0: np.ndarray, t: np.ndarray, tol: float | None = None,
+              precision="double", compact: bool | None = None, batch: bool | int = True,
+              cache: bool = True, pars=None, progress=None) -> Solution:
+    r"""Integrate ``field`` (a :class:`simulate.field.FullField`, :class:`simulate.field.ReducedField`,
+    or a :class:`heyoka_systems.System` with parameter values ``pars``) from ``y0`` ``(count, dim)``
+    over the increasing times ``t``. ``batch``: True (SIMD width), an int, or False (one trajectory
+    per integrator). Multiprecision runs return mpmath values in ``y_high``. Domain: as the field."""
+    import heyoka as hy
+
+    if isinstance(field, heyoka_systems.System):
+        system, values = field, list(pars)
+    else:
+        system, values = heyoka_systems.for_field(field)
+    kind, bits = _kind(precision)
+    tol = default_tol(precision) if tol is None else float(tol)
+    y0 = np.atleast_2d(np.asarray(y0, dtype=float))
+    t = np.asarray(t, dtype=float)
+    count = y0.shape[0]
+    width = (hy.recommended_simd_size() if batch is True else int(batch or 1)) if kind == "double" else 1
+    width = max(1, min(width, count)) if count > 1 else 1
+    ta, compile_seconds, how = compiled_integrator(system, precision, tol, compact, width, cache)
+    numbers = _Numbers(hy, kind, bits)
+    out = np.empty((len(t), count, system.dim))
+    high = np.empty((len(t), count, system.dim), dtype=object) if kind != "double" else None
+    steps = 0
+    start = time.perf_counter()
+    if width > 1:
+        for s in range(0, count, width):
+            chunk = y0[s:s + width]
+            used = chunk.shape[0]
+            block = np.concatenate([chunk, np.repeat(chunk[-1:], width - used, 0)])  # pad
+            ta.state[:] = block.T
+            ta.pars[:] = np.repeat(np.asarray(values, float)[:, None], width, 1)
+            ta.set_time(float(t[0]))
+            _, states = ta.propagate_grid(np.repeat(t[:, None], width, 1))
+            for outcome, _, _, n in ta.propagate_res:
+                _check(hy, outcome, system)
+                steps = max(steps, n)
+            out[:, s:s + used] = np.moveaxis(states, 2, 1)[:, :used]
+            if progress is not None:
+                progress(t[-1])
+    else:
+        grid = numbers.array(t)
+        for e in range(count):
+            ta.state[:] = numbers.array(y0[e])
+            ta.pars[:] = numbers.array(values)
+            ta.time = numbers.scalar(float(t[0]))
+            outcome, _, _, n, _, states = ta.propagate_grid(grid)
+            _check(hy, outcome, system)
+            steps += n
+            if kind == "double":
+                out[:, e] = states
+            else:
+                import mpmath
+
+                with mpmath.workprec(bits):
+                    high[:, e] = np.vectorize(lambda v: mpmath.mpf(str(v)), otypes=[object])(states)
+                out[:, e] = np.vectorize(float, otypes=[float])(high[:, e])
+            if progress is not None:
+                progress(t[-1])
+    seconds = time.perf_counter() - start
+    label = {"double": "double", "real128": "real128"}.get(kind, f"real {bits} bits")
+    mode = ("compact" if ta.compact_mode else "unrolled") + (f", batch {width}" if width > 1 else "")
+    return Solution(t=t, y=out, method=f"heyoka Taylor, order {ta.order}, tol {tol:.3g}, {label}",
+                    steps=steps, calls=steps, seconds=seconds, y_high=high,
+                    note=f"{system.name}; {mode}; {how} {compile_seconds:.3f} s",
+                    compile_seconds=compile_seconds)
+
+
+def _check(hy, outcome, system) -> None:
+    if outcome != hy.taylor_outcome.time_limit:
+        raise RuntimeError(f"heyoka stopped early on {system.name}: {outcome} "
+                           "(non-finite state or step size)")
