@@ -8,8 +8,10 @@ from __future__ import annotations
 import argparse
 import importlib
 import inspect
+import os
 import pkgutil
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -34,6 +36,9 @@ def _parser() -> argparse.ArgumentParser:
                    help="benchmarks to run (default: all); 'bench_' prefix optional")
     p.add_argument("--quick", action="store_true",
                    help="smoke run: short horizons, few sizes and tolerances (numbers not meaningful)")
+    p.add_argument("--cold", action="store_true",
+                   help="start from empty caches (compiled heyoka integrators, heyoka's own LLVM disk "
+                        "cache, the cached references) in a temporary folder: the cold timings")
     p.add_argument("--list", action="store_true", help="list the benchmarks and exit")
     p.add_argument("--out", type=Path, default=OUT, help=f"output folder (default {OUT})")
     return p
@@ -54,6 +59,27 @@ def main(argv: list[str] | None = None) -> int:
               file=sys.stderr)
         return 2
     args.out.mkdir(parents=True, exist_ok=True)
+    with tempfile.TemporaryDirectory(prefix="bench-cold-") as tmp:
+        if args.cold:
+            _cold_caches(Path(tmp))
+        return _run(names, args)
+
+
+def _cold_caches(tmp: Path) -> None:
+    """Point every cache at an empty folder under ``tmp`` (this process only)."""
+    os.environ["CHAPLYGIN_ND_CACHE"] = str(tmp / "chaplygin-nd")
+    os.environ["BENCH_CACHE"] = str(tmp / "references")
+    try:
+        import heyoka
+
+        heyoka.llvm_state.set_diskcache_path(str(tmp / "heyoka-llvm"))
+        heyoka.llvm_state.clear_memcache()
+    except ImportError:
+        pass
+    print(f"== cold: empty caches in {tmp}", flush=True)
+
+
+def _run(names: list[str], args) -> int:
     status = 0
     total = time.perf_counter()
     for name in names:
@@ -63,7 +89,8 @@ def main(argv: list[str] | None = None) -> int:
             continue
         start = time.perf_counter()
         print(f"== {name}", flush=True)
-        kwargs = {"quick": args.quick} if "quick" in inspect.signature(run).parameters else {}
+        params = inspect.signature(run).parameters
+        kwargs = {k: v for k, v in (("quick", args.quick), ("cold", args.cold)) if k in params}
         status |= int(bool(run(args.out, **kwargs)))
         print(f"== {name}: {time.perf_counter() - start:.1f} s", flush=True)
     print(f"== all: {time.perf_counter() - total:.1f} s", flush=True)

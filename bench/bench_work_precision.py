@@ -30,6 +30,7 @@ the figures ``work_precision_*.png``. Reproduce: ``python -m bench work_precisio
 
 from __future__ import annotations
 
+import os
 import time
 from pathlib import Path
 
@@ -42,12 +43,13 @@ SECTIONS = (sections.section_generic4d, sections.section_vertical5d, sections.se
             sections_models.section_ensemble)
 
 
-def main(outdir: Path, quick: bool = False) -> int:
+def main(outdir: Path, quick: bool = False, cold: bool = False) -> int:
     """Run every scene, write the JSON rows, the Markdown and the figures into ``outdir``."""
     out = Path(outdir)
     out.mkdir(parents=True, exist_ok=True)
     has_heyoka, why = heyoka_available()
-    ctx = sections.Context(out=out, cache=out / "cache", quick=quick, heyoka=has_heyoka)
+    cache = Path(os.environ.get("BENCH_CACHE") or out / "cache")
+    ctx = sections.Context(out=out, cache=cache, quick=quick, heyoka=has_heyoka)
     rows: list[Row] = []
     targets: list[str] = []
     timings = []
@@ -61,7 +63,8 @@ def main(outdir: Path, quick: bool = False) -> int:
         print(f"  {timings[-1]}", flush=True)
     heading = ["# Work–precision", "", *machine(),
                f"- heyoka: {'used (its rows and curves are included)' if has_heyoka else why}",
-               f"- mode: {'--quick (smoke run; numbers not meaningful)' if quick else 'full'}; "
+               f"- mode: {'--quick (smoke run; numbers not meaningful)' if quick else 'full'}, "
+               f"{'cold (every cache empty: --cold)' if cold else 'caches as found'}; "
                f"sections: {', '.join(timings)}",
                "", "Reproduce: `python -m bench work_precision` (from the repository root; "
                "`make bench` runs every benchmark). Cold: empty `bench/out/cache` and heyoka cache "

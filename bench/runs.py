@@ -170,12 +170,18 @@ def heyoka_rows(scene, field, y0, t, ref, tols, repeats=5, error=None, drift_of=
                                                            precision=precision, compact=compact),
                    repeats)
         err = error(sol) if error is not None else float(np.max(np.abs(sol.y - ref)))
-        how = sol.note.split("; ")[-1]
         rows.append(Row(scene, float(t[-1]), "heyoka Taylor", f"tol={tol:g}" if precision == "double"
                         else f"{precision}", err, sol.seconds, sol.compile_seconds, sol.calls,
                         sol.steps, drift_of(sol.y) if drift_of is not None else {},
-                        f"{sol.method.split(', ')[1]}; {how}"))
+                        heyoka_note(sol)))
     return rows
+
+
+def heyoka_note(sol) -> str:
+    """"order p; unrolled|compact[, batch w]; cold compile|warm load|in memory" of a heyoka run."""
+    parts = sol.note.split("; ")
+    how = " ".join(parts[-1].split()[:2])
+    return f"{sol.method.split(', ')[1]}; {'; '.join(parts[1:-1])}; {how}"
 
 
 def timed(fn, repeats: int = 20) -> tuple[float, object]:

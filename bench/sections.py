@@ -16,13 +16,14 @@ from bench.runs import (
     best,
     dop853_rows,
     drift,
+    heyoka_note,
     heyoka_rows,
     odefun_run,
     reference,
     rkmk4_rows,
     timed,
 )
-from simulate import so
+from simulate import families, so
 from simulate.closed_forms import relative_equilibrium
 from simulate.dispatch import active
 from simulate.integrators import taylor
@@ -75,9 +76,14 @@ def section_generic4d(ctx: Context):
     name = f"generic4d T={T:g}"
     dops = dop853_rows(name, g4, t, ref, RTOLS)
     rows = dops + rkmk4_rows(name, g4, t, ref, STEPS[:2] if ctx.quick else STEPS)
-    hys = heyoka_rows(name, g4.field(), g4.y0(), t, ref, HY_TOLS,
-                      drift_of=lambda y: drift(g4, y)) if ctx.heyoka else []
-    rows += hys
+    hys, compact = [], []
+    if ctx.heyoka:
+        hys = heyoka_rows(name, g4.field(), g4.y0(), t, ref, HY_TOLS, drift_of=lambda y: drift(g4, y))
+        compact = heyoka_rows(name, g4.field(), g4.y0(), t, ref, (1e-12,), compact=True,
+                              drift_of=lambda y: drift(g4, y))
+        for r in compact:
+            r.method = "heyoka Taylor (compact mode)"
+    rows += hys + compact
     figure(ctx.out / "work_precision_generic4d.png", rows,
            f"generic n=4, a=0.5, b=1, T={T:g}; reference: our Taylor, 30 digits ({how})")
     fastest = cheapest(dops, 1e-12)
@@ -112,9 +118,11 @@ def section_vertical5d(ctx: Context):
              0.0, 2, 0, drift(v5, y))
     dops = dop853_rows(name, v5, t, ref, RTOLS)
     rows = [cf, *dops, *rkmk4_rows(name, v5, t, ref, STEPS[1:2] if ctx.quick else STEPS[1:])]
-    if ctx.heyoka:
-        rows += heyoka_rows(name, v5.field(), v5.y0(), t, ref, HY_TOLS[1:],
-                            drift_of=lambda y: drift(v5, y))
+    if ctx.heyoka:  # compact mode: n = 5 unrolled compiles in ~20 s per tolerance (measured)
+        for r in heyoka_rows(name, v5.field(), v5.y0(), t, ref, (1e-9, 1e-15), compact=True,
+                             drift_of=lambda y: drift(v5, y)):
+            r.method = "heyoka Taylor (compact mode)"
+            rows.append(r)
     figure(ctx.out / "work_precision_vertical5d.png", rows,
            f"vertical n=5, a=-0.6, b=2, T={T:g}; reference: our Taylor, 30 digits ({how})")
     equal = cheapest(dops, cf.error)
@@ -128,14 +136,25 @@ def section_vertical5d(ctx: Context):
         + ("" if equal else " (DOP853 never reaches the closed form's error; its most accurate run)"))]
 
 
+def exact_point() -> Point:
+    r"""Generic n = 4 (a = 0.5, b = 1) with $\gamma_0 = (1/2, 1/2, 1/2, 1/2)$, exactly on $S^3$ in binary
+    floats. Needed beyond 20 digits: off the sphere (a float-normalised $\gamma_0$ has
+    $\|\gamma_0\|^2 - 1 \approx 10^{-16}$) heyoka's field (the derived $L_\gamma^{-1}$ formula, valid
+    on the sphere) and our Taylor method (a solve of $L_\gamma$) are different ODEs: measured, they
+    part at $6.5\cdot10^{-21}$ by $T = 0.5$ at every precision."""
+    M0, _ = families.draw("generic", 4, 0.5, 1.0, 7)
+    return Point(4, 0.5, 1.0, M0, np.full((1, 4), 0.5))
+
+
 def _mp_error(high, ref):
     return float(max(abs(x - y) for x, y in zip(high, ref, strict=True)))
 
 
 def section_precision(ctx: Context):
-    """Generic n = 4: our Taylor method, mpmath.odefun and heyoka real128/real at 15-40 digits to
-    T = 5; the 30-digit reference to T = 20 by our Taylor method and by heyoka real."""
-    g4 = Point.draw("generic", 4, 0.5, 1.0, 7)
+    """Generic n = 4 exactly on the sphere (:func:`exact_point`): our Taylor method, mpmath.odefun
+    and heyoka real128/real at 15-40 digits to T = 5; the 30-digit reference to T = 20 by our Taylor
+    method and by heyoka real."""
+    g4 = exact_point()
     f, y0 = g4.field(), g4.y0()
     Tm = 5.0 * ctx.scale
     tm = np.array([0.0, Tm])
@@ -158,8 +177,7 @@ def section_precision(ctx: Context):
             sol = best(lambda prec=prec: ht.integrate(f, y0, tm, precision=prec, compact=True), 2)
             hy_rows.append(Row(name, Tm, "heyoka Taylor", label, _mp_error(sol.y_high[-1, 0], ref),
                                sol.seconds, sol.compile_seconds, sol.calls, sol.steps,
-                               note=f"{sol.method.split(', ')[1]}; compact; "
-                                    f"{sol.note.split('; ')[-1]}"))
+                               note=heyoka_note(sol)))
     rows += hy_rows
     figure(ctx.out / "work_precision_mpmath.png", rows,
            f"generic n=4, T={Tm:g}: high precision; reference: our Taylor, 60 digits")
@@ -184,15 +202,15 @@ def section_precision(ctx: Context):
         digits = -np.log10(max(agree, 1e-40))
         rows.append(Row(n20, T20, "heyoka Taylor", "real, 30 digits", eh, hsol.seconds,
                         hsol.compile_seconds, hsol.calls, hsol.steps,
-                        note=f"{hsol.method.split(', ')[1]}; {hsol.note.split('; ')[-1]}; agrees with "
-                             f"our Taylor (30 digits) to {agree:.1e}"))
+                        note=f"{heyoka_note(hsol)}; agrees with our Taylor (30 digits) to "
+                             f"{agree:.1e}"))
         warm = s30.seconds / hsol.seconds
         cold = s30.seconds / (hsol.seconds + hsol.compile_seconds)
         lines.append(target(
             f"30-digit reference to T={T20:g}: heyoka real faster than our mpmath Taylor (warm), "
             "agreement >= 28 digits", warm > 1 and digits >= 28,
             f"warm {warm:.1f}x ({hsol.seconds:.3f} s vs {s30.seconds:.2f} s); with heyoka's "
-            f"{hsol.note.split('; ')[-1]} {hsol.compile_seconds:.2f} s: {cold:.2g}x; the two agree to "
+            f"{heyoka_note(hsol).split('; ')[-1]} {hsol.compile_seconds:.2f} s: {cold:.2g}x; the two agree to "
             f"{agree:.1e} ({digits:.1f} digits); errors against 40 digits: heyoka {eh:.1e}, "
             f"ours {e30:.1e}"))
     else:

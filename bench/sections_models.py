@@ -119,10 +119,10 @@ def _model_rows(ctx: Context, label: str, point: Point, t, closed: bool) -> list
         rows.append(Row(name, T, "reduced 7D + DOP853", f"rtol={rtol:g}",
                         float(np.max(np.abs(rs.y - r_ref))), rs.seconds, 0.0, rs.calls, rs.steps))
     if ctx.heyoka:
-        for r in heyoka_rows(name, f, y0, t, None, (1e-10, 1e-13), error=lambda s: full_error(s.y)):
+        for r in heyoka_rows(name, f, y0, t, None, (1e-9, 1e-12), error=lambda s: full_error(s.y)):
             r.method = "full + heyoka"
             rows.append(r)
-        for r in heyoka_rows(name, red, r0, t, None, (1e-10, 1e-13),
+        for r in heyoka_rows(name, red, r0, t, None, (1e-9, 1e-12),
                              error=lambda s: float(np.max(np.abs(s.y - r_ref)))):
             r.method = "reduced 7D + heyoka"
             rows.append(r)
@@ -145,7 +145,7 @@ def section_models(ctx: Context):
     figure(ctx.out / "work_precision_models.png", rows,
            f"n=4, reduced invariants only, T={T:g}: full vs reduced 7D vs closed form")
     mine = [r for r in rows if r.scene.startswith("reduced4d")]
-    for tol in ("1e-10", "1e-13"):
+    for tol in ("1e-09", "1e-12"):
         full = next((r for r in mine if r.method == "full + heyoka" and tol in r.setting), None)
         red = next((r for r in mine if r.method == "reduced 7D + heyoka" and tol in r.setting), None)
         lines.append(target(
@@ -206,7 +206,7 @@ def section_ensemble(ctx: Context):
                     lsol.steps))
     hys = []
     if ctx.heyoka:
-        hys = heyoka_rows(name, f, y0, t, None, (1e-10, 1e-13), repeats=3,
+        hys = heyoka_rows(name, f, y0, t, None, (1e-9, 1e-12), repeats=3,
                           error=lambda s: float(np.max(np.abs(s.y[-1, :8] - ref[-1]))))
         for r in hys:
             r.method = "heyoka batch (SIMD)"
