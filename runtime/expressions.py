@@ -24,7 +24,7 @@ from __future__ import annotations
 
 from generated import expression_builders as eb
 
-__all__ = ["pairs", "unvec", "angular_velocity", "vector_field", "energy"]
+__all__ = ["pairs", "unvec", "angular_velocity", "vector_field", "energy", "HeyokaArithmetic"]
 
 
 def pairs(n: int) -> list[tuple[int, int]]:
@@ -124,3 +124,21 @@ def energy(m, gamma, a, b, ops):
     n = len(gamma)
     Omega = angular_velocity(unvec(m, n), gamma, a, b, ops)
     return _mul(ops.rational(1, 2), _sum(_mul(v, Omega[i][j]) for v, (i, j) in zip(m, pairs(n))))
+
+
+class HeyokaArithmetic:
+    """``ops`` of the builders for heyoka expressions at one precision: exact rationals in the
+    integrator's floating-point type (``"double"``, ``"real128"`` or ``"real"`` with ``bits``)."""
+
+    def __init__(self, hy, kind: str, bits: int):
+        self.hy, self.kind, self.bits = hy, kind, bits
+        self.sqrt = hy.sqrt
+
+    def rational(self, p: int, q: int):
+        """$p/q$ as a heyoka constant of the target type (rounded once, in that type)."""
+        hy = self.hy
+        if self.kind == "double":
+            return hy.expression(p / q)
+        if self.kind == "real128":
+            return hy.expression(hy.real128(p) / hy.real128(q))
+        return hy.expression(hy.real(p, self.bits) / hy.real(q, self.bits))

@@ -3,7 +3,8 @@ r"""Execute a plan: produce the trajectory of a scene with the model the planner
 The result is a :class:`Trajectory`: sample times and, as the model provides them,
 $M, \Omega$ ``(S, count, n, n)``, $\gamma$ ``(S, count, n)``, $g$, $c$ (reconstruction),
 the reduced invariants $r = (A, B, E, G, F_1, x, \delta)$ ``(S, count, 7)`` and $\zeta$ ``(count, n, n)``;
-plus the cost (steps, right-hand-side calls, seconds).
+plus the cost (steps, right-hand-side calls, seconds of the run, and apart from them the seconds
+of a JIT compile or a compiled-cache load).
 """
 
 from __future__ import annotations
@@ -16,10 +17,10 @@ import numpy as np
 
 from simulate import so
 from simulate.closed_forms import horizontal, relative_equilibrium
-from simulate.field import FullField, ReducedField
-from simulate.integrators import dop853, lie, taylor
 from simulate.dispatch import active
-from simulate.planner import Plan
+from simulate.field import FullField, ReducedField
+from simulate.integrators import dop853, heyoka_taylor, lie, taylor
+from simulate.planner import Plan, heyoka_tolerance
 from simulate.scene import Scene
 
 __all__ = ["Trajectory", "execute", "reduced_invariants", "Progress"]
@@ -36,6 +37,7 @@ class Trajectory:
     steps: int = 0
     calls: int = 0
     seconds: float = 0.0
+    compile_seconds: float = 0.0  # JIT compile (cold) or cache load (warm), not in ``seconds``
 
 
 class Progress:
@@ -102,6 +104,7 @@ def execute(scene: Scene, plan: Plan, progress: bool = True) -> Trajectory:
         sol = _integrate(f, r0, t, plan, scene)
         traj.data["reduced"] = sol.y
         traj.steps, traj.calls = sol.steps, sol.calls
+        traj.method, traj.compile_seconds = sol.method, sol.compile_seconds
     else:
         f = FullField(scene.n, scene.a, scene.b, plan.reconstruct, scene.radius)
         y0 = f.pack(scene.M0, scene.gamma0, g0, np.zeros_like(scene.gamma0)) \
@@ -112,14 +115,17 @@ def execute(scene: Scene, plan: Plan, progress: bool = True) -> Trajectory:
         if plan.reconstruct:
             traj.data["g"], traj.data["c"] = parts[2], parts[3]
         traj.steps, traj.calls = sol.steps, sol.calls
-        traj.method = sol.method
-    traj.seconds = time.perf_counter() - start
+        traj.method, traj.compile_seconds = sol.method, sol.compile_seconds
+    traj.seconds = time.perf_counter() - start - traj.compile_seconds
     return traj
 
 
 def _integrate(f, y0, t, plan, scene, progress=True):
     bar = Progress(t[-1], f"{plan.model} {plan.method}") if progress else None
     try:
+        if plan.method == "heyoka":
+            return heyoka_taylor.integrate(f, y0, t, tol=heyoka_tolerance(scene.target),
+                                           progress=bar)
         if plan.method == "dop853":
             rtol = max(scene.target / 100, 2.3e-14)  # global error ~ 10-100 x rtol (bench)
             return dop853.integrate(f, y0, t, rtol=rtol, atol=rtol, progress=bar)

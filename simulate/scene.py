@@ -25,8 +25,9 @@ r"""Scenes: TOML files that name a sphere, an initial condition, times, outputs 
 
     [accuracy]
     target = 1e-10        # wanted error; DOP853 runs at rtol = atol = target/100 (the bench
-                          # measures global errors of about 8 rtol to T = 100)
-    method = "auto"       # auto | dop853 | lie | reference
+                          # measures global errors of about 8 rtol to T = 100), heyoka at
+                          # tol = target/100
+    method = "auto"       # auto (heyoka if installed, else dop853) | heyoka | dop853 | lie | reference
     dps = 30              # digits of the reference method
     step = 0.01           # step of the Lie-group method (which ignores target)
 
@@ -50,7 +51,7 @@ __all__ = ["Scene", "SceneError", "OUTPUTS", "METHODS", "load", "loads"]
 #: Output names a scene may ask for.
 OUTPUTS = ("M", "Omega", "gamma", "x", "integrals", "zeta", "reduced", "orientation",
            "contact_path")
-METHODS = ("auto", "dop853", "lie", "reference")
+METHODS = ("auto", "heyoka", "dop853", "lie", "reference")
 _TOP = {"title", "n", "a", "b", "radius", "initial", "times", "outputs", "accuracy"}
 _INITIAL = {"family", "seed", "count", "scale", "M", "Omega", "gamma", "tolerance"}
 _TIMES = {"t_end", "samples", "t"}

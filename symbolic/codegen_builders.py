@@ -79,7 +79,7 @@ def _emit(k) -> tuple[str, int]:
     lines = [f"def {k.name}({args}, ops):",
              f'    r"""{k.doc.strip()}',
              "",
-             f"    Builder: arguments as objects with + - * / (components of an array argument as a",
+             "    Builder: arguments as objects with + - * / (components of an array argument as a",
              f"    sequence), ``ops`` with ``rational(p, q)`` and ``sqrt``; returns the {len(outputs)} outputs",
              f"    row-major, shape {k.shape!r}. Claims: {', '.join(k.claims)}. Operations after CSE: {ops}.",
              '    """']

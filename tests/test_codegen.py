@@ -74,3 +74,17 @@ def test_deterministic_across_hash_seeds(fresh, tmp_path):
     env = dict(os.environ, PYTHONHASHSEED="12345")
     subprocess.run([sys.executable, "-c", code], check=True, env=env, cwd=codegen.ROOT, timeout=120)
     assert codegen.diff_report(out, fresh) == ""
+
+
+def test_expression_builders_are_stamped_import_nothing_and_are_stale_checked(fresh, tmp_path):
+    """generated/expression_builders.py (the heyoka builders) has the banner, imports nothing (so
+    generated/ imports without heyoka), and a hand edit of it is caught like any kernel's."""
+    text = (fresh / "expression_builders.py").read_text()
+    head = text[:3000]
+    assert "DO NOT EDIT" in head and "Source hash (sha256" in head and "Operation counts after CSE:" in head
+    assert not [li for li in text.splitlines() if li.startswith(("import ", "from "))]
+    copy = tmp_path / "generated"
+    shutil.copytree(fresh, copy)
+    target = copy / "expression_builders.py"
+    target.write_text(text.replace("ops.rational(1, 2)", "ops.rational(1, 3)", 1))
+    assert "expression_builders.py" in codegen.diff_report(copy, fresh)

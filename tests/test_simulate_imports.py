@@ -17,7 +17,9 @@ def test_simulate_imports_no_sympy():
     modules = sorted(p.stem for p in (ROOT / "simulate").glob("*.py") if p.stem != "__main__")
     code = ("import sys\n" + "".join(f"import simulate.{m}\n" for m in modules)
             + "import simulate.integrators.dop853, simulate.integrators.lie, "
-              "simulate.integrators.taylor\n"
+              "simulate.integrators.taylor, simulate.integrators.heyoka_taylor, "
+              "simulate.integrators.heyoka_systems, runtime.compiled, runtime.expressions\n"
+            + "assert 'heyoka' not in sys.modules  # imported only when a heyoka run starts\n"
             + "from simulate.dispatch import active\nactive()\n"
             + "assert 'sympy' not in sys.modules, sorted(m for m in sys.modules if 'sympy' in m)\n"
             + "print('ok')\n")

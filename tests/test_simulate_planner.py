@@ -52,7 +52,14 @@ def test_planner_choice_for_example_scene(stem):
 def test_method_of_example_scenes():
     assert plan(load(ROOT / "scenes/long4d.toml")).method == "lie"
     assert plan(load(ROOT / "scenes/reference4d.toml")).method == "reference"
-    assert plan(load(ROOT / "scenes/generic4d.toml")).method == "dop853"
+    from simulate.integrators import heyoka_taylor
+
+    generic = plan(load(ROOT / "scenes/generic4d.toml"))
+    if heyoka_taylor.available():  # auto: heyoka when importable, and the plan line says so
+        assert generic.method == "heyoka"
+        assert "heyoka Taylor, order 18, tol 1e-14" in generic.describe()  # target 1e-12 / 100
+    else:
+        assert generic.method == "dop853" and "DOP853" in generic.describe()
     assert plan(load(ROOT / "scenes/steady4d.toml")).method == "closed form"
 
 

@@ -22,25 +22,7 @@ from dataclasses import dataclass
 
 from generated import expression_builders as eb
 
-__all__ = ["System", "Arithmetic", "full", "reduced", "sphere3d", "for_field"]
-
-
-class Arithmetic:
-    """``ops`` of the builders for heyoka expressions at one precision: exact rationals in the
-    integrator's floating-point type (``"double"``, ``"real128"`` or ``"real"`` with ``bits``)."""
-
-    def __init__(self, hy, kind: str, bits: int):
-        self.hy, self.kind, self.bits = hy, kind, bits
-        self.sqrt = hy.sqrt
-
-    def rational(self, p: int, q: int):
-        """$p/q$ as a heyoka constant of the target type (rounded once, in that type)."""
-        hy = self.hy
-        if self.kind == "double":
-            return hy.expression(p / q)
-        if self.kind == "real128":
-            return hy.expression(hy.real128(p) / hy.real128(q))
-        return hy.expression(hy.real(p, self.bits) / hy.real(q, self.bits))
+__all__ = ["System", "full", "reduced", "sphere3d", "for_field"]
 
 
 @dataclass(frozen=True)

@@ -10,13 +10,13 @@ Precision: ``"double"``, ``"real128"`` (quadruple, 113 bits) or an ``int`` numbe
 heyoka's multiprecision ``real`` (:func:`bits_for_digits` converts digits). Ensembles in double
 precision run in heyoka's batch (SIMD) mode, ``recommended_simd_size()`` trajectories per compiled
 step; the threaded ensemble functions are not used (2–9× slower than batch mode on 2 cores).
-Compiled integrators are cached on disk (:mod:`simulate.integrators.heyoka_cache`); the solution
+Compiled integrators are cached on disk (:mod:`runtime.jit_cache`); the solution
 reports the compile or load time in ``compile_seconds`` apart from the run time ``seconds``.
 
 Compact mode (heyoka's loop-based code generation) compiles several times faster and runs slower;
-``compact=None`` chooses it for multiprecision (where compiling the unrolled code is slow and the
-arithmetic dominates) and for systems with more than 40 variables, and not otherwise (measured:
-``bench/bench_heyoka.py``).
+``compact=None`` chooses it for ``real128`` and ``real`` (where compiling the unrolled code is slow
+and the arithmetic dominates) and for systems with more than 20 variables (e.g. with the
+reconstruction), and not otherwise (measured: ``bench/bench_heyoka.py``).
 """
 
 from __future__ import annotations
@@ -27,7 +27,9 @@ import time
 
 import numpy as np
 
-from simulate.integrators import heyoka_cache, heyoka_systems
+from runtime import jit_cache
+from runtime.expressions import HeyokaArithmetic
+from simulate.integrators import heyoka_systems
 from simulate.integrators.base import Solution
 
 __all__ = ["available", "integrate", "order_for", "bits_for_digits", "compiled_integrator",
@@ -98,10 +100,10 @@ def compiled_integrator(system, precision="double", tol=None, compact=None, batc
     kind, bits = _kind(precision)
     tol = default_tol(precision) if tol is None else float(tol)
     if compact is None:
-        compact = kind == "real" or system.dim > 40
+        compact = kind != "double" or system.dim > 20
     if batch > 1 and kind != "double":
         raise ValueError("batch mode needs double precision")
-    ops = heyoka_systems.Arithmetic(hy, kind, bits)
+    ops = HeyokaArithmetic(hy, kind, bits)
     numbers = _Numbers(hy, kind, bits)
     key = {"source": system.fingerprint(hy, ops), "system": system.name, "tol": repr(tol),
            "precision": f"{kind}:{bits}", "compact": bool(compact), "batch": int(batch),
@@ -124,7 +126,7 @@ def compiled_integrator(system, precision="double", tol=None, compact=None, batc
         return hy.taylor_adaptive(eqs, state, pars=pars, tol=hy.real(tol, bits),
                                   compact_mode=compact, fp_type=hy.real, prec=bits)
 
-    return heyoka_cache.load_or_build(key, build, use_disk=cache)
+    return jit_cache.load_or_build(key, build, use_disk=cache)
 
 
 def integrate(field, y0: np.ndarray, t: np.ndarray, tol: float | None = None,

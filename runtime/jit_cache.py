@@ -8,6 +8,11 @@ key beside the object. An entry that does not unpickle, or whose stored key diff
 asked for, is rebuilt with a warning and overwritten; it is never trusted. Writes are atomic
 (a temporary file in the same folder, then ``os.replace``).
 
+heyoka >= 7 also keeps its own cache of compiled object code (``~/.cache/heyoka``, on by default),
+keyed by the LLVM IR; a hit there still rebuilds the decomposition and the IR. Measured (2 shared
+cores): n = 4 full field, tol 1e-11 — construction with a heyoka disk-cache hit 54 ms, our unpickle
+17 ms; n = 6 — 265 ms vs 17 ms; a cold compile is 3–20 s. Both caches are left on.
+
 Folder: ``$CHAPLYGIN_ND_CACHE`` if set, else ``$XDG_CACHE_HOME/chaplygin-nd``, else
 ``~/.cache/chaplygin-nd``; entries live in its ``heyoka/`` subfolder.
 """
