@@ -16,6 +16,9 @@ import time
 from pathlib import Path
 
 OUT = Path(__file__).resolve().parent / "out"
+#: Run when no name is given (``make bench``). ``heyoka`` (bench_heyoka.py) repeats the heyoka
+#: measurements with fresh caches per tolerance and real128 references: run it by name.
+DEFAULT = ("throughput", "work_precision")
 
 
 def modules() -> list[str]:
@@ -31,9 +34,10 @@ def _parser() -> argparse.ArgumentParser:
         prog="python -m bench",
         description="Accuracy-versus-time and throughput benchmarks of chaplygin-nd (never part of "
                     "the tests). Run from the repository root; writes into bench/out/.",
-        epilog=f"benchmarks: {names}. Example: python -m bench throughput --quick")
+        epilog=f"benchmarks: {names} (default: {', '.join(DEFAULT)}). "
+               "Example: python -m bench throughput --quick")
     p.add_argument("names", nargs="*", metavar="NAME",
-                   help="benchmarks to run (default: all); 'bench_' prefix optional")
+                   help="benchmarks to run (default: see below); 'bench_' prefix optional")
     p.add_argument("--quick", action="store_true",
                    help="smoke run: short horizons, few sizes and tolerances (numbers not meaningful)")
     p.add_argument("--cold", action="store_true",
@@ -51,7 +55,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.list:
         print("\n".join(known))
         return 0
-    names = [n.removeprefix("bench_") for n in args.names] or known
+    names = [n.removeprefix("bench_") for n in args.names] or [n for n in DEFAULT if n in known]
     unknown = [n for n in names if n not in known]
     if unknown:
         parser.print_usage(sys.stderr)

@@ -9,8 +9,10 @@ Backends, all on the same points (seeded), checked against each other before tim
   on whole arrays (its build time is its ``compile_seconds``);
 * ``solve`` — batched ``numpy.linalg.solve`` of the $6\times6$ matrix of $L_\gamma$, assembly by the
   generated ``L_matrix_axisym_4d`` included;
-* ``compiled`` — the compiled heyoka backend (``runtime/compiled.py``) when present and heyoka
-  imports: cold compile or warm cache load in ``compile_seconds``;
+* ``compiled`` — the compiled heyoka backend (``runtime.compiled.angular_velocity_columns``) when
+  heyoka imports, on its native component-major layout prepared once (the transposes a caller
+  with point-major data would pay are not included); cold compile or warm load in
+  ``compile_seconds``;
 * ``copy`` — the floor: one contiguous ``numpy.copyto`` with the kernel's memory traffic. The kernel
   reads 80 B and writes 48 B per point (``bytes`` = 128 B per point); a copy of 64 B per point reads
   64 B and writes 64 B, the same 128 B, into a preallocated buffer;
@@ -65,20 +67,15 @@ def _lambdified():
 
 
 def _compiled():
-    """``(function, compile seconds, how)`` of the compiled backend, or ``(None, 0, reason)``."""
+    """``(runtime.compiled, compile seconds, how)``, or ``(None, 0, reason)`` without heyoka."""
     try:
         import heyoka  # noqa: F401
 
         from runtime import compiled
     except ImportError as exc:
         return None, 0.0, f"not available ({exc})"
-    fn = getattr(compiled, KERNEL, None)
-    if fn is None:
-        return None, 0.0, f"runtime.compiled has no {KERNEL}"
-    start = time.perf_counter()
-    fn(*points(4), A, B)  # first call: compile (cold) or load from the cache (warm)
-    how = getattr(compiled, "last_load", lambda: "first call")()
-    return fn, time.perf_counter() - start, how
+    _, seconds, how = compiled.angular_velocity_function(4)
+    return compiled, seconds, how
 
 
 def _backends(count: int, plain, compiled) -> dict:
@@ -101,8 +98,10 @@ def _backends(count: int, plain, compiled) -> dict:
            "lambdify": lambdified}
     if count <= SOLVE_MAX:
         fns["solve"] = solve
-    if compiled is not None:
-        fns["compiled"] = lambda: compiled(M, gamma, A, B)
+    if compiled is not None:  # its native layout: component-major columns, prepared once
+        cols = np.ascontiguousarray(np.concatenate([M, gamma], axis=-1).T)
+        out, pars = np.empty((6, count)), np.empty((2, count))
+        fns["compiled"] = lambda: compiled.angular_velocity_columns(cols, A, B, out=out, pars=pars).T
     fns["copy"] = lambda: np.copyto(dst, src)
     return fns
 
@@ -147,7 +146,9 @@ def measure(sizes=SIZES) -> list[dict]:
             row("solve", count, None, note="skipped: L alone needs 2.9 GB, doubled inside solve")
         if compiled is not None:
             row("compiled", count, best_time(fns["compiled"], repeat, budget),
-                compiled_seconds, f"runtime.compiled (heyoka cfunc); {compiled_how}")
+                compiled_seconds, "runtime.compiled.angular_velocity_columns (heyoka cfunc) on "
+                "component-major columns prepared once (+16 B/pt of a, b); compile: "
+                f"{compiled_how}")
         row("copy", count, best_time(fns["copy"], repeat, budget),
             note="contiguous copy, 64 B read + 64 B written per point (= the kernel's traffic)")
         if 10 ** 4 <= count <= 10 ** 6:
