@@ -10,8 +10,8 @@ import importlib
 import inspect
 import os
 import pkgutil
+import shutil
 import sys
-import tempfile
 import time
 from pathlib import Path
 
@@ -41,8 +41,9 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--quick", action="store_true",
                    help="smoke run: short horizons, few sizes and tolerances (numbers not meaningful)")
     p.add_argument("--cold", action="store_true",
-                   help="start from empty caches (compiled heyoka integrators, heyoka's own LLVM disk "
-                        "cache, the cached references) in a temporary folder: the cold timings")
+                   help="empty the bench's caches first (bench/out/cache: references, compiled heyoka "
+                        "objects, heyoka's own LLVM disk cache): the cold timings; without it the "
+                        "caches of the last run are used (warm)")
     p.add_argument("--list", action="store_true", help="list the benchmarks and exit")
     p.add_argument("--out", type=Path, default=OUT, help=f"output folder (default {OUT})")
     return p
@@ -63,24 +64,33 @@ def main(argv: list[str] | None = None) -> int:
               file=sys.stderr)
         return 2
     args.out.mkdir(parents=True, exist_ok=True)
-    with tempfile.TemporaryDirectory(prefix="bench-cold-") as tmp:
-        if args.cold:
-            _cold_caches(Path(tmp))
-        return _run(names, args)
+    _own_caches(args.out / "cache", args.cold)
+    return _run(names, args)
 
 
-def _cold_caches(tmp: Path) -> None:
-    """Point every cache at an empty folder under ``tmp`` (this process only)."""
-    os.environ["CHAPLYGIN_ND_CACHE"] = str(tmp / "chaplygin-nd")
-    os.environ["BENCH_CACHE"] = str(tmp / "references")
+CACHES = ("references", "jit", "heyoka-llvm")
+
+
+def _own_caches(root: Path, cold: bool) -> None:
+    """Every cache the bench uses lives in its own folder ``root`` (never the user's): our cached
+    references, the compiled heyoka objects ($CHAPLYGIN_ND_CACHE) and heyoka's own LLVM disk cache.
+    ``cold`` empties those three subfolders first (they hold only what the bench wrote)."""
+    for name in CACHES:
+        folder = root / name
+        if cold and folder.exists():
+            shutil.rmtree(folder)
+        folder.mkdir(parents=True, exist_ok=True)
+    os.environ["CHAPLYGIN_ND_CACHE"] = str(root / "jit")
+    os.environ["BENCH_CACHE"] = str(root / "references")
     try:
         import heyoka
 
-        heyoka.llvm_state.set_diskcache_path(str(tmp / "heyoka-llvm"))
+        heyoka.llvm_state.set_diskcache_path(str(root / "heyoka-llvm"))
         heyoka.llvm_state.clear_memcache()
     except ImportError:
         pass
-    print(f"== cold: empty caches in {tmp}", flush=True)
+    if cold:
+        print(f"== cold: emptied {', '.join(CACHES)} under {root}", flush=True)
 
 
 def _run(names: list[str], args) -> int:
