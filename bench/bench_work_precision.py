@@ -5,7 +5,7 @@ Scenes (``--quick`` divides every horizon by 10 and drops the slowest settings):
 1. generic $n = 4$ to $T = 100$ — DOP853 across tolerances, RKMK4 across steps, heyoka Taylor
    across tolerances;
 2. vertical $n = 5$ to $T = 100$ — the closed form of Th:Re against the same integrators;
-3. precision, generic $n = 4$ to $T = 5$ — our Taylor method and ``mpmath.odefun`` at 15–40 digits,
+3. precision, generic $n = 4$ to $T = 5$ — our Taylor method at 15–40 digits, ``mpmath.odefun`` at 15, 20,
    heyoka at ``real128`` and multiprecision ``real``; and the 30-digit reference to $T = 20$ by our
    Taylor method and by heyoka ``real``, each checked against our Taylor method at 40 digits;
 4. long run, generic $n = 4$ to $T = 10^3$ with 101 samples — DOP853, RKMK4 ($h = 0.05$,
@@ -67,8 +67,9 @@ def main(outdir: Path, quick: bool = False, cold: bool = False) -> int:
                f"{'cold (every cache empty: --cold)' if cold else 'caches as found'}; "
                f"sections: {', '.join(timings)}",
                "", "Reproduce: `python -m bench work_precision` (from the repository root; "
-               "`make bench` runs every benchmark). Cold: empty `bench/out/cache` and heyoka cache "
-               "(`$CHAPLYGIN_ND_CACHE`, default `~/.cache/chaplygin-nd`); warm: both filled.", ""]
+               "`make bench` runs it with the throughput). The bench keeps its caches in `bench/out/cache` "
+               "(references, compiled heyoka objects, heyoka's own LLVM disk cache); cold: "
+               "`python -m bench --cold` empties them first; warm: a second run.", ""]
     lines = heading + ["## Targets", "", *targets, "", "## All runs", "", *MD_HEAD,
                        *[r.md() for r in rows], "",
                        "Errors: max over samples and components of (vec M, gamma) (models: of the "
