@@ -26,8 +26,8 @@ def summary(scene, p, traj, arrays, seconds, diffs=None, out=None) -> str:
               f"at {len(scene.t)} samples, {traj.seconds:.3f} s; {seconds:.3f} s in all"
               if traj.method == "closed form" else
               f"cost    {traj.steps} steps, {traj.calls} right-hand-side calls, "
-              f"{traj.seconds:.3f} s integrating"
-              + (f" + {traj.compile_seconds:.3f} s compiling or loading the compiled integrator"
+              f"{traj.seconds:.3g} s integrating"
+              + (f" + {traj.compile_seconds:.3g} s compiling or loading the compiled integrator"
                  if traj.compile_seconds else "") + f", {seconds:.3f} s in all"),
              f"outputs {', '.join(scene.outputs)}"]
     drift = max_drift(arrays)

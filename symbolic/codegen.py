@@ -249,7 +249,8 @@ def write(target: Path = GENERATED) -> list[Path]:
     target.mkdir(parents=True, exist_ok=True)
     paths = []
     init = target / "__init__.py"
-    init.write_text('"""NumPy kernels emitted by symbolic/codegen.py (do not edit; `make generate`)."""\n')
+    init.write_text('"""NumPy kernels and expression builders emitted by symbolic/codegen.py (do not edit; '
+                    '`make generate`)."""\n')
     paths.append(init)
     runtime = target / "_batching.py"
     runtime.write_text(RUNTIME.replace("{version}", CODEGEN_VERSION), encoding="utf-8")
