@@ -35,9 +35,10 @@ mutate: setup
 generate: setup
 	$(PY) -m symbolic.codegen
 
-## bench: accuracy-versus-time and throughput benchmarks (never part of the tests).
+## bench: accuracy-versus-time and throughput benchmarks (never part of the tests);
+## `make bench BENCH_ARGS=--cold` starts from empty caches, `BENCH_ARGS="--quick"` is a smoke run.
 bench: setup
-	$(PY) -m bench
+	$(PY) -m bench $(BENCH_ARGS)
 
 clean:
 	rm -rf $(VENV) build *.egg-info .pytest_cache

@@ -1,37 +1,113 @@
-"""``python -m bench [NAME ...]``: run every module ``bench/bench_*.py`` that defines ``main(outdir)``
-(or only those named), writing into ``bench/out/`` (git-ignored)."""
+"""``python -m bench [-h] [--quick] [--list] [NAME ...]`` from the repository root: run the
+benchmarks (every ``bench/bench_*.py`` that defines ``main``, or only those named), writing figures,
+Markdown and JSON rows into ``bench/out/``. Exit status 0 when every benchmark ran (a target that
+is NOT MET is reported in its output, not an error), 2 on a usage error."""
 
 from __future__ import annotations
 
+import argparse
 import importlib
+import inspect
+import os
 import pkgutil
+import shutil
 import sys
 import time
 from pathlib import Path
 
 OUT = Path(__file__).resolve().parent / "out"
+#: Run when no name is given (``make bench``). ``heyoka`` (bench_heyoka.py) repeats the heyoka
+#: measurements with fresh caches per tolerance and real128 references: run it by name.
+DEFAULT = ("throughput", "work_precision")
 
 
 def modules() -> list[str]:
-    """The benchmark modules, sorted by name."""
-    import bench
+    """The benchmark names (``bench_<name>.py`` without the prefix), sorted."""
+    here = Path(__file__).resolve().parent
+    return sorted(m.name.removeprefix("bench_") for m in pkgutil.iter_modules([str(here)])
+                  if m.name.startswith("bench_"))
 
-    return sorted(m.name for m in pkgutil.iter_modules(bench.__path__) if m.name.startswith("bench_"))
+
+def _parser() -> argparse.ArgumentParser:
+    names = ", ".join(modules())
+    p = argparse.ArgumentParser(
+        prog="python -m bench",
+        description="Accuracy-versus-time and throughput benchmarks of chaplygin-nd (never part of "
+                    "the tests). Run from the repository root; writes into bench/out/.",
+        epilog=f"benchmarks: {names} (default: {', '.join(DEFAULT)}). "
+               "Example: python -m bench throughput --quick")
+    p.add_argument("names", nargs="*", metavar="NAME",
+                   help="benchmarks to run (default: see below); 'bench_' prefix optional")
+    p.add_argument("--quick", action="store_true",
+                   help="smoke run: short horizons, few sizes and tolerances (numbers not meaningful)")
+    p.add_argument("--cold", action="store_true",
+                   help="empty the bench's caches first (bench/out/cache: references, compiled heyoka "
+                        "objects, heyoka's own LLVM disk cache): the cold timings; without it the "
+                        "caches of the last run are used (warm)")
+    p.add_argument("--list", action="store_true", help="list the benchmarks and exit")
+    p.add_argument("--out", type=Path, default=OUT, help=f"output folder (default {OUT})")
+    return p
 
 
 def main(argv: list[str] | None = None) -> int:
-    names = (argv if argv is not None else sys.argv[1:]) or modules()
-    OUT.mkdir(parents=True, exist_ok=True)
+    parser = _parser()
+    args = parser.parse_args(argv)
+    known = modules()
+    if args.list:
+        print("\n".join(known))
+        return 0
+    names = [n.removeprefix("bench_") for n in args.names] or [n for n in DEFAULT if n in known]
+    unknown = [n for n in names if n not in known]
+    if unknown:
+        parser.print_usage(sys.stderr)
+        print(f"python -m bench: unknown benchmark {', '.join(unknown)}; known: {', '.join(known)}",
+              file=sys.stderr)
+        return 2
+    args.out.mkdir(parents=True, exist_ok=True)
+    _own_caches(args.out / "cache", args.cold)
+    return _run(names, args)
+
+
+CACHES = ("references", "jit", "heyoka-llvm")
+
+
+def _own_caches(root: Path, cold: bool) -> None:
+    """Every cache the bench uses lives in its own folder ``root`` (never the user's): our cached
+    references, the compiled heyoka objects ($CHAPLYGIN_ND_CACHE) and heyoka's own LLVM disk cache.
+    ``cold`` empties those three subfolders first (they hold only what the bench wrote)."""
+    for name in CACHES:
+        folder = root / name
+        if cold and folder.exists():
+            shutil.rmtree(folder)
+        folder.mkdir(parents=True, exist_ok=True)
+    os.environ["CHAPLYGIN_ND_CACHE"] = str(root / "jit")
+    os.environ["BENCH_CACHE"] = str(root / "references")
+    try:
+        import heyoka
+
+        heyoka.llvm_state.set_diskcache_path(str(root / "heyoka-llvm"))
+        heyoka.llvm_state.clear_memcache()
+    except ImportError:
+        pass
+    if cold:
+        print(f"== cold: emptied {', '.join(CACHES)} under {root}", flush=True)
+
+
+def _run(names: list[str], args) -> int:
     status = 0
+    total = time.perf_counter()
     for name in names:
-        mod = importlib.import_module(f"bench.{name}")
+        mod = importlib.import_module(f"bench.bench_{name}")
         run = getattr(mod, "main", None)
         if run is None:
             continue
         start = time.perf_counter()
         print(f"== {name}", flush=True)
-        status |= int(bool(run(OUT)))
+        params = inspect.signature(run).parameters
+        kwargs = {k: v for k, v in (("quick", args.quick), ("cold", args.cold)) if k in params}
+        status |= int(bool(run(args.out, **kwargs)))
         print(f"== {name}: {time.perf_counter() - start:.1f} s", flush=True)
+    print(f"== all: {time.perf_counter() - total:.1f} s", flush=True)
     return status
 
 

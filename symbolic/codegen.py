@@ -8,9 +8,12 @@ symbols in a fixed order, CSE in canonical order).
 Calling convention of a generated kernel ``f(*arguments)``: an argument is an array whose *last*
 axis holds its components (``Argument.scalar``: no component axis); all leading axes are batch
 axes and broadcast against each other, so a parameter may be a Python float or a batch array.
-The result has shape ``batch + Kernel.shape``. The batch is flattened and evaluated in chunks of
-``CHUNK`` points with component-major (contiguous) temporaries: for 10^6 points this is several
-times faster than whole-array evaluation, whose temporaries do not fit in the cache. Constant
+The result has shape ``batch + Kernel.shape``. The batch is flattened; up to ``CHUNK`` points
+are evaluated in one call on the arguments' columns (no copies), more in chunks of ``CHUNK`` points
+with component-major (contiguous) temporaries. ``CHUNK`` = 4096 keeps every temporary at 32 KiB:
+below glibc's 128 KiB mmap threshold (the former 16384 points were exactly 128 KiB, so each
+temporary was mapped and unmapped, ~600 page faults per call at 10^4 points) and inside L2.
+``python -m bench bench_throughput`` measures the sizes and chunk lengths behind this choice. Constant
 outputs broadcast (every output is written into a pre-allocated array).
 
 ``python -m symbolic.codegen`` rewrites ``generated/``; :func:`stale_report` regenerates into a
@@ -168,11 +171,12 @@ Regenerate with `make generate`; `make verify` fails when this file is stale.
 
 import numpy as np
 
-CHUNK = 16384
+CHUNK = 4096
 
 
 def _run(block, args, comps, shape, names):
-    """Broadcast the batch axes, evaluate ``block`` in chunks of CHUNK points, component-major."""
+    """Broadcast the batch axes and evaluate ``block`` component-major: up to CHUNK points in one
+    call on column views (no copies), more in chunks of CHUNK points (contiguous temporaries)."""
     arrays, batch = [], ()
     for value, c, name in zip(args, comps, names.split(", ")):
         value = np.asarray(value, dtype=float)
@@ -186,24 +190,27 @@ def _run(block, args, comps, shape, names):
     size = 1
     for s in shape:
         size *= s
-    flat = []
+    flat = []  # per argument: a list of numbers (no batch axes) or a (count, c) array
     for value, c in zip(arrays, comps):
         if (value.shape[:-1] if c else value.shape) == ():
-            flat.append((False, list(value) if c else [float(value)]))
+            flat.append(list(value) if c else [float(value)])
         else:
             full = np.broadcast_to(value, batch + ((c,) if c else ()))
-            flat.append((True, full.reshape((count, c) if c else (count, 1))))
-    out = np.empty((count, size))
-    step = max(1, min(CHUNK, count))
-    buffer = np.empty((size, step))
-    for start in range(0, count, step):
-        stop = min(count, start + step)
+            flat.append(full.reshape((count, c) if c else (count, 1)))
+    if count <= CHUNK:
+        out = np.empty((size, count))
         parts = []
-        for batched, value in flat:
-            if batched:
-                parts.extend(np.ascontiguousarray(value[start:stop].T))
-            else:
-                parts.extend(value)
+        for value in flat:
+            parts.extend(value if type(value) is list else value.T)
+        block(*parts, out)
+        return out.T.reshape(batch + shape)
+    out = np.empty((count, size))
+    buffer = np.empty((size, CHUNK))
+    for start in range(0, count, CHUNK):
+        stop = min(count, start + CHUNK)
+        parts = []
+        for value in flat:
+            parts.extend(value if type(value) is list else np.ascontiguousarray(value[start:stop].T))
         block(*parts, buffer[:, :stop - start])
         out[start:stop] = buffer[:, :stop - start].T
     return out.reshape(batch + shape)

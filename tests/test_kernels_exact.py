@@ -136,19 +136,24 @@ def test_three_way_exact(stem, kernel):
 
 def test_kernels_broadcast_and_chunk():
     """A batch over several chunks, parameters as batch arrays, and constant outputs all broadcast:
-    the chunked result equals the point-by-point result exactly (same operations, same order)."""
+    the chunked result, the one-call result (a batch of at most CHUNK points, evaluated on column
+    views) and the point-by-point result agree exactly (same operations, same order)."""
     from generated import axisym
+    from generated._batching import CHUNK
 
     rng = np.random.default_rng(11)
-    count = 3 * 16384 + 5
+    count = 3 * CHUNK + 5
     g = rng.standard_normal((count, 4))
     g /= np.linalg.norm(g, axis=-1, keepdims=True)
     M = rng.standard_normal((count, 6))
     a = rng.uniform(-1, 1, count)
     out = axisym.angular_velocity_axisym_4d(M, g, a, 2.0)
     assert out.shape == (count, 6)
-    for i in (0, 16383, 16384, count - 1):
+    for i in (0, CHUNK - 1, CHUNK, count - 1):
         assert np.array_equal(out[i], axisym.angular_velocity_axisym_4d(M[i], g[i], a[i], 2.0))
+    for small in (1, 7, CHUNK):
+        assert np.array_equal(out[:small], axisym.angular_velocity_axisym_4d(M[:small], g[:small],
+                                                                             a[:small], 2.0))
     p = axisym.p_coefficients_4d(M[:7].reshape(7, 1, 6), g[:2])  # constant entries broadcast
     assert p.shape == (7, 2, 5, 2) and np.all(p[..., 4, 0] == 1) and np.all(p[..., 4, 1] == 0)
     assert axisym.Delta(0.5, 0.2, 1.0).shape == (1,)
