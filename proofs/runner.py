@@ -12,8 +12,8 @@ from dataclasses import dataclass
 
 from proofs.catalog import Row, all_rows, discover, pending_reason
 from proofs.ledger import Verdict, registry
-from symbolic import points
 from proofs.reach import Recorder
+from symbolic import points
 
 
 @dataclass(frozen=True)
