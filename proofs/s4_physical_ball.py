@@ -226,11 +226,16 @@ def physical_ball() -> Verdict:
          _each_n(_realisability_in_paper_parameters, ALL_N, "ball-real")),
         ("8c. witness body realises every diagonal J >= 0 with tr J <= m r^2", witness),
     ]
-    return Verdict.all_of(
+    computed = Verdict.all_of(
         checks, n_values=ALL_N,
         method="exact symbolic identities (n = 3..6; the map and J for n = 3..8; linear in (J, b), so "
-               "every n) and the witness body exactly at 4 seeded rational points for each n = 3..8",
+               "every n) and the witness body exactly at 4 seeded rational points for each n = 3..8")
+    summed = Verdict.by_argument(
+        "J and tr J of a body are sums (limits of sums) of point-mass terms, so 8a gives J >= 0 and "
+        "tr J <= m r^2 for every mass distribution inside the radius", n_values=ALL_N)
+    return Verdict.of_parts(
+        [computed.as_part("steps 1-8 (computed)"), summed.as_part("8a summed over a body")],
+        n_values=ALL_N, method=computed.method + "; 8a summed over a body: argued",
         notes="Moments: I_1 = j_1 + j_n in the planes containing E_n, I_n = 2 j_1 in the planes "
               "orthogonal to E_n (n = 3: the principal moments (I_1, I_1, I_3)). Realisable iff "
-              "a >= -1 and b >= n + a; a > 1 (prolate) is physical. Argued, not computed: summing "
-              "the point-mass identities 8a over a body (a density is a limit of such sums).")
+              "a >= -1 and b >= n + a; a > 1 (prolate) is physical.")
