@@ -82,6 +82,9 @@ def _components(name: str, arr: np.ndarray) -> tuple[list[str], np.ndarray, str]
         return [r"$x = \gamma_n$"], arr[..., None], r"$x = \gamma_n = \langle\gamma, E_n\rangle$, cosine of the angle between the symmetry axis and the normal"
     if name == "reduced":
         return list(REDUCED_NAMES), arr, r"reduced invariants of $SO(3)$ (Section 5)"
+    if name == "horizontal":
+        return ([r"$x = \gamma_n$", r"$G = \langle M E_n, \gamma\rangle$", "$A$", "$B$"], arr,
+                r"horizontal invariants $(x, G, A, B)$ on $\mathcal{H}$ (S5:H-linear-nD)")
     raise KeyError(name)
 
 

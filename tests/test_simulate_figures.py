@@ -150,3 +150,16 @@ def test_a_constant_output_gets_a_readable_axis_and_says_so():
     low, high = ax.get_ylim()
     assert high - low > 1e-3
     assert any("constant" in tx.get_text() for tx in ax.get_legend().get_texts())
+
+
+def test_every_time_series_output_has_a_figure(tmp_path):
+    """Every output a model produces as a time series can be drawn (a KeyError here once stopped
+    the horizontal closed form after its computation, with a traceback)."""
+    scene = tmp_path / "h.toml"
+    scene.write_text('n = 5\na = 0.5\nb = 7.0\n[initial]\nfamily = "horizontal"\nseed = 2\n'
+                     '[times]\nt_end = 2.0\nsamples = 11\n'
+                     '[outputs]\nwant = ["x", "horizontal"]\n')
+    assert cli.main([str(scene), "--out", str(tmp_path / "out")]) == 0
+    assert sorted(p.name for p in (tmp_path / "out").glob("*.png")) == ["horizontal.png", "x.png"]
+    fig = figure("horizontal", T, np.zeros((len(T), 2, 4)) + T[:, None, None])
+    assert [ax.get_ylabel() for ax in fig.axes if ax.axison][2:] == ["$A$", "$B$"]
