@@ -20,12 +20,12 @@ from __future__ import annotations
 
 import os
 import sys
-import time
 from pathlib import Path
 
 import mpmath
 import numpy as np
 
+from bench.runs import timed
 from simulate import families
 from simulate.closed_forms import horizontal_invariants, horizontal_nd
 from simulate.dispatch import active
@@ -63,15 +63,6 @@ def reference(M0: np.ndarray, gamma0: np.ndarray, a: float, b: float, t: np.ndar
         return np.array([[float(v) for v in row] for row in out])
 
 
-def _best(fn, repeats: int) -> tuple[float, object]:
-    best, value = np.inf, None
-    for _ in range(repeats):
-        start = time.perf_counter()
-        value = fn()
-        best = min(best, time.perf_counter() - start)
-    return best, value
-
-
 def rows(T: float | None = None, samples: int = 201) -> list[dict]:
     """The benchmark rows (module docstring) for n = 5 and n = 6 to horizon ``T``."""
     T = T if T is not None else (10.0 if QUICK else 100.0)
@@ -86,7 +77,7 @@ def rows(T: float | None = None, samples: int = 201) -> list[dict]:
             Omega0 = k.require("angular_velocity")(M0, g0, a, b)
             return horizontal_nd(M0, g0, Omega0, a, b, t)[:, 0, :2]
 
-        sec, xg = _best(closed, 20)
+        sec, xg = timed(closed, 20)
         out.append({"scene": name, "T": T, "method": "closed form (S5:H-linear-nD)",
                     "setting": "cos/sinc kernel", "error": float(np.max(np.abs(xg - ref))),
                     "seconds": sec, "compile_seconds": 0.0})
@@ -96,7 +87,7 @@ def rows(T: float | None = None, samples: int = 201) -> list[dict]:
             def full(f=f, rtol=rtol, M0=M0, g0=g0):
                 return dop853.integrate(f, f.pack(M0, g0), t, rtol=rtol, atol=rtol)
 
-            sec, sol = _best(full, 1 if rtol < 1e-10 else 2)
+            sec, sol = timed(full, 1 if rtol < 1e-10 else 2)
             M, gamma = f.unpack(sol.y)
             xg = horizontal_invariants(M, gamma)[:, 0, :2]
             out.append({"scene": name, "T": T, "method": "full + DOP853",
