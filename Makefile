@@ -2,6 +2,7 @@
 PYTHON ?= python3
 VENV := .venv
 PY := $(VENV)/bin/python
+CLI := $(VENV)/bin/chaplygin
 STAMP := $(VENV)/.installed
 
 .PHONY: setup verify test generate bench mutate clean
@@ -17,28 +18,28 @@ $(STAMP): pyproject.toml
 ## verify: run every proof, print the ledger, write VERIFICATION.md, verification.json and
 ## docs/claim-graph.svg, and fail on a `fails` row, an error, an `open` row without reason, a
 ## finding without a kind, or a stale generated/. `make verify SEED=N` draws every seeded point
-## from seed N (default: symbolic.points.DEFAULT_SEED); the seed is recorded in both reports.
+## from seed N (default: chaplygin_nd.symbolic.points.DEFAULT_SEED); the seed is recorded in both reports.
 SEED ?=
 verify: setup
-	$(PY) -m proofs --check-generated $(if $(SEED),--seed $(SEED))
+	$(CLI) verify --check-generated $(if $(SEED),--seed $(SEED))
 
 ## test: the pytest suite (engine, proofs, kernels against mpmath, hard cases).
 test: setup
 	$(PY) -m pytest -q
 
 ## mutate: mutation testing of every printed formula (one-symbol AST mutants, each run against the
-## rows that reach it); writes mutation.json and proofs/reach.json; fails on a surviving mutant.
+## rows that reach it); writes mutation.json and ledger/reach.json; fails on a surviving mutant.
 mutate: setup
-	$(PY) -m proofs.mutate
+	$(CLI) mutate
 
 ## generate: rewrite generated/ from the derived (proved) expressions.
 generate: setup
-	$(PY) -m symbolic.codegen
+	$(CLI) generate
 
 ## bench: accuracy-versus-time and throughput benchmarks (never part of the tests);
 ## `make bench BENCH_ARGS=--cold` starts from empty caches, `BENCH_ARGS="--quick"` is a smoke run.
 bench: setup
-	$(PY) -m bench $(BENCH_ARGS)
+	$(CLI) bench $(BENCH_ARGS)
 
 clean:
 	rm -rf $(VENV) build *.egg-info .pytest_cache

@@ -1,4 +1,4 @@
-"""``python -m bench [-h] [--quick] [--list] [NAME ...]`` from the repository root: run the
+"""``chaplygin bench [-h] [--quick] [--list] [NAME ...]`` from the repository root: run the
 benchmarks (every ``bench/bench_*.py`` that defines ``main``, or only those named), writing figures,
 Markdown and JSON rows into ``bench/out/``. Exit status 0 when every benchmark ran (a target that
 is NOT MET is reported in its output, not an error), 2 on a usage error."""
@@ -14,6 +14,8 @@ import shutil
 import sys
 import time
 from pathlib import Path
+
+from chaplygin_nd.cli import version_line
 
 OUT = Path(__file__).resolve().parent / "out"
 #: Run when no name is given (``make bench``). ``heyoka`` (bench_heyoka.py) repeats the heyoka
@@ -31,11 +33,11 @@ def modules() -> list[str]:
 def _parser() -> argparse.ArgumentParser:
     names = ", ".join(modules())
     p = argparse.ArgumentParser(
-        prog="python -m bench",
+        prog="chaplygin bench",
         description="Accuracy-versus-time and throughput benchmarks of chaplygin-nd (never part of "
                     "the tests). Run from the repository root; writes into bench/out/.",
         epilog=f"benchmarks: {names} (default: {', '.join(DEFAULT)}). "
-               "Example: python -m bench throughput --quick")
+               "Example: chaplygin bench throughput --quick")
     p.add_argument("names", nargs="*", metavar="NAME",
                    help="benchmarks to run (default: see below); 'bench_' prefix optional")
     p.add_argument("--quick", action="store_true",
@@ -45,6 +47,7 @@ def _parser() -> argparse.ArgumentParser:
                         "objects, heyoka's own LLVM disk cache): the cold timings; without it the "
                         "caches of the last run are used (warm)")
     p.add_argument("--list", action="store_true", help="list the benchmarks and exit")
+    p.add_argument("--version", action="version", version=version_line())
     p.add_argument("--out", type=Path, default=OUT, help=f"output folder (default {OUT})")
     return p
 
@@ -60,7 +63,7 @@ def main(argv: list[str] | None = None) -> int:
     unknown = [n for n in names if n not in known]
     if unknown:
         parser.print_usage(sys.stderr)
-        print(f"python -m bench: unknown benchmark {', '.join(unknown)}; known: {', '.join(known)}",
+        print(f"chaplygin bench: unknown benchmark {', '.join(unknown)}; known: {', '.join(known)}",
               file=sys.stderr)
         return 2
     args.out.mkdir(parents=True, exist_ok=True)
@@ -97,7 +100,7 @@ def _run(names: list[str], args) -> int:
     status = 0
     total = time.perf_counter()
     for name in names:
-        mod = importlib.import_module(f"bench.bench_{name}")
+        mod = importlib.import_module(f"chaplygin_nd.bench.bench_{name}")
         run = getattr(mod, "main", None)
         if run is None:
             continue

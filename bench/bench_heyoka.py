@@ -16,7 +16,7 @@ fresh cache folder; warm loads the same folder with the in-process copies droppe
 * :func:`throughput_rows` — compiled $L_\gamma^{-1}$ (``runtime.compiled``) vs the NumPy kernel vs a
   contiguous copy of exactly the bytes the compiled kernel reads and writes.
 
-Run: ``python -m bench bench_heyoka`` (writes ``heyoka.json`` and ``heyoka.md`` into bench/out/).
+Run: ``chaplygin bench heyoka`` (writes ``heyoka.json`` and ``heyoka.md`` into bench/out/).
 """
 
 from __future__ import annotations
@@ -30,12 +30,11 @@ from pathlib import Path
 
 import mpmath
 import numpy as np
-
-from runtime import jit_cache
-from simulate import families
-from simulate.field import FullField, ReducedField
-from simulate.integrators import dop853, heyoka_taylor, taylor
-from simulate.run import reduced_invariants
+from chaplygin_nd.runtime import jit_cache
+from chaplygin_nd.simulate import families
+from chaplygin_nd.simulate.field import FullField, ReducedField
+from chaplygin_nd.simulate.integrators import dop853, heyoka_taylor, taylor
+from chaplygin_nd.simulate.run import reduced_invariants
 
 REPEATS = 5
 
@@ -130,8 +129,7 @@ def hand_written_script(tol: float):
     """What a user would write: ``heyoka.from_sympy`` of our derived SymPy n = 4 field (the component
     field of symbolic.emit.axisym), one ``taylor_adaptive``, ``propagate_grid``; no builders, no cache."""
     import heyoka as hy
-
-    from symbolic.emit.axisym import component_kernels
+    from chaplygin_nd.symbolic.emit.axisym import component_kernels
 
     kernel = next(k for k in component_kernels(4) if k.name == "vector_field_axisym_4d")
     symbols = [s for arg in kernel.arguments[:2] for s in arg.symbols]
@@ -236,8 +234,8 @@ def throughput_rows(points=(10**3, 10**4, 10**5, 10**6), n: int = 4) -> list[dic
     """L_gamma^{-1} at N points: the compiled kernel (component-major, a, b per point: it reads
     (d + n + 2) N and writes d N doubles), a contiguous copy of exactly those bytes, and the NumPy
     component kernel of generated/ (same points)."""
-    from generated import axisym as ga
-    from runtime import compiled
+    from chaplygin_nd.generated import axisym as ga
+    from chaplygin_nd.runtime import compiled
 
     d = n * (n - 1) // 2
     rows = []

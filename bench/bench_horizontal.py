@@ -12,7 +12,7 @@ Rows are dicts with keys ``scene, T, method, setting, error, seconds, compile_se
 here: ``compile_seconds`` is 0). ``seconds`` is the best of several runs and includes, for the
 closed form, the kernel evaluation of $\Omega_0$ and of the invariants at $t = 0$.
 
-Run: ``python -m bench.bench_horizontal [OUTDIR]`` (prints a table, writes ``horizontal.md``), or
+Run: ``python -m chaplygin_nd.bench.bench_horizontal [OUTDIR]`` (prints a table, writes ``horizontal.md``), or
 ``make bench``. ``BENCH_QUICK=1`` shrinks the horizon.
 """
 
@@ -24,14 +24,13 @@ from pathlib import Path
 
 import mpmath
 import numpy as np
-
-from bench.runs import timed
-from simulate import families
-from simulate.closed_forms import horizontal_invariants, horizontal_nd
-from simulate.dispatch import active
-from simulate.field import FullField
-from simulate.integrators import dop853
-from simulate.integrators.taylor import L_matrix_mp
+from chaplygin_nd.bench.runs import timed
+from chaplygin_nd.simulate import families
+from chaplygin_nd.simulate.closed_forms import horizontal_invariants, horizontal_nd
+from chaplygin_nd.simulate.dispatch import active
+from chaplygin_nd.simulate.field import FullField
+from chaplygin_nd.simulate.integrators import dop853
+from chaplygin_nd.simulate.integrators.taylor import L_matrix_mp
 
 QUICK = os.environ.get("BENCH_QUICK") == "1"
 #: (scene name, n, a, b, seed) — seeded horizontal initial conditions.

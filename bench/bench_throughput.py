@@ -24,7 +24,7 @@ Writes ``throughput.json`` (rows: ``kernel``, ``backend``, ``points``, ``bytes``
 ``throughput.png``. Times are the minimum over repeats (a few at large sizes). Skipped for memory:
 ``solve`` at $10^7$ points (its $L$ alone is 2.9 GB, doubled inside ``solve``).
 
-Reproduce: ``python -m bench throughput`` (``--quick``: up to $10^5$ points).
+Reproduce: ``chaplygin bench throughput`` (``--quick``: up to $10^5$ points).
 """
 
 from __future__ import annotations
@@ -33,8 +33,14 @@ import time
 from pathlib import Path
 
 import numpy as np
-
-from bench.report import best_time, machine, save_figure, target, write_atomic, write_rows
+from chaplygin_nd.bench.report import (
+    best_time,
+    machine,
+    save_figure,
+    target,
+    write_atomic,
+    write_rows,
+)
 
 KERNEL = "angular_velocity_axisym_4d"
 A, B = 0.3, 1.7
@@ -58,8 +64,7 @@ def points(count: int, seed: int = 2026) -> tuple[np.ndarray, np.ndarray]:
 def _lambdified():
     """The plain (no CSE) lambdify of the derived expressions, and its build seconds."""
     import sympy as sp
-
-    from symbolic.emit.axisym import component_kernels
+    from chaplygin_nd.symbolic.emit.axisym import component_kernels
 
     start = time.perf_counter()
     kernel = next(k for k in component_kernels(4) if k.name == KERNEL)
@@ -72,8 +77,7 @@ def _compiled():
     """``(runtime.compiled, compile seconds, how)``, or ``(None, 0, reason)`` without heyoka."""
     try:
         import heyoka  # noqa: F401
-
-        from runtime import compiled
+        from chaplygin_nd.runtime import compiled
     except ImportError as exc:
         return None, 0.0, f"not available ({exc})"
     _, seconds, how = compiled.angular_velocity_function(4)
@@ -82,7 +86,7 @@ def _compiled():
 
 def _backends(count: int, plain, compiled) -> dict:
     """The timed callables on ``count`` seeded points (the copy: its own buffers)."""
-    from generated import axisym
+    from chaplygin_nd.generated import axisym
 
     M, gamma = points(count)
     src = np.ones(count * (READ + WRITTEN) // 16)
@@ -115,7 +119,7 @@ def _backends(count: int, plain, compiled) -> dict:
 
 def measure(sizes=SIZES) -> list[dict]:
     """One row per (backend, size); every backend is checked against ``generated`` first."""
-    from generated import _batching
+    from chaplygin_nd.generated import _batching
 
     plain, lambdify_seconds = _lambdified()
     compiled, compiled_seconds, compiled_how = _compiled()
@@ -158,7 +162,7 @@ def measure(sizes=SIZES) -> list[dict]:
             row("solve", count, None, note="skipped: L alone needs 2.9 GB, doubled inside solve")
         if compiled is not None:
             row("compiled", count, best_time(fns["compiled"], repeat, budget),
-                compiled_seconds, "runtime.compiled.angular_velocity_columns (heyoka cfunc) on "
+                compiled_seconds, "chaplygin_nd.runtime.compiled.angular_velocity_columns (heyoka cfunc) on "
                 "component-major columns prepared once (+16 B/pt of a, b); compile: "
                 f"{compiled_how}")
             row("compiled raw cfunc", count, best_time(fns["compiled raw cfunc"], repeat, budget),
@@ -246,7 +250,7 @@ def markdown(rows: list[dict], lines_of_targets: list[str]) -> str:
     sizes = sorted({r["points"] for r in rows})
     backends = list(dict.fromkeys(r["backend"] for r in rows))
     head = ["# Throughput: vec Omega = L_gamma^-1 M (P:inversion), n = 4", "", *machine(), "",
-            "Reproduce: `python -m bench throughput` (from the repository root).", "",
+            "Reproduce: `chaplygin bench throughput` (from the repository root).", "",
             "## Targets", "", *lines_of_targets, "",
             "## Nanoseconds per point (minimum over repeats)", "",
             "| backend | " + " | ".join(f"{n:,}" for n in sizes) + " | compile s |",

@@ -25,7 +25,7 @@ method (cached in ``out/cache``), independent of every integrator judged.
 
 Writes ``work_precision.json`` (rows: ``scene``, ``T``, ``method``, ``setting``, ``error``,
 ``seconds``, ``compile_seconds``, ...), ``work_precision.md`` (targets MET / NOT MET, all rows) and
-the figures ``work_precision_*.png``. Reproduce: ``python -m bench work_precision``.
+the figures ``work_precision_*.png``. Reproduce: ``chaplygin bench work_precision``.
 """
 
 from __future__ import annotations
@@ -34,9 +34,9 @@ import os
 import time
 from pathlib import Path
 
-from bench import sections, sections_models
-from bench.report import heyoka_available, machine, write_atomic, write_rows
-from bench.runs import MD_HEAD, Row
+from chaplygin_nd.bench import sections, sections_models
+from chaplygin_nd.bench.report import heyoka_available, machine, write_atomic, write_rows
+from chaplygin_nd.bench.runs import MD_HEAD, Row
 
 SECTIONS = (sections.section_generic4d, sections.section_vertical5d, sections.section_precision,
             sections_models.section_long, sections_models.section_models,
@@ -66,10 +66,10 @@ def main(outdir: Path, quick: bool = False, cold: bool = False) -> int:
                f"- mode: {'--quick (smoke run; numbers not meaningful)' if quick else 'full'}, "
                f"{'cold (every cache empty: --cold)' if cold else 'caches as found'}; "
                f"sections: {', '.join(timings)}",
-               "", "Reproduce: `python -m bench work_precision` (from the repository root; "
+               "", "Reproduce: `chaplygin bench work_precision` (from the repository root; "
                "`make bench` runs it with the throughput). The bench keeps its caches in `bench/out/cache` "
                "(references, compiled heyoka objects, heyoka's own LLVM disk cache); cold: "
-               "`python -m bench --cold` empties them first; warm: a second run.", ""]
+               "`chaplygin bench --cold` empties them first; warm: a second run.", ""]
     lines = heading + ["## Targets", "", *targets, "", "## All runs", "", *MD_HEAD,
                        *[r.md() for r in rows], "",
                        "Errors: max over samples and components of (vec M, gamma) (models: of the "

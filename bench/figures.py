@@ -6,8 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
-
-from bench.report import save_figure
+from chaplygin_nd.bench.report import save_figure
 
 
 def _plt():

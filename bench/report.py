@@ -112,8 +112,7 @@ def heyoka_available() -> tuple[bool, str]:
     """(True, "") when heyoka and our heyoka integrator import, else (False, the reason)."""
     try:
         import heyoka  # noqa: F401
-
-        from simulate.integrators import heyoka_taylor  # noqa: F401
+        from chaplygin_nd.simulate.integrators import heyoka_taylor  # noqa: F401
     except ImportError as exc:
         return False, f"heyoka not importable ({exc}); its rows are omitted"
     return True, ""

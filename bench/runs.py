@@ -17,13 +17,12 @@ import time
 from pathlib import Path
 
 import numpy as np
-
-from bench.report import write_atomic
-from simulate import families, so
-from simulate.dispatch import active
-from simulate.field import FullField
-from simulate.integrators import dop853, lie, taylor
-from simulate.outputs import p_coefficients
+from chaplygin_nd.bench.report import write_atomic
+from chaplygin_nd.simulate import families, so
+from chaplygin_nd.simulate.dispatch import active
+from chaplygin_nd.simulate.field import FullField
+from chaplygin_nd.simulate.integrators import dop853, lie, taylor
+from chaplygin_nd.simulate.outputs import p_coefficients
 
 
 @dataclasses.dataclass
@@ -162,7 +161,7 @@ def heyoka_rows(scene, field, y0, t, ref, tols, repeats=5, error=None, drift_of=
     """heyoka Taylor (our derived field, :mod:`simulate.integrators.heyoka_taylor`) at each
     tolerance; ``compile_seconds`` is the cold compile or warm cache load of the first run, the
     note says which. ``error(sol)`` overrides the max-abs error against ``ref``."""
-    from simulate.integrators import heyoka_taylor
+    from chaplygin_nd.simulate.integrators import heyoka_taylor
 
     rows = []
     for tol in tols:

@@ -7,10 +7,9 @@ import dataclasses
 from pathlib import Path
 
 import numpy as np
-
-from bench.figures import figure
-from bench.report import target
-from bench.runs import (
+from chaplygin_nd.bench.figures import figure
+from chaplygin_nd.bench.report import target
+from chaplygin_nd.bench.runs import (
     Point,
     Row,
     best,
@@ -23,10 +22,10 @@ from bench.runs import (
     rkmk4_rows,
     timed,
 )
-from simulate import families, so
-from simulate.closed_forms import relative_equilibrium
-from simulate.dispatch import active
-from simulate.integrators import taylor
+from chaplygin_nd.simulate import families, so
+from chaplygin_nd.simulate.closed_forms import relative_equilibrium
+from chaplygin_nd.simulate.dispatch import active
+from chaplygin_nd.simulate.integrators import taylor
 
 RTOLS = (1e-6, 1e-8, 1e-10, 1e-11, 1e-12, 1e-13, 2.3e-14)
 STEPS = (0.2, 0.1, 0.05, 0.025)
@@ -111,7 +110,7 @@ def section_generic4d(ctx: Context):
 def _hand_written(name, point: Point, t, ref, tol: float) -> Row:
     """What a user would write by hand (``bench.bench_heyoka.hand_written_script``: ``from_sympy`` of
     our derived SymPy field, one ``taylor_adaptive``, ``propagate_grid``) at tolerance ``tol``."""
-    from bench.bench_heyoka import hand_written_script
+    from chaplygin_nd.bench.bench_heyoka import hand_written_script
 
     err, seconds, compile_seconds = hand_written_script(tol)(point.y0()[0], t, ref[:, 0])
     return Row(name, float(t[-1]), "heyoka hand-written script", f"tol={tol:g}", err, seconds,
@@ -190,7 +189,7 @@ def section_precision(ctx: Context):
         rows.append(Row(name, Tm, "mpmath.odefun", f"{dps} digits", err, seconds, 0.0, calls, 0))
     hy_rows = []
     if ctx.heyoka:
-        from simulate.integrators import heyoka_taylor as ht
+        from chaplygin_nd.simulate.integrators import heyoka_taylor as ht
 
         for label, prec in (("real128", "real128"), *((f"real, {d} digits", ht.bits_for_digits(d))
                                                         for d in (20, 30, 40))):
@@ -214,7 +213,7 @@ def section_precision(ctx: Context):
                     s30.seconds < 10 and e30 < 1e-29,
                     f"{s30.seconds:.2f} s, {s30.steps} steps, difference to 40 digits {e30:.1e}")]
     if ctx.heyoka:
-        from simulate.integrators import heyoka_taylor as ht
+        from chaplygin_nd.simulate.integrators import heyoka_taylor as ht
 
         hsol = best(lambda: ht.integrate(f, y0, t20, precision=ht.bits_for_digits(30)), 3)
         eh = _mp_error(hsol.y_high[-1, 0], s40)

@@ -4,18 +4,17 @@ run and the drift of the integrals, the cheaper models for invariant-only output
 from __future__ import annotations
 
 import numpy as np
-
-from bench.figures import drift_figure, figure
-from bench.report import target
-from bench.runs import Point, Row, best, drift, heyoka_rows, reference, timed
-from bench.sections import Context, cheapest, versus
-from simulate import families, so
-from simulate.closed_forms import horizontal
-from simulate.dispatch import active
-from simulate.field import FullField, ReducedField
-from simulate.integrators import dop853, lie
-from simulate.outputs import p_coefficients
-from simulate.run import reduced_invariants
+from chaplygin_nd.bench.figures import drift_figure, figure
+from chaplygin_nd.bench.report import target
+from chaplygin_nd.bench.runs import Point, Row, best, drift, heyoka_rows, reference, timed
+from chaplygin_nd.bench.sections import Context, cheapest, versus
+from chaplygin_nd.simulate import families, so
+from chaplygin_nd.simulate.closed_forms import horizontal
+from chaplygin_nd.simulate.dispatch import active
+from chaplygin_nd.simulate.field import FullField, ReducedField
+from chaplygin_nd.simulate.integrators import dop853, lie
+from chaplygin_nd.simulate.outputs import p_coefficients
+from chaplygin_nd.simulate.run import reduced_invariants
 
 LONG_T, LONG_SAMPLES, LONG_H = 1000.0, 101, 0.05
 ROUNDING = 1e-12  # "at rounding level": the isospectral invariants stay below this
@@ -69,7 +68,7 @@ def section_long(ctx: Context):
         hys = heyoka_rows(name, g4.field(), g4.y0(), t, ref, (1e-15,), repeats=2,
                           drift_of=lambda y: drift(g4, y))
         rows += hys
-        from simulate.integrators import heyoka_taylor
+        from chaplygin_nd.simulate.integrators import heyoka_taylor
 
         hsol = heyoka_taylor.integrate(g4.field(), g4.y0(), t, tol=1e-15)
         series["heyoka tol 1e-15"] = drift_series(g4, hsol.y)
@@ -165,8 +164,8 @@ def _planner_line(rows) -> str:
     measured run that meets its accuracy target?"""
     from pathlib import Path
 
-    from simulate import planner
-    from simulate.scene import load
+    from chaplygin_nd.simulate import planner
+    from chaplygin_nd.simulate.scene import load
 
     scene = load(Path(__file__).resolve().parent.parent / "scenes" / "reduced4d.toml")
     chosen = planner.plan(scene)

@@ -28,15 +28,14 @@ Uses: eq:M-O-axi-symm, P:Measure, P:inversion, eq:motion-general.
 from __future__ import annotations
 
 import sympy as sp
-
-from proofs.ledger import Verdict, claim
-from proofs.s4_common import combine, gamma_symbols, random_point, sym_checks
-from symbolic import points
-from symbolic.algebra import commutator, skew_symbols
-from symbolic.axisym_inverse import inverse_closed_form
-from symbolic.axisymmetric import E_n, L_gamma_axisym
-from symbolic.exact import zero_at_points
-from symbolic.printed import section4 as printed
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs.s4_common import combine, gamma_symbols, random_point, sym_checks
+from chaplygin_nd.symbolic import points
+from chaplygin_nd.symbolic.algebra import commutator, skew_symbols
+from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
+from chaplygin_nd.symbolic.axisymmetric import E_n, L_gamma_axisym
+from chaplygin_nd.symbolic.exact import zero_at_points
+from chaplygin_nd.symbolic.printed import section4 as printed
 
 
 def _cayley(S: sp.Matrix) -> sp.Matrix:

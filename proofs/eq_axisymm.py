@@ -32,9 +32,8 @@ Uses: eq:Inertia, eq:M-O, eq:motion-general (Section 2); P:inversion (closed for
 from __future__ import annotations
 
 import sympy as sp
-
-from proofs.ledger import Verdict, claim
-from proofs.s4_common import (
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs.s4_common import (
     REDUCTION,
     a,
     b,
@@ -44,12 +43,12 @@ from proofs.s4_common import (
     point_checks,
     sym_checks,
 )
-from symbolic.algebra import commutator, skew_symbols, wedge
-from symbolic.axisym_inverse import inverse_closed_form
-from symbolic.axisymmetric import L_gamma_axisym, inertia_axisym, mass_tensor
-from symbolic.exact import rational_identity
-from symbolic.printed import section4 as printed
-from symbolic.vertical import inertia_matrix_3d
+from chaplygin_nd.symbolic.algebra import commutator, skew_symbols, wedge
+from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
+from chaplygin_nd.symbolic.axisymmetric import L_gamma_axisym, inertia_axisym, mass_tensor
+from chaplygin_nd.symbolic.exact import rational_identity
+from chaplygin_nd.symbolic.printed import section4 as printed
+from chaplygin_nd.symbolic.vertical import inertia_matrix_3d
 
 
 @claim("eq:axisymm", uses=("eq:Inertia",))

@@ -19,13 +19,12 @@ Uses: P:Measure (the block $C$), eq:M-O-axi-symm.
 from __future__ import annotations
 
 import sympy as sp
-
-from proofs.ledger import Verdict, claim
-from proofs.s4_common import a, b, combine, fact
-from symbolic import points
-from symbolic.axisymmetric import Delta, x
-from symbolic.exact import rational_identity
-from symbolic.printed import section4 as printed
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs.s4_common import a, b, combine, fact
+from chaplygin_nd.symbolic import points
+from chaplygin_nd.symbolic.axisymmetric import Delta, x
+from chaplygin_nd.symbolic.exact import rational_identity
+from chaplygin_nd.symbolic.printed import section4 as printed
 
 
 def _positivity_checks():

@@ -32,9 +32,8 @@ Uses: eq:axisymm, eq:M-O-axi-symm, eq:V-velocity, eq:action.
 from __future__ import annotations
 
 import sympy as sp
-
-from proofs.ledger import Verdict, claim
-from proofs.s4_common import (
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs.s4_common import (
     REDUCTION,
     a,
     b,
@@ -45,12 +44,12 @@ from proofs.s4_common import (
     sym_checks,
     sym_gamma,
 )
-from symbolic.algebra import commutator, skew_symbols
-from symbolic.axisym_inverse import inverse_closed_form
-from symbolic.axisymmetric import E_n, L_gamma_axisym, inertia_axisym
-from symbolic.exact import rational_identity
-from symbolic.printed import section4 as printed
-from symbolic.vertical import chi, inertia_matrix_3d, inertia_tilde
+from chaplygin_nd.symbolic.algebra import commutator, skew_symbols
+from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
+from chaplygin_nd.symbolic.axisymmetric import E_n, L_gamma_axisym, inertia_axisym
+from chaplygin_nd.symbolic.exact import rational_identity
+from chaplygin_nd.symbolic.printed import section4 as printed
+from chaplygin_nd.symbolic.vertical import chi, inertia_matrix_3d, inertia_tilde
 
 QUAD = "; quadratic in Omega: n = 6 covers all n"
 

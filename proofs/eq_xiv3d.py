@@ -27,15 +27,14 @@ Uses: P:EulerTop, eq:vert-3D, eq:axisymm, eq:V-velocity, P:inversion, eq:action.
 from __future__ import annotations
 
 import sympy as sp
-
-from proofs.ledger import Verdict, claim
-from proofs.s4_common import a, b, generic_vertical, sym_checks
-from symbolic.algebra import commutator, unhat, vector_symbols
-from symbolic.axisym_inverse import inverse_closed_form
-from symbolic.axisymmetric import E_n
-from symbolic.exact import rational_identity
-from symbolic.printed import section4 as printed
-from symbolic.vertical import euler_rhs_3d, inertia_matrix_3d, zeta_3d
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs.s4_common import a, b, generic_vertical, sym_checks
+from chaplygin_nd.symbolic.algebra import commutator, unhat, vector_symbols
+from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
+from chaplygin_nd.symbolic.axisymmetric import E_n
+from chaplygin_nd.symbolic.exact import rational_identity
+from chaplygin_nd.symbolic.printed import section4 as printed
+from chaplygin_nd.symbolic.vertical import euler_rhs_3d, inertia_matrix_3d, zeta_3d
 
 
 def _on_V():

@@ -24,18 +24,17 @@ r"""K:* — the stable rewrites used by the generated kernels, each proved equal
 from __future__ import annotations
 
 import sympy as sp
-
-from proofs.ledger import Verdict, claim
-from symbolic.algebra import hat
-from symbolic.exact import rational_identity
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.symbolic.algebra import hat
+from chaplygin_nd.symbolic.exact import rational_identity
 
 SECTION = "Kernels — stable rewrites"
 
 
 @claim("K:Delta", uses=("eq:Delta",), adds=(SECTION, "Δ(x) = 2(2+a+b) + ab(1−x)(1+x), the form the kernels evaluate, equals the derived Δ (certifies the form; no accuracy gain is claimed)"))
 def k_delta() -> Verdict:
-    from symbolic.axisymmetric import Delta, a, b, x
-    from symbolic.emit.axisym import stable_Delta
+    from chaplygin_nd.symbolic.axisymmetric import Delta, a, b, x
+    from chaplygin_nd.symbolic.emit.axisym import stable_Delta
 
     check = rational_identity(stable_Delta(x, a, b) - Delta(x, a, b))
     return Verdict.all_of([("stable form = derived Delta", check)], method=check.method)
@@ -77,8 +76,8 @@ def _mod_both(residual: sp.Matrix, z, c):
 
 @claim("K:horizontal-sinc", uses=("S5:H-linear",), adds=(SECTION, "sin(νt)/ν = t sinc(νt) in the horizontal-solution kernel, equal to the derived solution"))
 def k_horizontal_sinc() -> Verdict:
-    from symbolic import reduced
-    from symbolic.emit.reduced import horizontal_solution_stable
+    from chaplygin_nd.symbolic import reduced
+    from chaplygin_nd.symbolic.emit.reduced import horizontal_solution_stable
 
     t, x0, G0 = sp.symbols("t x0 G0", real=True)
     nu = sp.Symbol("nu", positive=True)

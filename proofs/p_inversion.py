@@ -28,15 +28,26 @@ Uses: eq:M-O-axi-symm, eq:Delta, P:Measure (invertibility: $\det L_\gamma \ne 0$
 from __future__ import annotations
 
 import sympy as sp
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs.s4_common import (
+    REDUCTION,
+    a,
+    b,
+    combine,
+    generic,
+    point_checks,
+    sym_checks,
+)
+from chaplygin_nd.symbolic.algebra import skew_symbols, unvec, vec, wedge
+from chaplygin_nd.symbolic.axisym_inverse import (
+    inverse_closed_form,
+    inverse_denominator,
+    inverse_numerator,
+)
+from chaplygin_nd.symbolic.axisymmetric import Delta, E_n, L_gamma_axisym, L_matrix_axisym, x
+from chaplygin_nd.symbolic.exact import rational_identity
+from chaplygin_nd.symbolic.printed import section4 as printed
 from sympy.polys.matrices import DomainMatrix
-
-from proofs.ledger import Verdict, claim
-from proofs.s4_common import REDUCTION, a, b, combine, generic, point_checks, sym_checks
-from symbolic.algebra import skew_symbols, unvec, vec, wedge
-from symbolic.axisym_inverse import inverse_closed_form, inverse_denominator, inverse_numerator
-from symbolic.axisymmetric import Delta, E_n, L_gamma_axisym, L_matrix_axisym, x
-from symbolic.exact import rational_identity
-from symbolic.printed import section4 as printed
 
 
 def _solves(n: int):

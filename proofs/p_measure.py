@@ -39,14 +39,20 @@ Uses: eq:M-O-axi-symm, eq:Delta, eq:invmeasuredet.
 from __future__ import annotations
 
 import sympy as sp
-from sympy.polys.matrices import DomainMatrix
-
-from proofs.ledger import Verdict, claim
-from proofs.s4_common import a, b, combine, gamma_symbols, point_checks, sym_checks, sym_gamma
-from symbolic import points
-from symbolic.algebra import commutator, skew_symbols, vec, vector_symbols, wedge
-from symbolic.axisym_inverse import inverse_closed_form
-from symbolic.axisymmetric import (
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs.s4_common import (
+    a,
+    b,
+    combine,
+    gamma_symbols,
+    point_checks,
+    sym_checks,
+    sym_gamma,
+)
+from chaplygin_nd.symbolic import points
+from chaplygin_nd.symbolic.algebra import commutator, skew_symbols, vec, vector_symbols, wedge
+from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
+from chaplygin_nd.symbolic.axisymmetric import (
     E_n,
     L_gamma_axisym,
     L_matrix_axisym,
@@ -56,9 +62,10 @@ from symbolic.axisymmetric import (
     mass_tensor,
     x,
 )
-from symbolic.exact import rational_identity, zero_at_points
-from symbolic.measure import chaplygin_divergence_at, divergence
-from symbolic.printed import section4 as printed
+from chaplygin_nd.symbolic.exact import rational_identity, zero_at_points
+from chaplygin_nd.symbolic.measure import chaplygin_divergence_at, divergence
+from chaplygin_nd.symbolic.printed import section4 as printed
+from sympy.polys.matrices import DomainMatrix
 
 
 def _w(v: sp.Matrix, g: sp.Matrix) -> sp.Matrix:

@@ -26,15 +26,14 @@ Uses: eq:xiVnD, eq:xiV3D, eq:V-velocity, Th:Re, P:inversion.
 from __future__ import annotations
 
 import sympy as sp
-
-from proofs.ledger import Verdict, claim
-from proofs.s4_common import SAMPLERS, a, b, combine, generic_vertical, sym_checks
-from symbolic.algebra import hat, unhat, wedge
-from symbolic.axisym_inverse import inverse_closed_form
-from symbolic.axisymmetric import E_n, L_gamma_axisym
-from symbolic.exact import rational_identity
-from symbolic.printed import section4 as printed
-from symbolic.vertical import zeta, zeta_3d
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs.s4_common import SAMPLERS, a, b, combine, generic_vertical, sym_checks
+from chaplygin_nd.symbolic.algebra import hat, unhat, wedge
+from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
+from chaplygin_nd.symbolic.axisymmetric import E_n, L_gamma_axisym
+from chaplygin_nd.symbolic.exact import rational_identity
+from chaplygin_nd.symbolic.printed import section4 as printed
+from chaplygin_nd.symbolic.vertical import zeta, zeta_3d
 
 
 def _on_V():

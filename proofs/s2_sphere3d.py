@@ -32,15 +32,14 @@ from __future__ import annotations
 from functools import cache
 
 import sympy as sp
-
-from proofs.ledger import Verdict, claim
-from symbolic import points
-from symbolic.algebra import hat, vector_symbols, wedge
-from symbolic.exact import rational_identity
-from symbolic.measure import measure_residual
-from symbolic.model import commutator, inertia_operator, mom3d, motion3d
-from symbolic.printed import section2 as printed
-from symbolic.sphere3d import L_gamma_matrix_3d, angular_velocity_3d, velocity_field_3d
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.symbolic import points
+from chaplygin_nd.symbolic.algebra import hat, vector_symbols, wedge
+from chaplygin_nd.symbolic.exact import rational_identity
+from chaplygin_nd.symbolic.measure import measure_residual
+from chaplygin_nd.symbolic.model import commutator, inertia_operator, mom3d, motion3d
+from chaplygin_nd.symbolic.printed import section2 as printed
+from chaplygin_nd.symbolic.sphere3d import L_gamma_matrix_3d, angular_velocity_3d, velocity_field_3d
 
 M = vector_symbols("M", 3)
 gamma = vector_symbols("gamma", 3)

@@ -32,12 +32,9 @@ rational points, where $\Omega = L_\gamma^{-1}M$ is an exact linear solve, up to
 from __future__ import annotations
 
 import sympy as sp
-from sympy.polys.domains import QQ
-from sympy.polys.matrices import DomainMatrix
-
-from proofs.ledger import Verdict, claim
-from symbolic import points
-from symbolic.algebra import (
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.symbolic import points
+from chaplygin_nd.symbolic.algebra import (
     basis_vector,
     commutator,
     killing,
@@ -47,9 +44,9 @@ from symbolic.algebra import (
     vector_symbols,
     wedge,
 )
-from symbolic.exact import rational_identity, zero_at_points
-from symbolic.measure import chaplygin_divergence_at
-from symbolic.model import (
+from chaplygin_nd.symbolic.exact import rational_identity, zero_at_points
+from chaplygin_nd.symbolic.measure import chaplygin_divergence_at
+from chaplygin_nd.symbolic.model import (
     L_gamma,
     L_matrix,
     angular_velocity,
@@ -57,7 +54,9 @@ from symbolic.model import (
     mass_tensor_symbols,
     motion,
 )
-from symbolic.printed import section2 as printed
+from chaplygin_nd.symbolic.printed import section2 as printed
+from sympy.polys.domains import QQ
+from sympy.polys.matrices import DomainMatrix
 
 SYMBOLIC_N = (3, 4, 5, 6)
 POINT_N = tuple(range(3, 13))

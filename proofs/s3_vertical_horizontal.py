@@ -37,17 +37,24 @@ Euler's equations $\tilde{\mathbb I}\dot\Omega = (\tilde{\mathbb I}\Omega)\times
 from __future__ import annotations
 
 import sympy as sp
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.symbolic import points
+from chaplygin_nd.symbolic.algebra import (
+    basis_vector,
+    hat,
+    skew_symbols,
+    so_basis,
+    vec,
+    vector_symbols,
+    wedge,
+)
+from chaplygin_nd.symbolic.exact import Check, rational_identity, zero_at_points
+from chaplygin_nd.symbolic.model import commutator, cross, mom3d, motion, motion3d
+from chaplygin_nd.symbolic.printed import section2 as printed2
+from chaplygin_nd.symbolic.printed import section3 as printed
+from chaplygin_nd.symbolic.sphere3d import L_gamma_matrix_3d, tilde_inertia
 from sympy.polys.domains import QQ
 from sympy.polys.matrices import DomainMatrix
-
-from proofs.ledger import Verdict, claim
-from symbolic import points
-from symbolic.algebra import basis_vector, hat, skew_symbols, so_basis, vec, vector_symbols, wedge
-from symbolic.exact import Check, rational_identity, zero_at_points
-from symbolic.model import commutator, cross, mom3d, motion, motion3d
-from symbolic.printed import section2 as printed2
-from symbolic.printed import section3 as printed
-from symbolic.sphere3d import L_gamma_matrix_3d, tilde_inertia
 
 M = vector_symbols("M", 3)
 gamma = vector_symbols("gamma", 3)

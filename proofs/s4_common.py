@@ -33,12 +33,11 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Sequence
 
 import sympy as sp
-
-from symbolic import points
-from symbolic.algebra import skew_symbols, vector_symbols, wedge
-from symbolic.axisymmetric import a, b
-from symbolic.exact import Check, rational_identity, zero_at_points
-from symbolic.vertical import vertical_point
+from chaplygin_nd.symbolic import points
+from chaplygin_nd.symbolic.algebra import skew_symbols, vector_symbols, wedge
+from chaplygin_nd.symbolic.axisymmetric import a, b
+from chaplygin_nd.symbolic.exact import Check, rational_identity, zero_at_points
+from chaplygin_nd.symbolic.vertical import vertical_point
 
 __all__ = [
     "a", "b", "SAMPLERS", "FRAME", "gamma_symbols", "frame_gamma", "sphere_symbols", "generic",

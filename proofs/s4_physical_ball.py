@@ -51,11 +51,10 @@ Uses: eq:Inertia, eq:M-O, eq:motion-general, eq:axisymm, eq:mom3D.
 from __future__ import annotations
 
 import sympy as sp
-
-from proofs.ledger import Verdict, claim
-from proofs.s4_common import combine
-from symbolic import points
-from symbolic.algebra import (
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs.s4_common import combine
+from chaplygin_nd.symbolic import points
+from chaplygin_nd.symbolic.algebra import (
     basis_vector,
     commutator,
     hat,
@@ -64,10 +63,10 @@ from symbolic.algebra import (
     vector_symbols,
     wedge,
 )
-from symbolic.axisymmetric import L_gamma_axisym, mass_tensor
-from symbolic.exact import rational_identity, zero_at_points
-from symbolic.model import inertia_operator, mass_tensor_symbols, mom3d
-from symbolic.physical_ball import (
+from chaplygin_nd.symbolic.axisymmetric import L_gamma_axisym, mass_tensor
+from chaplygin_nd.symbolic.exact import rational_identity, zero_at_points
+from chaplygin_nd.symbolic.model import inertia_operator, mass_tensor_symbols, mom3d
+from chaplygin_nd.symbolic.physical_ball import (
     I1,
     In,
     axisymmetric_mass_tensor,

@@ -20,15 +20,14 @@ from __future__ import annotations
 import itertools
 
 import sympy as sp
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs.s4_common import fact, generic_vertical, sym_checks
+from chaplygin_nd.symbolic.algebra import commutator, unvec, vec, wedge
+from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
+from chaplygin_nd.symbolic.axisymmetric import E_n, L_matrix_axisym
+from chaplygin_nd.symbolic.printed import section4 as printed
+from chaplygin_nd.symbolic.vertical import chi, zeta
 from sympy.polys.matrices import DomainMatrix
-
-from proofs.ledger import Verdict, claim
-from proofs.s4_common import fact, generic_vertical, sym_checks
-from symbolic.algebra import commutator, unvec, vec, wedge
-from symbolic.axisym_inverse import inverse_closed_form
-from symbolic.axisymmetric import E_n, L_matrix_axisym
-from symbolic.printed import section4 as printed
-from symbolic.vertical import chi, zeta
 
 
 def _explicit_point(n: int):

@@ -11,10 +11,9 @@ r"""Shared helpers of the Section 5 proofs (no claims are registered here).
 from __future__ import annotations
 
 import sympy as sp
-
-from symbolic import fourd, points
-from symbolic import reduced_invariants as ri
-from symbolic.exact import Check, rational_identity, zero_at_points
+from chaplygin_nd.symbolic import fourd, points
+from chaplygin_nd.symbolic import reduced_invariants as ri
+from chaplygin_nd.symbolic.exact import Check, rational_identity, zero_at_points
 
 a, b, x = fourd.a, fourd.b, fourd.x
 k, u, q = fourd.k, fourd.u, fourd.q

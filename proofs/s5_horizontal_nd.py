@@ -72,17 +72,16 @@ from __future__ import annotations
 from functools import cache
 
 import sympy as sp
-
-from proofs.ledger import Verdict, claim
-from proofs.s4_common import SAMPLERS, combine, frame_gamma, gamma_symbols
-from symbolic import points
-from symbolic.algebra import commutator, killing, skew_symbols, vector_symbols, wedge
-from symbolic.axisym_inverse import inverse_denominator, inverse_numerator
-from symbolic.axisymmetric import E_n, a, b, mass_tensor
-from symbolic.exact import rational_identity, zero_at_points
-from symbolic.model import angular_velocity
-from symbolic.printed import section5 as printed
-from symbolic.reduced import horizontal_solution
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs.s4_common import SAMPLERS, combine, frame_gamma, gamma_symbols
+from chaplygin_nd.symbolic import points
+from chaplygin_nd.symbolic.algebra import commutator, killing, skew_symbols, vector_symbols, wedge
+from chaplygin_nd.symbolic.axisym_inverse import inverse_denominator, inverse_numerator
+from chaplygin_nd.symbolic.axisymmetric import E_n, a, b, mass_tensor
+from chaplygin_nd.symbolic.exact import rational_identity, zero_at_points
+from chaplygin_nd.symbolic.model import angular_velocity
+from chaplygin_nd.symbolic.printed import section5 as printed
+from chaplygin_nd.symbolic.reduced import horizontal_solution
 
 SECTION = "Section 5 — n = 4"
 SYMBOLIC_N = (3, 4)

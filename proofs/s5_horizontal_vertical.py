@@ -34,13 +34,12 @@ $\dot c = -\nu s$, $\dot s = \nu c$. $n = 4$.
 from __future__ import annotations
 
 import sympy as sp
-
-from proofs.ledger import Verdict, claim
-from proofs.s5_common import SAMPLERS, exact, horizontal_point, invariants_at, on_P
-from symbolic import fourd, reduced
-from symbolic import reduced_invariants as ri
-from symbolic.exact import rational_identity, zero_at_points
-from symbolic.printed import section5 as printed
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs.s5_common import SAMPLERS, exact, horizontal_point, invariants_at, on_P
+from chaplygin_nd.symbolic import fourd, reduced
+from chaplygin_nd.symbolic import reduced_invariants as ri
+from chaplygin_nd.symbolic.exact import rational_identity, zero_at_points
+from chaplygin_nd.symbolic.printed import section5 as printed
 
 a, b, x, k, u, q = fourd.a, fourd.b, fourd.x, fourd.k, fourd.u, fourd.q
 A, B, E, G, F1, delta = ri.A, ri.B, ri.E, ri.G, ri.F1, ri.delta

@@ -22,13 +22,12 @@ each set (the derived field evaluated exactly). $n = 4$.
 from __future__ import annotations
 
 import sympy as sp
-
-from proofs.ledger import Verdict, claim
-from proofs.s5_common import exact, horizontal_point, on_P, phase_point, subs_point
-from symbolic import fourd
-from symbolic.algebra import wedge
-from symbolic.exact import zero_at_points
-from symbolic.printed import section5 as printed
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs.s5_common import exact, horizontal_point, on_P, phase_point, subs_point
+from chaplygin_nd.symbolic import fourd
+from chaplygin_nd.symbolic.algebra import wedge
+from chaplygin_nd.symbolic.exact import zero_at_points
+from chaplygin_nd.symbolic.printed import section5 as printed
 
 a, b, x, k, u, q = fourd.a, fourd.b, fourd.x, fourd.k, fourd.u, fourd.q
 Z = (*k, *u, *q, x)

@@ -22,11 +22,10 @@ modulo $\lVert\gamma\rVert^2 = 1$ after clearing $D = 2(2+a+b)\Delta$). $n = 4$.
 from __future__ import annotations
 
 import sympy as sp
-
-from proofs.ledger import Verdict, claim
-from proofs.s5_common import exact, on_P, ring_on_P
-from symbolic import fourd
-from symbolic.printed import section5 as printed
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs.s5_common import exact, on_P, ring_on_P
+from chaplygin_nd.symbolic import fourd
+from chaplygin_nd.symbolic.printed import section5 as printed
 
 a, b, x, k, u, q, eta, xi = (fourd.a, fourd.b, fourd.x, fourd.k, fourd.u, fourd.q, fourd.eta,
                              fourd.xi)

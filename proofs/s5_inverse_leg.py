@@ -21,13 +21,12 @@ $n = 4$.
 from __future__ import annotations
 
 import sympy as sp
-
-from proofs.ledger import Verdict, claim
-from proofs.s5_common import on_P, phase_point, ring_on_P
-from symbolic import fourd
-from symbolic.exact import zero_at_points
-from symbolic.model import angular_velocity
-from symbolic.printed import section5 as printed
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs.s5_common import on_P, phase_point, ring_on_P
+from chaplygin_nd.symbolic import fourd
+from chaplygin_nd.symbolic.exact import zero_at_points
+from chaplygin_nd.symbolic.model import angular_velocity
+from chaplygin_nd.symbolic.printed import section5 as printed
 
 a, b, x, k, u, q = fourd.a, fourd.b, fourd.x, fourd.k, fourd.u, fourd.q
 R = fourd.RV

@@ -24,12 +24,11 @@ control, that $\rho = 1$ and $\rho = \Delta^{-2}$ are *not* invariant).
 from __future__ import annotations
 
 import sympy as sp
-
-from proofs.ledger import Verdict, claim
-from proofs.s5_common import ring_on_P
-from symbolic import fourd, points
-from symbolic.exact import Check, Counterexample
-from symbolic.printed import section5 as printed
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs.s5_common import ring_on_P
+from chaplygin_nd.symbolic import fourd, points
+from chaplygin_nd.symbolic.exact import Check, Counterexample
+from chaplygin_nd.symbolic.printed import section5 as printed
 
 a, b, x = fourd.a, fourd.b, fourd.x
 R = fourd.RV

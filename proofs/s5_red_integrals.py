@@ -31,13 +31,12 @@ modulo $\delta^2 = \det\Lambda$. $n = 4$.
 from __future__ import annotations
 
 import sympy as sp
-
-from proofs.ledger import Verdict, claim
-from proofs.s5_common import exact, invariants_at, phase_point, reduced_check
-from symbolic import fourd, points, reduced
-from symbolic import reduced_invariants as ri
-from symbolic.measure import measure_residual
-from symbolic.printed import section5 as printed
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs.s5_common import exact, invariants_at, phase_point, reduced_check
+from chaplygin_nd.symbolic import fourd, points, reduced
+from chaplygin_nd.symbolic import reduced_invariants as ri
+from chaplygin_nd.symbolic.measure import measure_residual
+from chaplygin_nd.symbolic.printed import section5 as printed
 
 a, b, x = fourd.a, fourd.b, fourd.x
 A, B, E, G, F1, delta = ri.A, ri.B, ri.E, ri.G, ri.F1, ri.delta

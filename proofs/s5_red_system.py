@@ -21,11 +21,11 @@ independently of the ansatz solver); (2) printed = derived, exact identity of no
 
 from __future__ import annotations
 
-from proofs.ledger import Verdict, claim
-from proofs.s5_common import reduced_check, ring_on_P
-from symbolic import fourd, reduced
-from symbolic import reduced_invariants as ri
-from symbolic.printed import section5 as printed
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs.s5_common import reduced_check, ring_on_P
+from chaplygin_nd.symbolic import fourd, reduced
+from chaplygin_nd.symbolic import reduced_invariants as ri
+from chaplygin_nd.symbolic.printed import section5 as printed
 
 a, b, x = fourd.a, fourd.b, fourd.x
 

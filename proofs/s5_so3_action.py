@@ -24,13 +24,12 @@ isotropy dimensions exactly at explicit and seeded points of each stratum. $n = 
 from __future__ import annotations
 
 import sympy as sp
-
-from proofs.ledger import Verdict, claim
-from proofs.s5_common import exact, on_P
-from symbolic import fourd, points
-from symbolic.algebra import hat
-from symbolic.exact import Check, Counterexample
-from symbolic.printed import section5 as printed
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs.s5_common import exact, on_P
+from chaplygin_nd.symbolic import fourd, points
+from chaplygin_nd.symbolic.algebra import hat
+from chaplygin_nd.symbolic.exact import Check, Counterexample
+from chaplygin_nd.symbolic.printed import section5 as printed
 
 a, b, x, k, u, q = fourd.a, fourd.b, fourd.x, fourd.k, fourd.u, fourd.q
 R = fourd.RV

@@ -23,14 +23,13 @@ modulo $\lVert\gamma\rVert^2 = 1$; the last remark by an explicit exact witness.
 from __future__ import annotations
 
 import sympy as sp
-
-from proofs.ledger import Verdict, claim
-from proofs.s5_common import exact, on_P, ring_on_P
-from proofs.trig_common import T, trig_identity
-from symbolic import fourd, points
-from symbolic.algebra import commutator
-from symbolic.axisymmetric import L_gamma_axisym
-from symbolic.printed import section5 as printed
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs.s5_common import exact, on_P, ring_on_P
+from chaplygin_nd.proofs.trig_common import T, trig_identity
+from chaplygin_nd.symbolic import fourd, points
+from chaplygin_nd.symbolic.algebra import commutator
+from chaplygin_nd.symbolic.axisymmetric import L_gamma_axisym
+from chaplygin_nd.symbolic.printed import section5 as printed
 
 a, b, x, k, u, q, eta, xi = (fourd.a, fourd.b, fourd.x, fourd.k, fourd.u, fourd.q, fourd.eta,
                              fourd.xi)

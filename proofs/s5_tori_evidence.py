@@ -39,13 +39,13 @@ from __future__ import annotations
 
 import math
 
-from proofs.ledger import Verdict, claim
-from simulate import frequencies as fq
-from simulate import naff
-from simulate.evidence import orbits
-from simulate.poincare import section_curve_scatter
-from symbolic.printed import section4 as printed4
-from symbolic.printed import section5 as printed5
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.simulate import frequencies as fq
+from chaplygin_nd.simulate import naff
+from chaplygin_nd.simulate.evidence import orbits
+from chaplygin_nd.simulate.poincare import section_curve_scatter
+from chaplygin_nd.symbolic.printed import section4 as printed4
+from chaplygin_nd.symbolic.printed import section5 as printed5
 
 SECTION4 = "Section 4 — the axisymmetric sphere"
 SECTION5 = "Section 5 — n = 4"

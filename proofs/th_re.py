@@ -33,9 +33,8 @@ Uses: eq:def-H-V, P:inversion, eq:action, eq:V-velocity, eq:aux-inversion.
 from __future__ import annotations
 
 import sympy as sp
-
-from proofs.ledger import Verdict, claim
-from proofs.s4_common import (
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs.s4_common import (
     REDUCTION,
     a,
     b,
@@ -45,14 +44,14 @@ from proofs.s4_common import (
     random_vertical_point,
     sym_checks,
 )
-from proofs.trig_common import T, trig_identity
-from symbolic import points
-from symbolic.algebra import commutator, wedge
-from symbolic.axisym_inverse import inverse_closed_form
-from symbolic.axisymmetric import E_n, L_gamma_axisym
-from symbolic.exact import Check, Counterexample
-from symbolic.printed import section4 as printed
-from symbolic.vertical import zeta
+from chaplygin_nd.proofs.trig_common import T, trig_identity
+from chaplygin_nd.symbolic import points
+from chaplygin_nd.symbolic.algebra import commutator, wedge
+from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
+from chaplygin_nd.symbolic.axisymmetric import E_n, L_gamma_axisym
+from chaplygin_nd.symbolic.exact import Check, Counterexample
+from chaplygin_nd.symbolic.printed import section4 as printed
+from chaplygin_nd.symbolic.vertical import zeta
 
 NS = (3, 4)
 POINTS = range(5, 13)

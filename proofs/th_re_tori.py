@@ -85,16 +85,15 @@ Uses: Th:Re (the solution and $\zeta \in \mathfrak{so}(n-1)$), eq:action.
 from __future__ import annotations
 
 import sympy as sp
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs.s4_common import SAMPLERS, combine, fact
+from chaplygin_nd.symbolic import points
+from chaplygin_nd.symbolic.algebra import commutator, so_basis, wedge
+from chaplygin_nd.symbolic.axisymmetric import Delta, E_n, a, b, x
+from chaplygin_nd.symbolic.exact import Check, Counterexample, rational_identity
+from chaplygin_nd.symbolic.printed import section4 as printed4
+from chaplygin_nd.symbolic.vertical import vertical_point, zeta
 from sympy.polys.matrices import DomainMatrix
-
-from proofs.ledger import Verdict, claim
-from proofs.s4_common import SAMPLERS, combine, fact
-from symbolic import points
-from symbolic.algebra import commutator, so_basis, wedge
-from symbolic.axisymmetric import Delta, E_n, a, b, x
-from symbolic.exact import Check, Counterexample, rational_identity
-from symbolic.printed import section4 as printed4
-from symbolic.vertical import vertical_point, zeta
 
 __all__ = ["torus_rank", "zeta_map_rank", "isotropy_rank", "centralizer_dim", "mu_coefficients",
            "seeded_point", "NS"]

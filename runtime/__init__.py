@@ -8,7 +8,7 @@ definitions it names (eq:M-O, eq:motion-general), and the assembly it does is te
 mpmath in tests/test_kernels_*.py.
 """
 
-from runtime.axisym import (
+from chaplygin_nd.runtime.axisym import (
     L_gamma,
     angular_velocity,
     chi,

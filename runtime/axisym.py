@@ -16,8 +16,7 @@ $x = \gamma_n$. $u\wedge v = uv^T - vu^T$.
 from __future__ import annotations
 
 import numpy as np
-
-from generated import axisym as g
+from chaplygin_nd.generated import axisym as g
 
 __all__ = ["vec", "unvec", "L_gamma", "angular_velocity", "vector_field", "energy", "zeta", "chi",
            "expm_skew", "vertical_solution"]

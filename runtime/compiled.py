@@ -18,9 +18,8 @@ from __future__ import annotations
 import hashlib
 
 import numpy as np
-
-from runtime import expressions as rx
-from runtime import jit_cache
+from chaplygin_nd.runtime import expressions as rx
+from chaplygin_nd.runtime import jit_cache
 
 __all__ = ["angular_velocity_function", "angular_velocity_columns", "angular_velocity"]
 

@@ -22,7 +22,7 @@ then $g$ row-major and $c$.
 
 from __future__ import annotations
 
-from generated import expression_builders as eb
+from chaplygin_nd.generated import expression_builders as eb
 
 __all__ = ["pairs", "unvec", "angular_velocity", "vector_field", "energy", "HeyokaArithmetic"]
 

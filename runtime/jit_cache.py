@@ -13,8 +13,8 @@ keyed by the LLVM IR; a hit there still rebuilds the decomposition and the IR. M
 cores): n = 4 full field, tol 1e-11 — construction with a heyoka disk-cache hit 54 ms, our unpickle
 17 ms; n = 6 — 265 ms vs 17 ms; a cold compile is 3–20 s. Both caches are left on.
 
-Folder: ``$CHAPLYGIN_ND_CACHE`` if set, else ``$XDG_CACHE_HOME/chaplygin-nd``, else
-``~/.cache/chaplygin-nd``; entries live in its ``heyoka/`` subfolder.
+Folder: the ``heyoka/`` subfolder of the project's one cache folder (:mod:`chaplygin_nd.cache`:
+``$CHAPLYGIN_ND_CACHE``, else the platform's user cache folder).
 """
 
 from __future__ import annotations
@@ -29,9 +29,11 @@ import warnings
 from collections.abc import Callable
 from pathlib import Path
 
+from chaplygin_nd import cache as project_cache
+
 __all__ = ["cache_dir", "load_or_build", "CacheWarning"]
 
-ENV = "CHAPLYGIN_ND_CACHE"
+ENV = project_cache.ENV
 _MEMORY: dict[str, object] = {}
 
 
@@ -40,11 +42,8 @@ class CacheWarning(UserWarning):
 
 
 def cache_dir() -> Path:
-    """The cache folder (see the module docstring); not created here."""
-    if os.environ.get(ENV):
-        return Path(os.environ[ENV])
-    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-    return Path(base) / "chaplygin-nd"
+    """The folder of the compiled heyoka objects (see the module docstring); not created here."""
+    return project_cache.cache_dir("heyoka")
 
 
 def _digest(key: dict) -> str:
@@ -70,7 +69,7 @@ def load_or_build(key: dict, build: Callable[[], object], use_disk: bool = True)
     name = _digest(key)
     if name in _MEMORY:
         return _MEMORY[name], 0.0, "in memory"
-    path = cache_dir() / "heyoka" / f"{name}.pkl"
+    path = cache_dir() / f"{name}.pkl"
     start = time.perf_counter()
     if use_disk and path.exists():
         problem = None

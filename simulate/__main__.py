@@ -1,7 +1,7 @@
-"""``python -m simulate``: see :mod:`simulate.cli`."""
+"""``python -m chaplygin_nd.simulate`` (``chaplygin simulate``): see :mod:`chaplygin_nd.simulate.cli`."""
 
 import sys
 
-from simulate.cli import main
+from chaplygin_nd.simulate.cli import main
 
 sys.exit(main())

@@ -17,7 +17,7 @@ import os
 import sys
 import time
 
-from simulate.stops import TooCostly
+from chaplygin_nd.simulate.stops import TooCostly
 
 __all__ = ["LIMIT_SECONDS", "PILOT_SECONDS", "DRAW_SECONDS", "memory_limit", "memory_bytes",
            "Projection", "human_bytes", "announce"]

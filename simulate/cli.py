@@ -1,4 +1,4 @@
-"""``python -m simulate SCENE [--out DIR] [--cross-check] [--force]``: plan, run, write, summarise.
+"""``chaplygin simulate SCENE [--out DIR] [--cross-check] [--force]``: plan, run, write, summarise.
 
 ``SCENE`` is a scene file or the name of a built-in scene (``generic4d``; ``--list`` shows them).
 Exit status: 0 done (and the cross-check, if asked, passed); 1 the cross-check failed; 2 the scene,
@@ -14,15 +14,16 @@ import time
 from pathlib import Path
 
 import numpy as np
+from chaplygin_nd.simulate import tori_scene
+from chaplygin_nd.simulate.dispatch import KernelMissing
+from chaplygin_nd.simulate.outdir import OutputError, claim
+from chaplygin_nd.simulate.outputs import collect, max_drift, write
+from chaplygin_nd.simulate.planner import plan
+from chaplygin_nd.simulate.run import execute
+from chaplygin_nd.simulate.scene import SceneError, builtin_scenes, find
+from chaplygin_nd.simulate.stops import RunStopped, check_finite
 
-from simulate import tori_scene
-from simulate.dispatch import KernelMissing
-from simulate.outdir import OutputError, claim
-from simulate.outputs import collect, max_drift, write
-from simulate.planner import plan
-from simulate.run import execute
-from simulate.scene import SceneError, builtin_scenes, find
-from simulate.stops import RunStopped, check_finite
+from chaplygin_nd.cli import version_line
 
 __all__ = ["main", "summary"]
 
@@ -53,7 +54,8 @@ def summary(scene, p, traj, arrays, seconds, check=None, out=None) -> str:
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point; returns the exit status (see the module docstring)."""
-    ap = argparse.ArgumentParser(prog="python -m simulate", description=__doc__.split("\n\n")[0])
+    ap = argparse.ArgumentParser(prog="chaplygin simulate", description=__doc__.split("\n\n")[0])
+    ap.add_argument("--version", action="version", version=version_line())
     ap.add_argument("scene", nargs="?",
                     help="a scene file (TOML), e.g. scenes/generic4d.toml, or a built-in scene name")
     ap.add_argument("--out", help="output folder: new, empty, or written before by this scene "
@@ -87,7 +89,7 @@ def main(argv: list[str] | None = None) -> int:
                 check_finite(key, v, scene.t if key != "zeta" else scene.t[0])
             check = None
             if args.cross_check:
-                from simulate.crosscheck import cross_check
+                from chaplygin_nd.simulate.crosscheck import cross_check
                 check = cross_check(scene, p, arrays, force=args.force)
             extra, extra_lines = (tori_scene.files(scene, traj) if tori_scene.wants(scene)
                                   else ({}, []))

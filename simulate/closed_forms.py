@@ -38,9 +38,8 @@ $(x, G, A, B)$.
 from __future__ import annotations
 
 import numpy as np
-
-from simulate import so
-from simulate.dispatch import active
+from chaplygin_nd.simulate import so
+from chaplygin_nd.simulate.dispatch import active
 
 __all__ = ["relative_equilibrium", "horizontal", "horizontal_invariants", "horizontal_nd"]
 

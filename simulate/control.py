@@ -20,9 +20,8 @@ written by hand.
 from __future__ import annotations
 
 import numpy as np
-
-from simulate import so
-from simulate.dispatch import Kernels
+from chaplygin_nd.simulate import so
+from chaplygin_nd.simulate.dispatch import Kernels
 
 __all__ = ["general_inertia_kernels", "L_gamma_general"]
 

@@ -21,11 +21,10 @@ import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
-
-from simulate.outputs import collect
-from simulate.planner import plan
-from simulate.run import execute
-from simulate.stops import fmt
+from chaplygin_nd.simulate.outputs import collect
+from chaplygin_nd.simulate.planner import plan
+from chaplygin_nd.simulate.run import execute
+from chaplygin_nd.simulate.stops import fmt
 
 __all__ = ["CrossCheck", "cross_check", "reference_rtol"]
 

@@ -10,8 +10,8 @@ cache key matches, else by integrating (and then writing the cache atomically).
 Cache key: SHA-256 of the experiment (JSON), of every file of ``generated/`` and of the source
 of the modules that turn it into numbers (this one, :mod:`simulate.field`, :mod:`simulate.control`,
 :mod:`simulate.families`, the DOP853 wrapper). A changed kernel, scene or setting therefore
-recomputes; nothing is read that this code cannot reproduce. Location: ``$CHAPLYGIN_CACHE`` or
-``.cache/evidence`` at the repository root (gitignored).
+recomputes; nothing is read that this code cannot reproduce. Location: the ``evidence/`` subfolder of the
+project's cache folder (:mod:`chaplygin_nd.cache`).
 """
 
 from __future__ import annotations
@@ -26,13 +26,14 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 import numpy as np
+from chaplygin_nd.simulate import families, so
+from chaplygin_nd.simulate.control import general_inertia_kernels
+from chaplygin_nd.simulate.dispatch import active
+from chaplygin_nd.simulate.field import FullField, ReducedField
+from chaplygin_nd.simulate.integrators import dop853
+from chaplygin_nd.simulate.run import reduced_invariants
 
-from simulate import families, so
-from simulate.control import general_inertia_kernels
-from simulate.dispatch import active
-from simulate.field import FullField, ReducedField
-from simulate.integrators import dop853
-from simulate.run import reduced_invariants
+from chaplygin_nd import cache as project_cache
 
 __all__ = ["Experiment", "Orbits", "orbits", "cache_dir", "level_set_points", "signals"]
 
@@ -85,8 +86,8 @@ class Orbits:
 
 
 def cache_dir() -> Path:
-    """``$CHAPLYGIN_CACHE`` or ``<repo>/.cache/evidence``."""
-    return Path(os.environ.get("CHAPLYGIN_CACHE", ROOT / ".cache" / "evidence"))
+    """The ``evidence/`` subfolder of the project's cache folder (:mod:`chaplygin_nd.cache`)."""
+    return project_cache.cache_dir("evidence")
 
 
 def _reduced_constraints(r: np.ndarray, a: float, b: float) -> np.ndarray:

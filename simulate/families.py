@@ -15,9 +15,8 @@ scene reproduces bit for bit. The membership tests used to validate a family cla
 from __future__ import annotations
 
 import numpy as np
-
-from simulate import so
-from simulate.dispatch import active
+from chaplygin_nd.simulate import so
+from chaplygin_nd.simulate.dispatch import active
 
 __all__ = ["FAMILIES", "draw", "claim_residual", "steady_residual"]
 

@@ -34,9 +34,8 @@ Every field counts its evaluations (``calls``; one call evaluates the whole ense
 from __future__ import annotations
 
 import numpy as np
-
-from simulate import so
-from simulate.dispatch import Kernels, active
+from chaplygin_nd.simulate import so
+from chaplygin_nd.simulate.dispatch import Kernels, active
 
 __all__ = ["FullField", "ReducedField"]
 

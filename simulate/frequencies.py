@@ -26,10 +26,9 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
-
-from simulate import evidence, naff
-from simulate.dispatch import active
-from simulate.evidence import Experiment, Orbits, orbits, signals
+from chaplygin_nd.simulate import evidence, naff
+from chaplygin_nd.simulate.dispatch import active
+from chaplygin_nd.simulate.evidence import Experiment, Orbits, orbits, signals
 
 __all__ = ["A", "B", "SEED", "T_END", "DT", "REGULAR", "SEPARATION", "CONTROL_J",
            "reduced_experiment", "full_experiment", "control_experiment", "vertical_experiment",
@@ -121,7 +120,7 @@ def zeta_rates(exp: Experiment) -> list[float]:
     r"""The rotation rates $\lambda_i \ge 0$ of $\zeta(M_0, \gamma_0)$ (Th:Re, generated kernel) of the
     vertical experiment's initial condition: $\mathrm{spec}\,\zeta = \{\pm i\lambda_i\}$. An independent
     check of which lines NAFF found, not an input of the count."""
-    from simulate import families
+    from chaplygin_nd.simulate import families
 
     M0, g0 = families.draw(exp.family, exp.n, exp.a, exp.b, exp.seed, count=1, scale=exp.scale)
     z = active().require("zeta")(M0, g0, exp.a, exp.b)[0]

@@ -13,14 +13,13 @@ from __future__ import annotations
 import importlib
 
 import numpy as np
-
-from simulate import so
-from simulate.dispatch import KernelMissing, Kernels
+from chaplygin_nd.simulate import so
+from chaplygin_nd.simulate.kernels import KernelMissing, Kernels
 
 __all__ = ["bind", "RUNTIME_MODULES"]
 
 #: Where the runtime assembly of the coefficient kernels (any n) may live, first match wins.
-RUNTIME_MODULES = ("runtime.axisym",)
+RUNTIME_MODULES = ("chaplygin_nd.runtime.axisym",)
 
 
 _BROKEN: dict[str, str] = {}
@@ -88,7 +87,7 @@ def _missing(what, n):
 
 def bind() -> Kernels:
     """The kernels :mod:`generated` provides today, in the matrix interface."""
-    gen = _module("generated.axisym")
+    gen = _module("chaplygin_nd.generated.axisym")
     runtime = _runtime()
     if gen is None and runtime is None:
         return Kernels(name="generated", note="generated/axisym.py does not exist yet")
@@ -122,7 +121,7 @@ def bind() -> Kernels:
     zeta = dispatch("zeta", "zeta", "zeta", direct,
                     r"$\zeta$ of Th:Re for $(M_0, \gamma_0)\in\mathcal V$.")
 
-    red = _module("generated.reduced")
+    red = _module("chaplygin_nd.generated.reduced")
     reduced_field = _fast(getattr(red, "reduced_field", None),
                           getattr(red, "reduced_field_components", None), (7,))
     reduced_integrals = _fast(getattr(red, "reduced_integrals", None),

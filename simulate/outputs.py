@@ -23,11 +23,10 @@ from functools import partial
 from pathlib import Path
 
 import numpy as np
-
-from simulate import so
-from simulate.dispatch import active
-from simulate.figures import plot
-from simulate.outdir import OutputFolder
+from chaplygin_nd.simulate import so
+from chaplygin_nd.simulate.dispatch import active
+from chaplygin_nd.simulate.figures import plot
+from chaplygin_nd.simulate.outdir import OutputFolder
 
 __all__ = ["collect", "integrals", "p_coefficients", "write"]
 
@@ -76,13 +75,13 @@ def collect(scene, traj) -> dict[str, np.ndarray]:
             if "horizontal" in d:
                 out["horizontal"] = d["horizontal"]
             else:
-                from simulate.closed_forms import horizontal_invariants
+                from chaplygin_nd.simulate.closed_forms import horizontal_invariants
                 out["horizontal"] = horizontal_invariants(d["M"], d["gamma"])
         elif name == "reduced":
             if "reduced" in d:
                 out["reduced"] = d["reduced"]
             else:
-                from simulate.run import reduced_invariants
+                from chaplygin_nd.simulate.run import reduced_invariants
                 out["reduced"] = reduced_invariants(d["M"], d["gamma"])
         elif name == "orientation":
             out["orientation"] = d["g"]

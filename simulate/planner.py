@@ -36,12 +36,11 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-
-from simulate import families
-from simulate.dispatch import Kernels, active
-from simulate.integrators import heyoka_taylor
-from simulate.scene import Scene
-from simulate.stops import check_finite
+from chaplygin_nd.simulate import families
+from chaplygin_nd.simulate.dispatch import Kernels, active
+from chaplygin_nd.simulate.integrators import heyoka_taylor
+from chaplygin_nd.simulate.scene import Scene
+from chaplygin_nd.simulate.stops import check_finite
 
 __all__ = ["Plan", "plan", "REDUCED_OUTPUTS", "MODELS"]
 

@@ -16,16 +16,15 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-
-from simulate import so
-from simulate.budget import Projection
-from simulate.closed_forms import horizontal, horizontal_nd, relative_equilibrium
-from simulate.dispatch import active
-from simulate.field import FullField, ReducedField
-from simulate.integrators import dop853, heyoka_taylor, lie, taylor
-from simulate.planner import Plan, heyoka_tolerance
-from simulate.scene import Scene
-from simulate.stops import NonFinite, check_finite, fmt
+from chaplygin_nd.simulate import so
+from chaplygin_nd.simulate.budget import Projection
+from chaplygin_nd.simulate.closed_forms import horizontal, horizontal_nd, relative_equilibrium
+from chaplygin_nd.simulate.dispatch import active
+from chaplygin_nd.simulate.field import FullField, ReducedField
+from chaplygin_nd.simulate.integrators import dop853, heyoka_taylor, lie, taylor
+from chaplygin_nd.simulate.planner import Plan, heyoka_tolerance
+from chaplygin_nd.simulate.scene import Scene
+from chaplygin_nd.simulate.stops import NonFinite, check_finite, fmt
 
 __all__ = ["Trajectory", "execute", "reduced_invariants", "Progress"]
 

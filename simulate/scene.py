@@ -61,9 +61,8 @@ from importlib import resources
 from pathlib import Path
 
 import numpy as np
-
-from simulate import budget, families
-from simulate.ball import (
+from chaplygin_nd.simulate import budget, families
+from chaplygin_nd.simulate.ball import (
     Ball,
     ball_violations,
     from_mass_tensor,
@@ -128,7 +127,7 @@ class Scene:
 
 
 def _builtin_folder():
-    return resources.files("simulate") / "scenes"
+    return resources.files("chaplygin_nd.simulate") / "scenes"
 
 
 def builtin_scenes() -> dict[str, str]:
@@ -268,7 +267,7 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
         if name == "M" and ball is not None:
             X = X / ball.s  # the ball's M about the contact point -> the paper's M
         if name == "Omega":
-            from simulate.dispatch import active
+            from chaplygin_nd.simulate.dispatch import active
             Omega0 = X[None]
             M0 = active().require("L_gamma")(X, gamma0, a, b)[None]
         else:
@@ -432,7 +431,7 @@ def _check_claim(family, M, gamma, a, b, tol, fail, Omega):
                  f"fix M/gamma so that {what}, or set family = \"explicit\"")
     elif family == "steady-rotation":
         if Omega is None:
-            from simulate.dispatch import active
+            from chaplygin_nd.simulate.dispatch import active
             Omega = active().require("angular_velocity")(M, gamma, a, b)
         else:
             Omega = Omega[0]

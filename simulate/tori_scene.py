@@ -22,17 +22,16 @@ from __future__ import annotations
 import json
 
 import numpy as np
-
-from simulate import frequencies as fq
-from simulate import naff, so
-from simulate.control import general_inertia_kernels
-from simulate.dispatch import active
-from simulate.evidence import Experiment, Orbits, level_set_points, signals
-from simulate.field import FullField, ReducedField
-from simulate.integrators import dop853
-from simulate.poincare import figure, section
-from simulate.run import reduced_invariants
-from simulate.scene import SceneError
+from chaplygin_nd.simulate import frequencies as fq
+from chaplygin_nd.simulate import naff, so
+from chaplygin_nd.simulate.control import general_inertia_kernels
+from chaplygin_nd.simulate.dispatch import active
+from chaplygin_nd.simulate.evidence import Experiment, Orbits, level_set_points, signals
+from chaplygin_nd.simulate.field import FullField, ReducedField
+from chaplygin_nd.simulate.integrators import dop853
+from chaplygin_nd.simulate.poincare import figure, section
+from chaplygin_nd.simulate.run import reduced_invariants
+from chaplygin_nd.simulate.scene import SceneError
 
 __all__ = ["wants", "files"]
 

@@ -19,9 +19,8 @@ from __future__ import annotations
 from functools import lru_cache
 
 import sympy as sp
-
-from symbolic.algebra import skew_symbols, wedge
-from symbolic.axisymmetric import E_n, L_gamma_axisym, a, b, x
+from chaplygin_nd.symbolic.algebra import skew_symbols, wedge
+from chaplygin_nd.symbolic.axisymmetric import Delta, E_n, L_gamma_axisym, a, b, x
 
 __all__ = ["ansatz_terms", "inverse_coefficients", "inverse_closed_form", "inverse_denominator",
            "inverse_numerator", "TERM_NAMES"]
@@ -86,8 +85,6 @@ def inverse_closed_form(M: sp.Matrix, gamma: sp.Matrix, a_=a, b_=b) -> sp.Matrix
 
 def inverse_denominator(a_=a, b_=b, x_=x) -> sp.Expr:
     r"""$D = 2\Delta(x)(2+a+b)$: a common denominator of the coefficients $c_k$ (P:inversion)."""
-    from symbolic.axisymmetric import Delta
-
     return 2 * Delta(x_, a_, b_) * (2 + a_ + b_)
 
 

@@ -22,13 +22,12 @@ from __future__ import annotations
 from functools import lru_cache
 
 import sympy as sp
-
-from symbolic.algebra import basis_vector, wedge
-from symbolic.model import L_gamma, L_matrix, inertia_operator
+from chaplygin_nd.symbolic.algebra import basis_vector, wedge
+from chaplygin_nd.symbolic.model import L_gamma, L_matrix, inertia_operator
 
 __all__ = [
     "a", "b", "x", "E_n", "mass_tensor", "inertia_axisym", "L_gamma_axisym", "L_matrix_axisym",
-    "frame_coefficients", "block_C", "Delta", "det_L_axisym", "inverse_axisym",
+    "frame_coefficients", "block_C", "Delta", "det_L_axisym",
 ]
 
 #: The parameters of eq:axisymm / eq:M-O and $x = \langle\gamma, E_n\rangle$, as SymPy symbols.
@@ -123,11 +122,3 @@ def det_L_axisym(n: int, x=x, a=a, b=b) -> sp.Expr:
     c0 = fc["c0"].subs(sub, simultaneous=True)
     c2 = fc["c2"].subs(sub, simultaneous=True)
     return c0 * c2 ** ((n - 2) * (n - 3) // 2) * Delta(x, a, b) ** (n - 2)
-
-
-def inverse_axisym(M: sp.Matrix, gamma: sp.Matrix, a=a, b=b) -> sp.Matrix:
-    r"""$\Omega = L_\gamma^{-1}(M)$ in closed form (P:inversion), derived by an ansatz in
-    :mod:`symbolic.axisym_inverse`; $\gamma \in S^{n-1}$, $\Delta(x) \neq 0$, $2+a+b \neq 0$."""
-    from symbolic.axisym_inverse import inverse_closed_form
-
-    return inverse_closed_form(M, gamma, a, b)

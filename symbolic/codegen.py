@@ -13,10 +13,10 @@ are evaluated in one call on the arguments' columns (no copies), more in chunks 
 with component-major (contiguous) temporaries. ``CHUNK`` = 4096 keeps every temporary at 32 KiB:
 below glibc's 128 KiB mmap threshold (the former 16384 points were exactly 128 KiB, so each
 temporary was mapped and unmapped, ~600 page faults per call at 10^4 points) and inside L2.
-``python -m bench bench_throughput`` measures the sizes and chunk lengths behind this choice. Constant
+``chaplygin bench throughput`` measures the sizes and chunk lengths behind this choice. Constant
 outputs broadcast (every output is written into a pre-allocated array).
 
-``python -m symbolic.codegen`` rewrites ``generated/``; :func:`stale_report` regenerates into a
+``chaplygin generate`` rewrites ``generated/``; :func:`stale_report` regenerates into a
 temporary folder and returns the diff (empty when up to date) — ``make verify`` calls it.
 """
 
@@ -41,10 +41,10 @@ FIX_COMMAND = "make generate"
 
 #: Kernel modules: (file stem in generated/, "module:function" returning a list of Kernel).
 MODULES: tuple[tuple[str, str], ...] = (
-    ("sphere3d", "symbolic.emit.sphere3d:kernels"),
-    ("axisym", "symbolic.emit.axisym:kernels"),
-    ("fourd", "symbolic.emit.fourd:kernels"),
-    ("reduced", "symbolic.emit.reduced:kernels"),
+    ("sphere3d", "chaplygin_nd.symbolic.emit.sphere3d:kernels"),
+    ("axisym", "chaplygin_nd.symbolic.emit.axisym:kernels"),
+    ("fourd", "chaplygin_nd.symbolic.emit.fourd:kernels"),
+    ("reduced", "chaplygin_nd.symbolic.emit.reduced:kernels"),
 )
 
 
@@ -158,7 +158,7 @@ Operation counts after CSE: {counts}
 import numpy
 import numpy as np
 
-from generated._batching import _run
+from chaplygin_nd.generated._batching import _run
 
 '''
 
@@ -259,7 +259,7 @@ def write(target: Path = GENERATED) -> list[Path]:
         path = target / f"{stem}.py"
         path.write_text(render(stem, producer), encoding="utf-8")
         paths.append(path)
-    from symbolic.codegen_builders import STEM, render_builders
+    from chaplygin_nd.symbolic.codegen_builders import STEM, render_builders
 
     path = target / f"{STEM}.py"
     path.write_text(render_builders(kernels_of, CODEGEN_VERSION), encoding="utf-8")
@@ -294,11 +294,11 @@ def stale_report(target: Path = GENERATED) -> str:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """``python -m symbolic.codegen``: rewrite ``generated/`` (arguments: only ``-h``)."""
+    """``chaplygin generate``: rewrite ``generated/`` (arguments: only ``-h``)."""
     import argparse
 
     parser = argparse.ArgumentParser(
-        prog="python -m symbolic.codegen",
+        prog="chaplygin generate",
         description="Rewrite generated/ (NumPy kernels) from the derived SymPy expressions; "
                     "the same as `make generate`.")
     parser.parse_args(argv)

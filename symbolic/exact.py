@@ -31,11 +31,10 @@ from dataclasses import dataclass, field
 from random import Random
 
 import sympy as sp
+from chaplygin_nd.symbolic import points
 from sympy.polys.fields import field as fraction_field
 from sympy.polys.orderings import lex
 from sympy.polys.rings import PolyElement
-
-from symbolic import points
 
 __all__ = [
     "Check", "Counterexample", "rational_identity", "zero_at_points", "exact_zero",

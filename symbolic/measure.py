@@ -24,11 +24,10 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 import sympy as sp
+from chaplygin_nd.symbolic.algebra import commutator, so_basis, unvec, vec
+from chaplygin_nd.symbolic.model import L_matrix_qq
 from sympy.polys.domains import QQ
 from sympy.polys.matrices import DomainMatrix
-
-from symbolic.algebra import commutator, so_basis, unvec, vec
-from symbolic.model import L_matrix_qq
 
 __all__ = ["divergence", "measure_residual", "chaplygin_divergence_at"]
 

@@ -20,10 +20,9 @@ the basis :func:`symbolic.algebra.so_basis` — never from a printed inverse.
 from __future__ import annotations
 
 import sympy as sp
+from chaplygin_nd.symbolic.algebra import commutator, unvec, vec, wedge
 from sympy.polys.domains import QQ
 from sympy.polys.matrices import DomainMatrix
-
-from symbolic.algebra import commutator, unvec, vec, wedge
 
 __all__ = [
     "mass_tensor_symbols", "inertia_operator", "L_gamma", "L_matrix", "L_matrix_derivative", "L_matrix_qq",

@@ -39,9 +39,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 import sympy as sp
-
-from symbolic.algebra import basis_vector, killing, wedge
-from symbolic.model import inertia_operator
+from chaplygin_nd.symbolic.algebra import basis_vector, killing, wedge
+from chaplygin_nd.symbolic.model import inertia_operator
 
 __all__ = [
     "m", "r", "I1", "In", "j1", "jn", "mass_tensor_of_points", "kinetic_energy_of_points",

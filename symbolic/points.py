@@ -16,15 +16,14 @@ import random
 from collections.abc import Sequence
 
 import sympy as sp
-
-from symbolic.algebra import column, unvec
+from chaplygin_nd.symbolic.algebra import column, unvec
 
 __all__ = [
     "DEFAULT_SEED", "ledger_seed", "set_ledger_seed", "generator", "rational", "rationals", "sphere_point", "skew_matrix",
     "rational_rotation", "axisymmetric_parameters",
 ]
 
-#: The seed of a ledger run unless ``python -m proofs --seed N`` (``make verify SEED=N``) names another.
+#: The seed of a ledger run unless ``chaplygin verify --seed N`` (``make verify SEED=N``) names another.
 DEFAULT_SEED = 20261121
 _ledger_seed = DEFAULT_SEED
 

@@ -30,10 +30,9 @@ from __future__ import annotations
 from functools import cache
 
 import sympy as sp
-
-from symbolic import fourd
-from symbolic import reduced_invariants as ri
-from symbolic.reduced_invariants import F1, A, B, E, G, delta
+from chaplygin_nd.symbolic import fourd
+from chaplygin_nd.symbolic import reduced_invariants as ri
+from chaplygin_nd.symbolic.reduced_invariants import F1, A, B, E, G, delta
 
 __all__ = [
     "COORDS", "field_numerators", "field", "integrals", "measure_density_ambient",

@@ -26,11 +26,10 @@ consistency of the system is checked (an inconsistent system raises: $N$ is not 
 from __future__ import annotations
 
 import sympy as sp
+from chaplygin_nd.symbolic import fourd
 from sympy import QQ
 from sympy.polys.matrices import DomainMatrix
 from sympy.polys.rings import ring
-
-from symbolic import fourd
 
 __all__ = ["A", "B", "E", "G", "F1", "delta", "INV_RING", "INV_GENS", "invariant_polys",
            "in_invariants", "to_phase_space", "det_Lambda", "reduce_delta"]

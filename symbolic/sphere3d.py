@@ -8,8 +8,7 @@ b\gamma\times(\Omega\times\gamma)$; its inverse is Cramer's rule, $L_\gamma^{-1}
 from __future__ import annotations
 
 import sympy as sp
-
-from symbolic.model import cross, mom3d
+from chaplygin_nd.symbolic.model import cross, mom3d
 
 __all__ = ["L_gamma_matrix_3d", "angular_velocity_3d", "velocity_field_3d", "tilde_inertia"]
 

@@ -20,10 +20,9 @@ from __future__ import annotations
 from functools import lru_cache
 
 import sympy as sp
-
-from symbolic.algebra import hat, skew_symbols, unhat, vector_symbols
-from symbolic.axisym_inverse import inverse_closed_form
-from symbolic.axisymmetric import E_n, a, b, inertia_axisym, x
+from chaplygin_nd.symbolic.algebra import hat, skew_symbols, unhat, vector_symbols
+from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
+from chaplygin_nd.symbolic.axisymmetric import E_n, a, b, inertia_axisym, x
 
 __all__ = [
     "vertical_point", "zeta_coefficient", "zeta", "inertia_tilde", "chi_coefficient", "chi",

@@ -13,7 +13,7 @@ import pytest
 
 @pytest.fixture(scope="session", autouse=True)
 def _session_heyoka_cache(tmp_path_factory):
-    from runtime import jit_cache as heyoka_cache
+    from chaplygin_nd.runtime import jit_cache as heyoka_cache
 
     old = os.environ.get(heyoka_cache.ENV)
     os.environ[heyoka_cache.ENV] = str(tmp_path_factory.mktemp("heyoka-cache"))

@@ -2,9 +2,8 @@
 
 import pytest
 import sympy as sp
-
-from symbolic import points
-from symbolic.algebra import (
+from chaplygin_nd.symbolic import points
+from chaplygin_nd.symbolic.algebra import (
     commutator,
     hat,
     killing,
@@ -16,8 +15,8 @@ from symbolic.algebra import (
     vector_symbols,
     wedge,
 )
-from symbolic.measure import chaplygin_divergence_at
-from symbolic.model import (
+from chaplygin_nd.symbolic.measure import chaplygin_divergence_at
+from chaplygin_nd.symbolic.model import (
     L_gamma,
     L_matrix,
     L_matrix_derivative,

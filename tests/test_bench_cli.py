@@ -1,4 +1,4 @@
-"""The bench's plumbing, not its speed: ``python -m bench -h`` prints usage, an unknown name is a
+"""The bench's plumbing, not its speed: ``chaplygin bench -h`` prints usage, an unknown name is a
 usage error (exit 2), outputs are written atomically as JSON rows, target lines say MET or NOT MET,
 and the drift-growth fit used to extrapolate the long run recovers a known exponent."""
 
@@ -15,13 +15,13 @@ ROOT = Path(__file__).resolve().parent.parent
 
 
 def _bench(*args):
-    return subprocess.run([sys.executable, "-m", "bench", *args], cwd=ROOT, capture_output=True,
+    return subprocess.run([sys.executable, "-m", "chaplygin_nd.bench", *args], cwd=ROOT, capture_output=True,
                           text=True, timeout=120)
 
 
 def test_help_and_unknown_name():
     ok = _bench("-h")
-    assert ok.returncode == 0 and "usage: python -m bench" in ok.stdout
+    assert ok.returncode == 0 and "usage: chaplygin bench" in ok.stdout
     assert "work_precision" in ok.stdout and "throughput" in ok.stdout
     bad = _bench("no_such_bench")
     assert bad.returncode == 2 and "unknown benchmark no_such_bench" in bad.stderr
@@ -30,7 +30,7 @@ def test_help_and_unknown_name():
 
 def test_rows_written_atomically_and_targets_worded(tmp_path):
     sys.path.insert(0, str(ROOT))
-    from bench.report import target, write_rows
+    from chaplygin_nd.bench.report import target, write_rows
 
     path = tmp_path / "rows.json"
     path.write_text("old")
@@ -43,7 +43,7 @@ def test_rows_written_atomically_and_targets_worded(tmp_path):
 
 def test_drift_growth_fit_recovers_exponent():
     sys.path.insert(0, str(ROOT))
-    from bench.sections_models import growth
+    from chaplygin_nd.bench.sections_models import growth
 
     steps = np.arange(0, 20001, 200, dtype=float)
     for alpha in (0.5, 1.0):

@@ -1,7 +1,7 @@
 """The code generator: a hand edit of generated/ is caught, and output is deterministic.
 
 The stale check is :func:`symbolic.codegen.stale_report`, called by ``make verify``
-(``python -m proofs --check-generated``). These tests edit a *temporary copy* of generated/, never
+(``chaplygin verify --check-generated``). These tests edit a *temporary copy* of generated/, never
 the real files.
 """
 
@@ -14,8 +14,7 @@ import sys
 from pathlib import Path
 
 import pytest
-
-from symbolic import codegen
+from chaplygin_nd.symbolic import codegen
 
 
 @pytest.fixture(scope="module")
@@ -60,7 +59,7 @@ def test_banner(fresh):
         assert producer in head and "DO NOT EDIT" in head and "Source hash (sha256" in head
         assert "Operation counts after CSE:" in head and "Claims:" in head
         imports = {li.strip() for li in text.splitlines() if li.startswith(("import ", "from "))}
-        assert imports == {"import numpy", "import numpy as np", "from generated._batching import _run"}
+        assert imports == {"import numpy", "import numpy as np", "from chaplygin_nd.generated._batching import _run"}
     runtime = (fresh / "_batching.py").read_text()
     assert "DO NOT EDIT" in runtime
     assert {li.strip() for li in runtime.splitlines() if li.startswith(("import ", "from "))} \

@@ -9,13 +9,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
-from proofs.ledger import Verdict
-from simulate import families, naff
-from simulate import frequencies as fq
-from simulate.control import L_gamma_general, general_inertia_kernels
-from simulate.dispatch import active
-from simulate.evidence import _reduced_constraints, level_set_points, orbits, signals
+from chaplygin_nd.ledger.registry import Verdict
+from chaplygin_nd.simulate import families, naff
+from chaplygin_nd.simulate import frequencies as fq
+from chaplygin_nd.simulate.control import L_gamma_general, general_inertia_kernels
+from chaplygin_nd.simulate.dispatch import active
+from chaplygin_nd.simulate.evidence import _reduced_constraints, level_set_points, orbits, signals
 
 W1, W2 = 0.7310412, 0.1892347   # rad per unit time, rationally independent (to the tolerance)
 
@@ -76,7 +75,7 @@ def test_control_kernel_solves_the_definition_and_matches_the_axisymmetric_one()
 
 def test_level_set_points_share_the_integrals():
     M, g = families.draw("generic", 4, fq.A, fq.B, seed=fq.SEED, count=4)
-    from simulate.run import reduced_invariants
+    from chaplygin_nd.simulate.run import reduced_invariants
 
     r0 = reduced_invariants(M, g)[3]
     pts = level_set_points(r0, (0.05, 0.1), fq.A, fq.B)
@@ -88,7 +87,7 @@ def test_level_set_points_share_the_integrals():
 
 def test_control_separates_on_short_orbits(tmp_path, monkeypatch):
     """Threshold fixed beforehand (simulate/frequencies.py): control D >= 100 x regular D."""
-    monkeypatch.setenv("CHAPLYGIN_CACHE", str(tmp_path))
+    monkeypatch.setenv("CHAPLYGIN_ND_CACHE", str(tmp_path))
     reg = replace(fq.reduced_experiment(t_end=1024.0, rtol=1e-9), members=(3,), level_shifts=())
     ctl = replace(fq.control_experiment(t_end=1024.0, rtol=1e-9), members=(3,))
     d_reg = [s.diffusion for s in fq.spectra(reg)]
@@ -112,8 +111,8 @@ def test_evidence_verdict_needs_its_fields_and_a_separating_control():
 
 
 def test_tori_scene_plans_the_full_system_for_frequencies_only():
-    from simulate.planner import plan
-    from simulate.scene import SceneError, load, loads
+    from chaplygin_nd.simulate.planner import plan
+    from chaplygin_nd.simulate.scene import SceneError, load, loads
 
     scene = load(Path(__file__).resolve().parent.parent / "scenes" / "tori4d.toml")
     assert scene.count == 4

@@ -14,16 +14,15 @@ import pickle
 import mpmath
 import numpy as np
 import pytest
-
-from generated import expression_builders as eb
-from generated import reduced as gred
-from generated import sphere3d as g3
-from runtime import axisym
-from runtime import expressions as rx
-from runtime import jit_cache as heyoka_cache
-from simulate import families, so
-from simulate.field import FullField, ReducedField
-from simulate.integrators import dop853, heyoka_systems, heyoka_taylor, taylor
+from chaplygin_nd.generated import expression_builders as eb
+from chaplygin_nd.generated import reduced as gred
+from chaplygin_nd.generated import sphere3d as g3
+from chaplygin_nd.runtime import axisym
+from chaplygin_nd.runtime import expressions as rx
+from chaplygin_nd.runtime import jit_cache as heyoka_cache
+from chaplygin_nd.simulate import families, so
+from chaplygin_nd.simulate.field import FullField, ReducedField
+from chaplygin_nd.simulate.integrators import dop853, heyoka_systems, heyoka_taylor, taylor
 
 heyoka_only = pytest.mark.skipif(not heyoka_taylor.available(),
                                  reason="heyoka is not installed (extra 'fast'); the SciPy path is tested elsewhere")
@@ -38,7 +37,7 @@ class FloatOps:
 
 @pytest.mark.parametrize("n", [3, 4, 5, 7])
 def test_any_n_assembly_equals_runtime_numpy(n):
-    """runtime.expressions (the assembly heyoka compiles) on floats = runtime.axisym on arrays."""
+    """chaplygin_nd.runtime.expressions (the assembly heyoka compiles) on floats = runtime.axisym on arrays."""
     M0, g0 = families.draw("generic", n, -0.3, 0.8, seed=11 + n, count=3)
     for M, g in zip(M0, g0):
         got = np.array(rx.vector_field(list(so.vec(M)), list(g), -0.3, 0.8, FloatOps), float)
@@ -131,7 +130,7 @@ def test_batch_mode_equals_single_runs():
 
 @heyoka_only
 def test_reduced_field_with_heyoka_matches_dop853():
-    from simulate.run import reduced_invariants
+    from chaplygin_nd.simulate.run import reduced_invariants
 
     M0, g0 = families.draw("generic", 4, -0.4, 0.7, seed=21)
     r0 = reduced_invariants(M0, g0)
@@ -152,7 +151,7 @@ def test_corrupt_or_stale_cache_entry_is_rebuilt():
     pars = [1.0, 1.5, 2.0, 0.3]
     first = heyoka_taylor.integrate(system, y0, t, tol=1e-13, compact=True, pars=pars)
     assert "cold compile" in first.note
-    files = sorted((heyoka_cache.cache_dir() / "heyoka").glob("*.pkl"))
+    files = sorted(heyoka_cache.cache_dir().glob("*.pkl"))
     entry = next(p for p in files if pickle.loads(p.read_bytes())["key"]["system"] == system.name)
     heyoka_cache.forget_memory()
     warm = heyoka_taylor.integrate(system, y0, t, tol=1e-13, compact=True, pars=pars)
@@ -185,9 +184,9 @@ def test_order_and_precision_helpers():
 @heyoka_only
 @pytest.mark.parametrize("n", [3, 4, 6])
 def test_compiled_angular_velocity_matches_numpy_runtime(n):
-    """runtime.compiled (heyoka cfunc on the derived L_gamma^{-1}) equals runtime.axisym (the NumPy
+    """chaplygin_nd.runtime.compiled (heyoka cfunc on the derived L_gamma^{-1}) equals runtime.axisym (the NumPy
     coefficient kernel + einsum) to 16 ulps of max |Omega| over a batch with broadcast a, b."""
-    from runtime import compiled
+    from chaplygin_nd.runtime import compiled
 
     M, g = families.draw("generic", n, 0.5, 1.0, seed=1, count=40)
     a = np.linspace(-1.0, 1.0, 40)

@@ -23,9 +23,9 @@ from __future__ import annotations
 import mpmath
 import numpy as np
 import pytest
+from chaplygin_nd.generated import axisym as g
 
-import runtime
-from generated import axisym as g
+from chaplygin_nd import runtime
 
 EPS = np.finfo(float).eps
 #: Documented bound, in units of eps times the condition scale (measured worst: see the report).

@@ -21,9 +21,8 @@ import mpmath
 import numpy as np
 import pytest
 import sympy as sp
-
-from symbolic.codegen import MODULES
-from symbolic.mpmath_eval import mp_abs_eval, mp_eval
+from chaplygin_nd.symbolic.codegen import MODULES
+from chaplygin_nd.symbolic.mpmath_eval import mp_abs_eval, mp_eval
 
 EPS = np.finfo(float).eps
 #: Straight-line float evaluation of a formula of depth k has error <= gamma_k |f|_abs with
@@ -95,7 +94,7 @@ def _is_rational(kernel) -> bool:
 @pytest.mark.parametrize("stem,kernel", KERNELS)
 def test_fidelity_against_mpmath(stem, kernel):
     """NumPy kernel = 50-digit evaluation of the derived expression, within FIDELITY_ULPS eps |f|_abs."""
-    fn = getattr(importlib.import_module(f"generated.{stem}"), kernel.name)
+    fn = getattr(importlib.import_module(f"chaplygin_nd.generated.{stem}"), kernel.name)
     rng = np.random.default_rng([5, len(kernel.name), sum(map(ord, kernel.name))])
     mpmath.mp.dps = 50
     worst = 0.0
@@ -116,7 +115,7 @@ def test_fidelity_against_mpmath(stem, kernel):
 @pytest.mark.parametrize("stem,kernel", [k for k in KERNELS if _is_rational(k.values[1])])
 def test_three_way_exact(stem, kernel):
     """Exact SymPy value = mpmath (50 digits) = NumPy kernel, at dyadic rational points."""
-    fn = getattr(importlib.import_module(f"generated.{stem}"), kernel.name)
+    fn = getattr(importlib.import_module(f"chaplygin_nd.generated.{stem}"), kernel.name)
     rng = np.random.default_rng([7, sum(map(ord, kernel.name))])
     mpmath.mp.dps = 50
     for _ in range(2):
@@ -138,8 +137,8 @@ def test_kernels_broadcast_and_chunk():
     """A batch over several chunks, parameters as batch arrays, and constant outputs all broadcast:
     the chunked result, the one-call result (a batch of at most CHUNK points, evaluated on column
     views) and the point-by-point result agree exactly (same operations, same order)."""
-    from generated import axisym
-    from generated._batching import CHUNK
+    from chaplygin_nd.generated import axisym
+    from chaplygin_nd.generated._batching import CHUNK
 
     rng = np.random.default_rng(11)
     count = 3 * CHUNK + 5

@@ -24,10 +24,9 @@ from __future__ import annotations
 import mpmath
 import numpy as np
 import pytest
-
-from generated import fourd as g4
-from generated import reduced as gr
-from symbolic.mpmath_eval import mp_block, mp_L_matrix, mp_Omega, mp_unblock
+from chaplygin_nd.generated import fourd as g4
+from chaplygin_nd.generated import reduced as gr
+from chaplygin_nd.symbolic.mpmath_eval import mp_block, mp_L_matrix, mp_Omega, mp_unblock
 
 EPS = np.finfo(float).eps
 BOUND_ULPS = 8

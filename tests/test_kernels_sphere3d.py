@@ -10,8 +10,7 @@ from __future__ import annotations
 import mpmath
 import numpy as np
 import pytest
-
-from generated import sphere3d as g
+from chaplygin_nd.generated import sphere3d as g
 
 EPS = np.finfo(float).eps
 BOUND_ULPS = 8

@@ -5,8 +5,7 @@ from pathlib import Path
 
 import pytest
 import sympy as sp
-
-from proofs.catalog import (
+from chaplygin_nd.ledger.catalog import (
     CLAIMS_PATH,
     PAPER_PATH,
     ROOT,
@@ -15,8 +14,8 @@ from proofs.catalog import (
     discover,
     paper_labels,
 )
-from proofs.ledger import Verdict, registry
-from symbolic.exact import rational_identity
+from chaplygin_nd.ledger.registry import Verdict, registry
+from chaplygin_nd.symbolic.exact import rational_identity
 
 x = sp.Symbol("x")
 SECTIONING = re.compile(r"^S{1,2}:")
@@ -92,7 +91,7 @@ def _imports(path: Path) -> set[str]:
 
 def test_derivations_never_import_printed_formulas():
     offenders = [str(p.relative_to(ROOT)) for p in (ROOT / "symbolic").rglob("*.py")
-                 if "printed" not in p.parts and any(m.startswith("symbolic.printed")
+                 if "printed" not in p.parts and any(m.startswith("chaplygin_nd.symbolic.printed")
                                                      for m in _imports(p))]
     assert offenders == []
 
@@ -100,5 +99,7 @@ def test_derivations_never_import_printed_formulas():
 @pytest.mark.parametrize("package", ["generated", "simulate"])
 def test_numeric_packages_import_no_sympy(package):
     offenders = [str(p.relative_to(ROOT)) for p in (ROOT / package).rglob("*.py")
-                 if any(m == "sympy" or m.startswith(("sympy.", "symbolic")) for m in _imports(p))]
+                 if any(m == "sympy" or m.startswith(("sympy.", "chaplygin_nd.symbolic", "chaplygin_nd.proofs",
+                                                           "chaplygin_nd.ledger"))
+                        for m in _imports(p))]
     assert offenders == []

@@ -9,9 +9,8 @@ sample of 10 mutants on cheap rows, and the four transcriptions an outside audit
 from __future__ import annotations
 
 import pytest
-
-from proofs import mutate, reach
-from proofs.catalog import discover
+from chaplygin_nd.ledger import mutate, reach
+from chaplygin_nd.ledger.catalog import discover
 
 
 def test_every_printed_function_has_mutants_of_several_kinds():

@@ -4,13 +4,12 @@
 from __future__ import annotations
 
 import pytest
-
-from proofs.catalog import discover
-from proofs.ledger import Verdict, registry
-from proofs.s4_common import combine
-from proofs.s5_common import phase_point, reduced_check
-from symbolic import reduced_invariants as ri
-from symbolic.exact import Check
+from chaplygin_nd.ledger.catalog import discover
+from chaplygin_nd.ledger.registry import Verdict, registry
+from chaplygin_nd.proofs.s4_common import combine
+from chaplygin_nd.proofs.s5_common import phase_point, reduced_check
+from chaplygin_nd.symbolic import reduced_invariants as ri
+from chaplygin_nd.symbolic.exact import Check
 
 
 def test_empty_conjunctions_raise():
@@ -37,7 +36,7 @@ def test_nonzero_normal_form_without_a_witness_is_an_error_not_holds():
 
 def test_measure4d_controls_decide_the_row(monkeypatch):
     discover()
-    import proofs.s5_measure_4d as m
+    import chaplygin_nd.proofs.s5_measure_4d as m
 
     # A test that cannot tell densities apart (everything "invariant") must not give holds.
     monkeypatch.setattr(m, "ring_on_P", lambda *a, **k: Check(True, "always"))

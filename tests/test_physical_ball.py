@@ -8,13 +8,12 @@ from fractions import Fraction
 import numpy as np
 import pytest
 import sympy as sp
+from chaplygin_nd.simulate import ball as B
+from chaplygin_nd.simulate.planner import plan
+from chaplygin_nd.simulate.run import execute
+from chaplygin_nd.simulate.scene import SceneError, loads
+from chaplygin_nd.symbolic import physical_ball as P
 from scipy.integrate import solve_ivp
-
-from simulate import ball as B
-from simulate.planner import plan
-from simulate.run import execute
-from simulate.scene import SceneError, loads
-from symbolic import physical_ball as P
 
 SCENE = """title = "ball"
 n = {n}

@@ -3,7 +3,7 @@
 Most printed functions are reached by their own row only, so a live run covering all of them is
 nearly the whole ledger (~90 s): that complete live check is done by ``make verify`` (the runner
 records every row's printed calls at no extra cost and the run fails on an unreached function) and
-by ``make mutate``, which also writes the map proofs/reach.json. Here: the tracer sees every
+by ``make mutate``, which also writes the map ledger/reach.json. Here: the tracer sees every
 route; the stored map reaches every *current* public printed function (a new transcription no row
 calls fails at once); and the stored map is what the tracer records, live, for a deterministic
 sample of cheap rows (so the map is not a hand-written list).
@@ -12,15 +12,14 @@ sample of cheap rows (so the map is not a hand-written list).
 from __future__ import annotations
 
 import sympy as sp
-
-from proofs import reach
-from proofs.catalog import discover
-from proofs.ledger import registry
-from symbolic.printed import section4
+from chaplygin_nd.ledger import reach
+from chaplygin_nd.ledger.catalog import discover
+from chaplygin_nd.ledger.registry import registry
+from chaplygin_nd.symbolic.printed import section4
 
 
 def test_recorder_sees_every_route_and_restores_the_code():
-    from symbolic.printed.section4 import Omega_inverse  # a name bound at import time
+    from chaplygin_nd.symbolic.printed.section4 import Omega_inverse  # a name bound at import time
 
     M = sp.Matrix([[0, 1, 0], [-1, 0, 2], [0, -2, 0]])
     g = sp.Matrix([0, 0, 1])
@@ -47,7 +46,7 @@ def test_every_printed_function_is_reached_by_a_ledger_row():
     missing = reach.unreached(stored)
     assert missing == [], (f"printed functions reached by no row: {missing} (a new transcription "
                            "needs a row that calls it; if a row does, refresh the map with "
-                           "`python -m proofs.reach`)")
+                           "`python -m chaplygin_nd.ledger.remap`)")
 
 
 def test_the_stored_map_is_what_the_tracer_records():

@@ -5,16 +5,15 @@ prose out of the math; the claim graph is drawn deterministically."""
 import json
 import re
 
+import chaplygin_nd.ledger.__main__ as cli
 import pytest
 import sympy as sp
-
-import proofs.__main__ as cli
-from proofs import graph, report
-from proofs.catalog import Row
-from proofs.ledger import KINDS, NEEDS_KIND, VERDICTS, Part, Verdict
-from proofs.runner import Result, run, select
-from symbolic import points
-from symbolic.exact import Check, Counterexample, rational_identity
+from chaplygin_nd.ledger import graph, report
+from chaplygin_nd.ledger.catalog import Row
+from chaplygin_nd.ledger.registry import KINDS, NEEDS_KIND, VERDICTS, Part, Verdict
+from chaplygin_nd.ledger.runner import Result, run, select
+from chaplygin_nd.symbolic import points
+from chaplygin_nd.symbolic.exact import Check, Counterexample, rational_identity
 
 x = sp.Symbol("x")
 TRUE, FALSE = rational_identity(x - x), rational_identity(x - 1)
@@ -25,7 +24,7 @@ FAST_ROWS = ("K:Delta", "eq:motion-n4", "S5:ku", "eq:PrincMinors", "eq:inverse-L
 
 
 def _result(row_id: str, verdict: Verdict, uses=()) -> Result:
-    return Result(Row(row_id, "Section X", f"claim {row_id}"), verdict, 0.01, "proofs.x", tuple(uses))
+    return Result(Row(row_id, "Section X", f"claim {row_id}"), verdict, 0.01, "chaplygin_nd.proofs.x", tuple(uses))
 
 
 def _matrix_counterexample() -> Check:
@@ -111,12 +110,12 @@ def test_markdown_keeps_prose_out_of_math_and_shows_each_formula_once(tmp_path):
 
 
 def test_a_stale_generated_folder_gives_a_report_that_says_stale(tmp_path, monkeypatch):
-    import symbolic.codegen
+    import chaplygin_nd.symbolic.codegen as codegen
 
     real_select = cli.select
     monkeypatch.setattr(cli, "ROOT", tmp_path)
     monkeypatch.setattr(cli, "select", lambda ids: real_select(["K:Delta", "eq:motion-n4"]))
-    monkeypatch.setattr(symbolic.codegen, "stale_report", lambda: "generated/x.py differs")
+    monkeypatch.setattr(codegen, "stale_report", lambda: "generated/x.py differs")
     assert cli.main(["--check-generated", "--jobs", "1", "--seed", "11"]) == 1
     md = (tmp_path / "VERIFICATION.md").read_text(encoding="utf-8")
     assert md.splitlines()[2].startswith("> **STALE")
@@ -160,7 +159,7 @@ def test_claim_graph_svg_is_deterministic(tmp_path):
 def test_committed_claim_graph_names_every_ledger_row():
     """docs/claim-graph.svg is tracked (README links it); a row added since the last `make verify`
     that was committed is missing from it. (Verdict colours are checked by verify, which redraws.)"""
-    from proofs.catalog import ROOT, all_rows, discover
+    from chaplygin_nd.ledger.catalog import ROOT, all_rows, discover
 
     discover()
     svg = (ROOT / report.GRAPH_PATH).read_text(encoding="utf-8")

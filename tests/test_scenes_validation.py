@@ -7,9 +7,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
-from simulate import cli
-from simulate.scene import OUTPUTS, SceneError, load, loads
+from chaplygin_nd.simulate import cli
+from chaplygin_nd.simulate.scene import OUTPUTS, SceneError, load, loads
 
 SCENES = sorted(Path(__file__).resolve().parent.parent.glob("scenes/*.toml"))
 

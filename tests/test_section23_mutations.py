@@ -7,10 +7,9 @@ materially different formula and re-runs the ledger row that checks it. The row 
 
 import pytest
 import sympy as sp
-
-from proofs import s2_sphere3d, s2_spheren, s3_vertical_horizontal
-from symbolic.algebra import basis_vector, commutator, killing, wedge
-from symbolic.printed import section2, section3
+from chaplygin_nd.proofs import s2_sphere3d, s2_spheren, s3_vertical_horizontal
+from chaplygin_nd.symbolic.algebra import basis_vector, commutator, killing, wedge
+from chaplygin_nd.symbolic.printed import section2, section3
 
 E3 = sp.Matrix([0, 0, 1])
 

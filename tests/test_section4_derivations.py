@@ -8,14 +8,16 @@ from pathlib import Path
 
 import pytest
 import sympy as sp
-from sympy.polys.matrices import DomainMatrix
-
-from proofs.catalog import all_rows, discover
-from proofs.ledger import registry
-from symbolic import points
-from symbolic.algebra import commutator, unvec, vec
-from symbolic.axisym_inverse import inverse_closed_form, inverse_denominator, inverse_numerator
-from symbolic.axisymmetric import (
+from chaplygin_nd.ledger.catalog import all_rows, discover
+from chaplygin_nd.ledger.registry import registry
+from chaplygin_nd.symbolic import points
+from chaplygin_nd.symbolic.algebra import commutator, unvec, vec
+from chaplygin_nd.symbolic.axisym_inverse import (
+    inverse_closed_form,
+    inverse_denominator,
+    inverse_numerator,
+)
+from chaplygin_nd.symbolic.axisymmetric import (
     Delta,
     E_n,
     L_gamma_axisym,
@@ -25,8 +27,9 @@ from symbolic.axisymmetric import (
     mass_tensor,
     x,
 )
-from symbolic.model import angular_velocity
-from symbolic.vertical import chi, inertia_tilde, vertical_point, zeta
+from chaplygin_nd.symbolic.model import angular_velocity
+from chaplygin_nd.symbolic.vertical import chi, inertia_tilde, vertical_point, zeta
+from sympy.polys.matrices import DomainMatrix
 
 ROOT = Path(__file__).resolve().parent.parent
 SEED = 4_20261121

@@ -8,11 +8,10 @@ it must no longer be `holds`, and it must come with an exact counterexample.
 from __future__ import annotations
 
 import pytest
-
-from proofs.catalog import discover
-from proofs.ledger import registry
-from symbolic.algebra import basis_vector, wedge
-from symbolic.printed import section4 as printed
+from chaplygin_nd.ledger.catalog import discover
+from chaplygin_nd.ledger.registry import registry
+from chaplygin_nd.symbolic.algebra import basis_vector, wedge
+from chaplygin_nd.symbolic.printed import section4 as printed
 
 
 def _run(claim_id: str):

@@ -9,14 +9,17 @@ from __future__ import annotations
 
 import pytest
 import sympy as sp
-
-from proofs.s4_common import a, b, gamma_symbols
-from symbolic.algebra import skew_symbols
-from symbolic.axisym_inverse import inverse_closed_form, inverse_denominator, inverse_numerator
-from symbolic.axisymmetric import E_n, L_gamma_axisym
-from symbolic.exact import rational_identity
-from symbolic.printed import section4 as printed
-from symbolic.vertical import vertical_point, zeta
+from chaplygin_nd.proofs.s4_common import a, b, gamma_symbols
+from chaplygin_nd.symbolic.algebra import skew_symbols
+from chaplygin_nd.symbolic.axisym_inverse import (
+    inverse_closed_form,
+    inverse_denominator,
+    inverse_numerator,
+)
+from chaplygin_nd.symbolic.axisymmetric import E_n, L_gamma_axisym
+from chaplygin_nd.symbolic.exact import rational_identity
+from chaplygin_nd.symbolic.printed import section4 as printed
+from chaplygin_nd.symbolic.vertical import vertical_point, zeta
 
 
 def _upper(R: sp.Matrix) -> list:

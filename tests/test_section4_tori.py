@@ -4,14 +4,13 @@ from __future__ import annotations
 
 import pytest
 import sympy as sp
-
-from proofs import th_re_tori as tori
-from proofs.catalog import discover
-from proofs.ledger import registry
-from symbolic import points
-from symbolic.algebra import wedge
-from symbolic.axisymmetric import E_n
-from symbolic.vertical import vertical_point, zeta
+from chaplygin_nd.ledger.catalog import discover
+from chaplygin_nd.ledger.registry import registry
+from chaplygin_nd.proofs import th_re_tori as tori
+from chaplygin_nd.symbolic import points
+from chaplygin_nd.symbolic.algebra import wedge
+from chaplygin_nd.symbolic.axisymmetric import E_n
+from chaplygin_nd.symbolic.vertical import vertical_point, zeta
 
 
 @pytest.fixture(scope="module")

@@ -18,10 +18,9 @@ import pytest
 import scipy.integrate
 import scipy.linalg
 import sympy as sp
-
-from symbolic import fourd, points, reduced
-from symbolic import reduced_invariants as ri
-from symbolic.printed import section5 as printed
+from chaplygin_nd.symbolic import fourd, points, reduced
+from chaplygin_nd.symbolic import reduced_invariants as ri
+from chaplygin_nd.symbolic.printed import section5 as printed
 
 
 @pytest.fixture(autouse=True)

@@ -15,13 +15,12 @@ from pathlib import Path
 
 import pytest
 import sympy as sp
-
-from proofs.catalog import all_rows, claims_rows, discover
-from proofs.ledger import registry
-from proofs.s5_common import reduced_check, ring_on_P
-from symbolic import fourd, points, reduced
-from symbolic import reduced_invariants as ri
-from symbolic.model import angular_velocity
+from chaplygin_nd.ledger.catalog import all_rows, claims_rows, discover
+from chaplygin_nd.ledger.registry import registry
+from chaplygin_nd.proofs.s5_common import reduced_check, ring_on_P
+from chaplygin_nd.symbolic import fourd, points, reduced
+from chaplygin_nd.symbolic import reduced_invariants as ri
+from chaplygin_nd.symbolic.model import angular_velocity
 
 ROOT = Path(__file__).resolve().parent.parent
 

@@ -9,13 +9,12 @@ from pathlib import Path
 import mpmath
 import numpy as np
 import pytest
-
-from simulate.closed_forms import horizontal_invariants
-from simulate.dispatch import active
-from simulate.outputs import collect
-from simulate.planner import plan
-from simulate.run import execute
-from simulate.scene import load, loads
+from chaplygin_nd.simulate.closed_forms import horizontal_invariants
+from chaplygin_nd.simulate.dispatch import active
+from chaplygin_nd.simulate.outputs import collect
+from chaplygin_nd.simulate.planner import plan
+from chaplygin_nd.simulate.run import execute
+from chaplygin_nd.simulate.scene import load, loads
 
 ROOT = Path(__file__).resolve().parent.parent
 

@@ -8,19 +8,20 @@ import subprocess
 import sys
 from pathlib import Path
 
-from simulate.run import Progress
+from chaplygin_nd.simulate.run import Progress
 
 ROOT = Path(__file__).resolve().parent.parent
 
 
 def test_simulate_imports_no_sympy():
     modules = sorted(p.stem for p in (ROOT / "simulate").glob("*.py") if p.stem != "__main__")
-    code = ("import sys\n" + "".join(f"import simulate.{m}\n" for m in modules)
-            + "import simulate.integrators.dop853, simulate.integrators.lie, "
-              "simulate.integrators.taylor, simulate.integrators.heyoka_taylor, "
-              "simulate.integrators.heyoka_systems, runtime.compiled, runtime.expressions\n"
+    code = ("import sys\n" + "".join(f"import chaplygin_nd.simulate.{m}\n" for m in modules)
+            + "import chaplygin_nd.simulate.integrators.dop853, chaplygin_nd.simulate.integrators.lie, "
+              "chaplygin_nd.simulate.integrators.taylor, chaplygin_nd.simulate.integrators.heyoka_taylor, "
+              "chaplygin_nd.simulate.integrators.heyoka_systems, chaplygin_nd.runtime.compiled, "
+              "chaplygin_nd.runtime.expressions\n"
             + "assert 'heyoka' not in sys.modules  # imported only when a heyoka run starts\n"
-            + "from simulate.dispatch import active\nactive()\n"
+            + "from chaplygin_nd.simulate.dispatch import active\nactive()\n"
             + "assert 'sympy' not in sys.modules, sorted(m for m in sys.modules if 'sympy' in m)\n"
             + "print('ok')\n")
     out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True)

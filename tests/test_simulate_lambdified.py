@@ -8,11 +8,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import sympy as sp
-
-from simulate import so
-from simulate.dispatch import Kernels, active
-from symbolic.algebra import vector_symbols
-from symbolic.model import L_matrix
+from chaplygin_nd.simulate import so
+from chaplygin_nd.simulate.dispatch import Kernels, active
+from chaplygin_nd.symbolic.algebra import vector_symbols
+from chaplygin_nd.symbolic.model import L_matrix
 
 _a, _b = sp.symbols("a b", real=True)
 _L = {}
@@ -74,10 +73,10 @@ def test_one_point_fast_path_equals_the_public_kernels():
     def same(x, y):
         return np.allclose(x, y, rtol=1e-15, atol=1e-15)
 
-    import generated.axisym as g
-    import generated.reduced as red
-    from simulate import families
-    from simulate.run import reduced_invariants
+    import chaplygin_nd.generated.axisym as g
+    import chaplygin_nd.generated.reduced as red
+    from chaplygin_nd.simulate import families
+    from chaplygin_nd.simulate.run import reduced_invariants
 
     k = active()
     for n in (3, 4):

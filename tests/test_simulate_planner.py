@@ -5,10 +5,9 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-
-from simulate.dispatch import active
-from simulate.planner import MODELS, plan
-from simulate.scene import load, loads
+from chaplygin_nd.simulate.dispatch import active
+from chaplygin_nd.simulate.planner import MODELS, plan
+from chaplygin_nd.simulate.scene import load, loads
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -56,7 +55,7 @@ def test_planner_choice_for_example_scene(stem):
 def test_method_of_example_scenes():
     assert plan(load(ROOT / "scenes/long4d.toml")).method == "lie"
     assert plan(load(ROOT / "scenes/reference4d.toml")).method == "reference"
-    from simulate.integrators import heyoka_taylor
+    from chaplygin_nd.simulate.integrators import heyoka_taylor
 
     generic = plan(load(ROOT / "scenes/generic4d.toml"))
     if heyoka_taylor.available():  # auto: heyoka when importable, and the plan line says so
@@ -75,7 +74,7 @@ def _scene(initial, n=4, a=0.5, want='["M", "gamma"]'):
 def test_unclaimed_vertical_point_is_detected():
     """An explicit initial condition in V (not a steady rotation) gets the closed form of Th:Re
     without being labelled; a point in V that is also a steady rotation gets the cheaper one."""
-    from simulate import families
+    from chaplygin_nd.simulate import families
     M0, g0 = families.draw("vertical", 4, 0.5, 1.0, seed=12)
     s = _scene(f"M = {M0[0].tolist()}\ngamma = {g0[0].tolist()}")
     assert s.family == "explicit"

@@ -7,15 +7,14 @@ import dataclasses
 
 import numpy as np
 import pytest
+from chaplygin_nd.simulate import cli
+from chaplygin_nd.simulate.crosscheck import cross_check
+from chaplygin_nd.simulate.field import FullField
+from chaplygin_nd.simulate.outputs import collect
+from chaplygin_nd.simulate.planner import APPLIES, plan
+from chaplygin_nd.simulate.run import execute, reduced_invariants
+from chaplygin_nd.simulate.scene import find, loads
 from scipy.integrate import solve_ivp
-
-from simulate import cli
-from simulate.crosscheck import cross_check
-from simulate.field import FullField
-from simulate.outputs import collect
-from simulate.planner import APPLIES, plan
-from simulate.run import execute, reduced_invariants
-from simulate.scene import find, loads
 
 T = np.linspace(3.0, 5.0, 9)  # t[0] = 3
 #: built-in scene -> the model the planner must choose for it (one scene per model)

@@ -11,10 +11,9 @@ from __future__ import annotations
 import time
 
 import numpy as np
+from chaplygin_nd.simulate.integrators.base import Solution
+from chaplygin_nd.simulate.stops import RunStopped
 from scipy.integrate import solve_ivp
-
-from simulate.integrators.base import Solution
-from simulate.stops import RunStopped
 
 __all__ = ["integrate"]
 

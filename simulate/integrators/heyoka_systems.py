@@ -20,7 +20,7 @@ import hashlib
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from generated import expression_builders as eb
+from chaplygin_nd.generated import expression_builders as eb
 
 __all__ = ["System", "full", "reduced", "sphere3d", "for_field"]
 
@@ -57,7 +57,7 @@ class System:
 def full(n: int, reconstruct: bool = False) -> System:
     r"""eq:motion-general (axisymmetric, any $n \ge 3$), state of :class:`simulate.field.FullField`;
     parameters $(a, b)$, and the radius $r$ with the reconstruction. Domain: $\gamma \in S^{n-1}$, $|a| \le 1$, $b > 0$."""
-    from runtime import expressions as rx
+    from chaplygin_nd.runtime import expressions as rx
 
     pairs = rx.pairs(n)
     names = [f"M{i + 1}_{j + 1}" for i, j in pairs] + [f"gamma{i + 1}" for i in range(n)]
@@ -100,7 +100,7 @@ def sphere3d() -> System:
 def for_field(field) -> tuple[System, list[float]]:
     """The system and parameter values of a :class:`simulate.field.FullField` or
     :class:`simulate.field.ReducedField`."""
-    from simulate.field import FullField, ReducedField
+    from chaplygin_nd.simulate.field import FullField, ReducedField
 
     if isinstance(field, FullField):
         values = [field.a, field.b] + ([field.radius] if field.reconstruct else [])

@@ -26,11 +26,10 @@ import math
 import time
 
 import numpy as np
-
-from runtime import jit_cache
-from runtime.expressions import HeyokaArithmetic
-from simulate.integrators import heyoka_systems
-from simulate.integrators.base import Solution
+from chaplygin_nd.runtime import jit_cache
+from chaplygin_nd.runtime.expressions import HeyokaArithmetic
+from chaplygin_nd.simulate.integrators import heyoka_systems
+from chaplygin_nd.simulate.integrators.base import Solution
 
 __all__ = ["available", "integrate", "order_for", "bits_for_digits", "compiled_integrator",
            "default_tol"]
@@ -232,7 +231,7 @@ def _check(hy, outcome, system, reached) -> None:
     :class:`simulate.stops.NonFinite` (exit 2 in the command line), naming the time reached."""
     if outcome == hy.taylor_outcome.time_limit:
         return
-    from simulate.stops import NonFinite, fmt
+    from chaplygin_nd.simulate.stops import NonFinite, fmt
 
     if outcome == hy.taylor_outcome.err_nf_state:
         raise NonFinite(f"the state of {system.name} is not finite at t = {fmt(float(reached))} "

@@ -23,9 +23,8 @@ import math
 import time
 
 import numpy as np
-
-from simulate import so
-from simulate.integrators.base import Solution
+from chaplygin_nd.simulate import so
+from chaplygin_nd.simulate.integrators.base import Solution
 
 __all__ = ["integrate", "step"]
 

@@ -26,9 +26,8 @@ import time
 
 import mpmath
 import numpy as np
-
-from simulate import so
-from simulate.integrators.base import Solution
+from chaplygin_nd.simulate import so
+from chaplygin_nd.simulate.integrators.base import Solution
 
 __all__ = ["integrate", "default_order", "L_matrix_mp"]
 

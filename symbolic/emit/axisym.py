@@ -30,13 +30,12 @@ from __future__ import annotations
 from functools import cache
 
 import sympy as sp
-
-from symbolic.algebra import killing, skew_symbols, vec
-from symbolic.axisym_inverse import ansatz_terms, inverse_coefficients
-from symbolic.axisymmetric import Delta, L_matrix_axisym, a, b, x
-from symbolic.codegen import Argument, Kernel
-from symbolic.model import motion
-from symbolic.vertical import chi, chi_coefficient, inertia_tilde, zeta_coefficient
+from chaplygin_nd.symbolic.algebra import killing, skew_symbols, vec
+from chaplygin_nd.symbolic.axisym_inverse import ansatz_terms, inverse_coefficients
+from chaplygin_nd.symbolic.axisymmetric import Delta, L_matrix_axisym, a, b, x
+from chaplygin_nd.symbolic.codegen import Argument, Kernel
+from chaplygin_nd.symbolic.model import motion
+from chaplygin_nd.symbolic.vertical import chi, chi_coefficient, inertia_tilde, zeta_coefficient
 
 __all__ = ["kernels", "stable_Delta", "DELTA_SYMBOL", "coefficient_kernels", "component_kernels",
            "M_symbols", "gamma_symbols", "p_coefficients"]

@@ -13,10 +13,9 @@ $|a| \le 1$, $b > 0$ (the derived forms used $\lVert q\rVert^2 = 1 - x^2$).
 from __future__ import annotations
 
 import sympy as sp
-
-from symbolic import fourd
-from symbolic.codegen import Argument, Kernel
-from symbolic.emit.axisym import stable_Delta
+from chaplygin_nd.symbolic import fourd
+from chaplygin_nd.symbolic.codegen import Argument, Kernel
+from chaplygin_nd.symbolic.emit.axisym import stable_Delta
 
 __all__ = ["kernels", "stable_D"]
 

@@ -12,12 +12,11 @@ $\sin(\nu t)/\nu = t\,\operatorname{sinc}(\nu t)$ (row K:horizontal-sinc): no $0
 from __future__ import annotations
 
 import sympy as sp
-
-from symbolic import reduced
-from symbolic.codegen import Argument, Kernel
-from symbolic.emit.axisym import stable_Delta
-from symbolic.emit.fourd import stable_D
-from symbolic.reduced_invariants import F1, A, B, E, G, delta
+from chaplygin_nd.symbolic import reduced
+from chaplygin_nd.symbolic.codegen import Argument, Kernel
+from chaplygin_nd.symbolic.emit.axisym import stable_Delta
+from chaplygin_nd.symbolic.emit.fourd import stable_D
+from chaplygin_nd.symbolic.reduced_invariants import F1, A, B, E, G, delta
 
 __all__ = ["kernels", "horizontal_solution_stable"]
 

@@ -10,11 +10,10 @@ from __future__ import annotations
 from functools import cache
 
 import sympy as sp
-
-from symbolic import sphere3d
-from symbolic.algebra import column
-from symbolic.codegen import Argument, Kernel
-from symbolic.model import motion3d
+from chaplygin_nd.symbolic import sphere3d
+from chaplygin_nd.symbolic.algebra import column
+from chaplygin_nd.symbolic.codegen import Argument, Kernel
+from chaplygin_nd.symbolic.model import motion3d
 
 M_ = sp.symbols("M1:4", real=True)
 G_ = sp.symbols("gamma1:4", real=True)

@@ -8,8 +8,7 @@ mass tensor (nD). Nothing here is used by a derivation; only ``proofs/`` compare
 from __future__ import annotations
 
 import sympy as sp
-
-from symbolic.algebra import commutator, killing, wedge
+from chaplygin_nd.symbolic.algebra import commutator, killing, wedge
 
 
 def _dot(u: sp.Matrix, v: sp.Matrix) -> sp.Expr:

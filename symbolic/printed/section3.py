@@ -7,8 +7,7 @@ with the stated dimensions; proof steps as the equalities they assert.
 from __future__ import annotations
 
 import sympy as sp
-
-from symbolic.algebra import wedge
+from chaplygin_nd.symbolic.algebra import wedge
 
 
 def _dot(u: sp.Matrix, v: sp.Matrix) -> sp.Expr:

@@ -13,8 +13,7 @@ $\hat{}$ the hat map. Arguments are SymPy matrices (column vectors for $\gamma$,
 from __future__ import annotations
 
 import sympy as sp
-
-from symbolic.algebra import basis_vector, commutator, hat, wedge
+from chaplygin_nd.symbolic.algebra import basis_vector, commutator, hat, wedge
 
 __all__ = [
     "SOURCE", "J_axisymm", "inertia_3d", "inertia_axisymm", "L_axisymm", "velocity_form_rhs",

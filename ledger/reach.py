@@ -14,7 +14,7 @@ row calls it. This module *observes* that while rows run, without decorating any
 
 The runner records, per row, the printed functions it reached (``Result.printed``); a run of the
 whole ledger fails when a public printed function is reached by no row (:func:`unreached`).
-``python -m proofs.reach`` runs every row and writes ``proofs/reach.json`` (row -> functions and
+``python -m chaplygin_nd.ledger.remap`` runs every row and writes ``ledger/reach.json`` (row -> functions and
 function -> rows) atomically; ``make mutate`` uses the same map to pick the rows a mutant must
 change, and the test suite uses it only to choose which rows to re-run live.
 """
@@ -24,7 +24,6 @@ from __future__ import annotations
 import importlib
 import json
 import os
-import sys
 import tempfile
 from pathlib import Path
 from types import FunctionType
@@ -38,7 +37,7 @@ def printed_functions() -> dict[str, FunctionType]:
     """``{"sectionN.name": function}`` for every public function of ``symbolic/printed/``."""
     out: dict[str, FunctionType] = {}
     for name in PRINTED_MODULES:
-        mod = importlib.import_module(f"symbolic.printed.{name}")
+        mod = importlib.import_module(f"chaplygin_nd.symbolic.printed.{name}")
         for attr, obj in sorted(vars(mod).items()):
             if (not attr.startswith("_") and isinstance(obj, FunctionType)
                     and obj.__module__ == mod.__name__):
@@ -116,20 +115,8 @@ def write_json_atomic(data: dict, path: Path) -> None:
         raise
 
 
-def compute(jobs: int | None = 2) -> tuple[dict[str, list[str]], dict[str, float]]:
-    """Run every registered ledger row: (row -> printed functions it reached, row -> seconds)."""
-    from proofs.runner import run, select
-
-    results = run(select(), jobs=jobs)
-    bad = [r.row.id for r in results if r.error]
-    if bad:
-        raise RuntimeError(f"rows raised while mapping reach: {', '.join(bad)}")
-    done = [r for r in results if r.module]
-    return {r.row.id: list(r.printed) for r in done}, {r.row.id: r.seconds for r in done}
-
-
 def load(path: Path = MAP_PATH) -> tuple[dict[str, list[str]], dict[str, float]]:
-    """The stored map (row -> functions, row -> seconds), written by ``python -m proofs.reach``."""
+    """The stored map (row -> functions, row -> seconds), written by ``python -m chaplygin_nd.ledger.remap``."""
     data = json.loads(path.read_text(encoding="utf-8"))
     return data["rows"], data.get("seconds", {})
 
@@ -155,20 +142,3 @@ def save(printed_by_row: dict[str, list[str]], seconds: dict[str, float] | None 
     """Write the map (and each row's seconds, to choose cheap rows) atomically."""
     write_json_atomic({"rows": printed_by_row, "functions": rows_by_function(printed_by_row),
                        "seconds": {r: round(t, 2) for r, t in (seconds or {}).items()}}, path)
-
-
-def main(argv: list[str] | None = None) -> int:
-    """``python -m proofs.reach``: map every row, write proofs/reach.json, exit 1 if unreached."""
-    reach, seconds = compute()
-    save(reach, seconds)
-    missing = unreached(reach)
-    n_fn = len(printed_functions())
-    print(f"{len(reach)} rows reach {n_fn - len(missing)} of {n_fn} printed functions; "
-          f"wrote {MAP_PATH.relative_to(MAP_PATH.parent.parent)}")
-    for f in missing:
-        print(f"PROBLEM: printed function {f} is reached by no ledger row", file=sys.stderr)
-    return 1 if missing else 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

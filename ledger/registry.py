@@ -2,7 +2,7 @@ r"""Verdicts and the claim registry.
 
 A proof module registers one function per ledger row::
 
-    from proofs.ledger import Verdict, claim
+    from chaplygin_nd.ledger.registry import Verdict, claim
 
     @claim("eq:invL3D", uses=("eq:mom3D", "S2.1:detL3D"))
     def inverse_3d() -> Verdict:
@@ -20,7 +20,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import asdict, dataclass, field
 
-from symbolic.exact import Check
+from chaplygin_nd.symbolic.exact import Check
 
 __all__ = ["Verdict", "Part", "claim", "registry", "VERDICTS", "ClaimSpec", "KINDS",
            "ERRATA_KINDS", "NEEDS_KIND",
@@ -277,7 +277,7 @@ def claim(claim_id: str, *, uses: Sequence[str] = (), adds: tuple[str, str] | No
 
     ``adds=(section, claim)`` makes it a row this project adds to the ledger (e.g. a stable
     rewrite of a formula for a kernel); without it ``claim_id`` must be a row of CLAIMS.md or of
-    ``proofs.catalog.EXTRA_ROWS``."""
+    ``ledger.catalog.EXTRA_ROWS``."""
 
     def register(fn: Callable[[], Verdict]) -> Callable[[], Verdict]:
         if claim_id in _REGISTRY:
@@ -290,5 +290,5 @@ def claim(claim_id: str, *, uses: Sequence[str] = (), adds: tuple[str, str] | No
 
 
 def registry() -> dict[str, ClaimSpec]:
-    """The registered proofs (import :mod:`proofs.catalog` ``discover()`` first)."""
+    """The registered proofs (import :mod:`ledger.catalog` ``discover()`` first)."""
     return dict(_REGISTRY)

@@ -17,8 +17,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 from pathlib import Path
 
-from proofs.ledger import ERRATA_KINDS, KINDS, VERDICTS
-from proofs.runner import Result
+from chaplygin_nd.ledger.registry import ERRATA_KINDS, KINDS, VERDICTS
+from chaplygin_nd.ledger.runner import Result
 
 #: Fill colour of a node by verdict; a finding is coloured by its kind instead (KIND_COLOUR).
 VERDICT_COLOUR = {

@@ -10,10 +10,10 @@ from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 
-from proofs.catalog import Row, all_rows, discover, pending_reason
-from proofs.ledger import Verdict, registry
-from proofs.reach import Recorder
-from symbolic import points
+from chaplygin_nd.ledger.catalog import Row, all_rows, discover, pending_reason
+from chaplygin_nd.ledger.reach import Recorder
+from chaplygin_nd.ledger.registry import Verdict, registry
+from chaplygin_nd.symbolic import points
 
 
 @dataclass(frozen=True)
@@ -26,7 +26,7 @@ class Result:
     module: str = ""
     uses: tuple[str, ...] = ()
     error: str = ""
-    #: the public functions of symbolic/printed/ this row called (proofs.reach.Recorder)
+    #: the public functions of symbolic/printed/ this row called (ledger.reach.Recorder)
     printed: tuple[str, ...] = ()
 
     @property
@@ -46,7 +46,7 @@ class Result:
 def _run_one(claim_id: str, seed: int = points.DEFAULT_SEED
              ) -> tuple[Verdict, float, str, tuple[str, ...]]:
     """Decide one row with ``seed`` as the seed of its seeded checks (in this process);
-    also the printed functions it called (:mod:`proofs.reach`)."""
+    also the printed functions it called (:mod:`ledger.reach`)."""
     spec = registry()[claim_id]
     previous = points.set_ledger_seed(seed)
     start = time.perf_counter()

@@ -1,4 +1,4 @@
-"""``python -m proofs [ID ...]`` — decide ledger rows and print one line per row.
+"""``chaplygin verify`` / ``chaplygin prove ID ...`` (``python -m chaplygin_nd.ledger``) — decide ledger rows and print one line per row.
 
 With no ids it runs the whole ledger and writes ``VERIFICATION.md``, ``verification.json`` (at the
 repository root) and the claim graph ``docs/claim-graph.svg`` (only in a source checkout: an installed
@@ -15,10 +15,12 @@ import signal
 import sys
 import time
 
-from proofs import graph, report
-from proofs.catalog import ROOT, is_checkout
-from proofs.runner import run, select, unknown_registrations
-from symbolic.points import DEFAULT_SEED
+from chaplygin_nd.ledger import graph, report
+from chaplygin_nd.ledger.catalog import ROOT, is_checkout
+from chaplygin_nd.ledger.runner import run, select, unknown_registrations
+from chaplygin_nd.symbolic.points import DEFAULT_SEED
+
+from chaplygin_nd.cli import version_line
 
 
 def _seed(text: str) -> int:
@@ -29,8 +31,9 @@ def _seed(text: str) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m proofs", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="chaplygin verify", description=__doc__.splitlines()[0])
     parser.add_argument("ids", nargs="*", help="ledger ids to run (default: all)")
+    parser.add_argument("--version", action="version", version=version_line())
     parser.add_argument("--jobs", "-j", type=int, default=None,
                         help="worker processes (default: one per core)")
     parser.add_argument("--check-generated", action="store_true",
@@ -39,7 +42,7 @@ def main(argv: list[str] | None = None) -> int:
                         help=f"seed of every seeded exact check (default {DEFAULT_SEED})")
     parser.add_argument("--list", action="store_true", help="list the ledger ids and exit")
     args = parser.parse_args(argv)
-    signal.signal(signal.SIGPIPE, signal.SIG_DFL)  # `python -m proofs | head` exits quietly
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)  # `chaplygin verify | head` exits quietly
 
     try:
         rows = select(args.ids)
@@ -67,7 +70,7 @@ def main(argv: list[str] | None = None) -> int:
     problems += [f"{i}: a finding without a kind (formula/proof/scope/reading): an error of the "
                  "ledger" for i in report.missing_kind(results)]
     if not args.ids:  # every printed formula must be checked by some row (DESIGN rule 1)
-        from proofs.reach import unreached
+        from chaplygin_nd.ledger.reach import unreached
 
         missing = unreached({r.row.id: list(r.printed) for r in results})
         problems += [f"printed function {f} is reached by no ledger row" for f in missing]
@@ -75,7 +78,7 @@ def main(argv: list[str] | None = None) -> int:
     problems += [f"{i}: registered by a proof but not a ledger row" for i in unknown]
     generated = "not checked"
     if args.check_generated:
-        from symbolic.codegen import stale_report
+        from chaplygin_nd.symbolic.codegen import stale_report
 
         stale = stale_report()
         generated = "STALE" if stale else "up to date"

@@ -1,6 +1,6 @@
 """Render ledger results: one console line per row, VERIFICATION.md and verification.json.
 
-Everything here is general over :data:`proofs.ledger.VERDICTS` and :data:`proofs.ledger.KINDS`: a
+Everything here is general over :data:`ledger.registry.VERDICTS` and :data:`ledger.registry.KINDS`: a
 new verdict or kind needs only its one-line description in :data:`VERDICT_TEXT` / :data:`KIND_TEXT`
 (a test checks that every one has one). The Markdown is written for a renderer with TeX math
 (GitHub, pandoc, MathJax, KaTeX): labels stay outside the math, one formula per ``$$`` display.
@@ -16,9 +16,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import sympy
-
-from proofs.ledger import ERRATA_KINDS, KINDS, NEEDS_KIND, VERDICTS
-from proofs.runner import Result
+from chaplygin_nd.ledger.registry import ERRATA_KINDS, KINDS, NEEDS_KIND, VERDICTS
+from chaplygin_nd.ledger.runner import Result
 
 #: What each verdict means, for the reader of the report (one entry per verdict of the ledger).
 VERDICT_TEXT = {
@@ -94,7 +93,7 @@ def summary(results: Sequence[Result]) -> str:
 
 def missing_kind(results: Sequence[Result]) -> list[str]:
     """Rows that found something (``corrected``/``fails``) without saying which kind: an error of
-    the ledger, reported as a problem by ``python -m proofs``."""
+    the ledger, reported as a problem by ``chaplygin verify``."""
     return [r.row.id for r in results if r.status in NEEDS_KIND and not r.verdict.kind]
 
 
@@ -167,7 +166,7 @@ def write_markdown(results: Sequence[Result], path: Path, info: RunInfo) -> None
     if info.problems:
         out += ["> **This run has problems** (`make verify` exits non-zero):", ">"]
         out += [f"> - {_cell(p.splitlines()[0])}" for p in info.problems] + [""]
-    out += [f"Written by `make verify` (`python -m proofs`) with **seed {info.seed}** (repeat with "
+    out += [f"Written by `make verify` (`chaplygin verify`) with **seed {info.seed}** (repeat with "
             f"`make verify SEED={info.seed}`); `generated/`: {info.generated}.", "",
             f"**{summary(results)}**", "",
             "One row per computable claim of the paper (`paper/CLAIMS.md`, plus rows this project "

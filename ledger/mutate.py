@@ -1,7 +1,7 @@
-r"""``python -m proofs.mutate`` (``make mutate``) — mutation testing of every printed formula.
+r"""``python -m ledger.mutate`` (``make mutate``) — mutation testing of every printed formula.
 
 A transcription in :mod:`symbolic.printed` is only useful if a ledger row notices when it is
-wrong. For every public function there (:func:`proofs.reach.printed_functions`) this tool makes
+wrong. For every public function there (:func:`ledger.reach.printed_functions`) this tool makes
 one-symbol mutants from the function's AST (:func:`mutants`):
 
 * ``sign``     — ``+`` <-> ``-``, and a unary minus dropped or added;
@@ -16,7 +16,7 @@ one-symbol mutants from the function's AST (:func:`mutants`):
 
 Each mutant is applied in a worker process by replacing the function's ``__code__`` (every caller
 sees it; source files are never written), the rows that reach the function (the reach map of
-:mod:`proofs.reach`, cheapest first) are run, and each row's verdict, counterexample and parts
+:mod:`ledger.reach`, cheapest first) are run, and each row's verdict, counterexample and parts
 are compared with the unmutated run. Outcomes:
 
 * ``killed``     — a row's verdict or counterexample changed (or the row raised, or it ran past
@@ -49,10 +49,14 @@ from pathlib import Path
 from types import FunctionType
 
 import sympy as sp
-
-from proofs.catalog import ROOT
-from proofs.reach import printed_functions, rows_by_function, unreached, write_json_atomic
-from proofs.reach import save as save_reach
+from chaplygin_nd.ledger.catalog import ROOT
+from chaplygin_nd.ledger.reach import (
+    printed_functions,
+    rows_by_function,
+    unreached,
+    write_json_atomic,
+)
+from chaplygin_nd.ledger.reach import save as save_reach
 
 OUT_PATH = ROOT / "mutation.json"
 #: Name pairs swapped by the ``swap`` operator (each direction).
@@ -273,7 +277,7 @@ def _alarm(signum, frame):
 
 def run_row(claim_id: str, budget: float | None = None) -> tuple[tuple, str]:
     """Run one ledger row in this process: (signature, note). ``budget``: seconds, else raises."""
-    from proofs.ledger import registry
+    from chaplygin_nd.ledger.registry import registry
 
     spec = registry()[claim_id]
     if budget:
@@ -463,14 +467,14 @@ def _difference(base: tuple, got: tuple) -> str:
 # ---------------------------------------------------------------------------------------------
 
 def _init_worker():
-    from proofs.catalog import discover
+    from chaplygin_nd.ledger.catalog import discover
 
     discover()
 
 
 def baseline(ids=None, jobs: int = 2):
     """Run rows unmutated (all, or ``ids``): {row: (signature, seconds, printed functions)}."""
-    from proofs.runner import run, select
+    from chaplygin_nd.ledger.runner import run, select
 
     results = run(select(ids or ()), jobs=jobs)
     bad = [r.row.id for r in results if r.error]
@@ -533,7 +537,7 @@ def summary(records: list[dict], functions: int, seconds: float) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m proofs.mutate", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="chaplygin mutate", description=__doc__.splitlines()[0])
     parser.add_argument("--jobs", "-j", type=int, default=2)
     parser.add_argument("--per-function", type=int, default=PER_FUNCTION)
     parser.add_argument("--function", action="append", default=[],
@@ -541,7 +545,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--out", type=Path, default=OUT_PATH)
     args = parser.parse_args(argv)
     start = time.perf_counter()
-    from proofs.catalog import discover
+    from chaplygin_nd.ledger.catalog import discover
 
     discover()
     base = baseline(jobs=args.jobs)

@@ -18,17 +18,14 @@ from pathlib import Path
 
 #: The folder above the packages: the repository root in a checkout, site-packages when installed.
 ROOT = Path(__file__).resolve().parent.parent
-_PAPER = resources.files("proofs") / "paper"
+_PAPER = resources.files("chaplygin_nd.proofs") / "paper"
 CLAIMS_PATH = Path(str(_PAPER / "CLAIMS.md"))
 PAPER_PATH = Path(str(_PAPER / "chaplygin-sphere-nd.tex"))
 
 
 def is_checkout() -> bool:
     """True when running from the source repository (not from an installed wheel)."""
-    return (ROOT / "pyproject.toml").is_file() and (ROOT / "proofs" / "catalog.py").is_file()
-
-#: Modules of the ``proofs`` package that hold machinery, not proofs.
-MACHINERY = {"ledger", "catalog", "runner", "report", "graph", "reach", "mutate", "__main__"}
+    return (ROOT / "pyproject.toml").is_file() and (ROOT / "ledger" / "catalog.py").is_file()
 
 
 @dataclass(frozen=True)
@@ -84,7 +81,7 @@ def all_rows() -> list[Row]:
     for extra in EXTRA_ROWS:
         last = max((i for i, r in enumerate(rows) if r.section == extra.section), default=len(rows) - 1)
         rows.insert(last + 1, extra)
-    from proofs.ledger import registry
+    from chaplygin_nd.ledger.registry import registry
 
     for spec in sorted(registry().values(), key=lambda s: s.id):
         if spec.adds and spec.id not in {r.id for r in rows}:
@@ -109,13 +106,12 @@ def pending_reason(row: Row) -> str:
 
 
 def discover() -> list[str]:
-    """Import every proof module of the ``proofs`` package (registering its claims)."""
-    import proofs
+    """Import every module of the ``proofs`` package (registering its claims): it holds only the
+    claim scripts and their shared helpers, so nothing is excluded."""
+    from chaplygin_nd import proofs
 
     names = []
     for info in sorted(pkgutil.iter_modules(proofs.__path__), key=lambda i: i.name):
-        if info.name in MACHINERY:
-            continue
-        importlib.import_module(f"proofs.{info.name}")
+        importlib.import_module(f"chaplygin_nd.proofs.{info.name}")
         names.append(info.name)
     return names

@@ -1,0 +1,20 @@
+r"""chaplygin-nd: a machine-checked companion to *Integrability of the n-dimensional axially
+symmetric Chaplygin sphere* (L. C. García-Naranjo).
+
+Subpackages, one idea each (the repository keeps them as top-level folders; installed, they live
+under this namespace):
+
+* :mod:`chaplygin_nd.symbolic` — the definitions and the derivations (SymPy);
+* :mod:`chaplygin_nd.proofs` — one claim script per group of the paper's claims;
+* :mod:`chaplygin_nd.ledger` — the machinery that runs the claims and reports the verdicts;
+* :mod:`chaplygin_nd.generated` — NumPy kernels emitted from the proved formulas (never edited);
+* :mod:`chaplygin_nd.runtime` — the hand-written assembly of those kernels for any ``n``;
+* :mod:`chaplygin_nd.simulate` — scenes, the model planner and the integrators (no SymPy);
+* :mod:`chaplygin_nd.bench` — accuracy-versus-time and throughput benchmarks.
+
+The command line is ``chaplygin`` (``python -m chaplygin_nd``): see :mod:`chaplygin_nd.cli`.
+"""
+
+__version__ = "0.2.0"
+
+__all__ = ["__version__"]

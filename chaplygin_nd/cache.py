@@ -1,0 +1,39 @@
+"""The one cache folder of chaplygin-nd and the one variable that moves it.
+
+``$CHAPLYGIN_ND_CACHE`` if set, else the platform's user cache folder: ``$XDG_CACHE_HOME/chaplygin-nd``
+(``~/.cache/chaplygin-nd`` when ``XDG_CACHE_HOME`` is unset) on Linux and other POSIX systems,
+``~/Library/Caches/chaplygin-nd`` on macOS, ``%LOCALAPPDATA%\\chaplygin-nd\\Cache`` on Windows. Never
+inside the installed package. Each user of the cache has its own subfolder
+(:func:`cache_dir`): ``heyoka/`` (compiled integrators, :mod:`chaplygin_nd.runtime.jit_cache`),
+``evidence/`` (orbits and spectra of the evidence rows, :mod:`chaplygin_nd.simulate.evidence`).
+A cache only saves time: deleting the folder is always safe.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+__all__ = ["ENV", "cache_root", "cache_dir"]
+
+#: The environment variable that moves the whole cache.
+ENV = "CHAPLYGIN_ND_CACHE"
+
+
+def cache_root() -> Path:
+    """The cache folder (see the module docstring); not created here."""
+    if os.environ.get(ENV):
+        return Path(os.environ[ENV]).expanduser()
+    if sys.platform == "darwin":
+        return Path.home() / "Library" / "Caches" / "chaplygin-nd"
+    if os.name == "nt":
+        base = os.environ.get("LOCALAPPDATA") or str(Path.home() / "AppData" / "Local")
+        return Path(base) / "chaplygin-nd" / "Cache"
+    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(base) / "chaplygin-nd"
+
+
+def cache_dir(kind: str) -> Path:
+    """The subfolder ``kind`` (``"heyoka"``, ``"evidence"``) of :func:`cache_root`; not created."""
+    return cache_root() / kind

@@ -1,0 +1,92 @@
+"""``chaplygin`` (``python -m chaplygin_nd``): one command for the whole toolkit.
+
+``chaplygin verify``            decide every ledger row, write the reports (``make verify``)
+``chaplygin prove ID [ID ...]`` decide single rows
+``chaplygin simulate SCENE``    plan and run a scene (``python -m chaplygin_nd.simulate``)
+``chaplygin bench [NAME ...]``  the benchmarks (``make bench``)
+``chaplygin generate``          rewrite ``generated/`` from the proved formulas (``make generate``)
+``chaplygin mutate``            mutation testing of the printed formulas (``make mutate``)
+``chaplygin --version``         the version and, in a source checkout, the commit
+
+Each subcommand takes the options of the module it runs (``chaplygin simulate -h``). Subcommands
+import their module only when chosen, so ``chaplygin --version`` imports neither SymPy nor NumPy.
+"""
+
+from __future__ import annotations
+
+import importlib
+import subprocess
+import sys
+from pathlib import Path
+
+from chaplygin_nd import __version__
+
+#: subcommand -> (module whose ``main(argv)`` runs it, arguments put in front, one-line help)
+COMMANDS = {
+    "verify": ("chaplygin_nd.ledger.__main__", [], "decide every ledger row and write the reports"),
+    "prove": ("chaplygin_nd.ledger.__main__", [], "decide the ledger rows named"),
+    "simulate": ("chaplygin_nd.simulate.cli", [], "plan and run a scene"),
+    "bench": ("chaplygin_nd.bench.__main__", [], "run the benchmarks"),
+    "generate": ("chaplygin_nd.symbolic.codegen", [], "rewrite generated/ from the proofs"),
+    "mutate": ("chaplygin_nd.ledger.mutate", [], "mutation testing of the printed formulas"),
+}
+
+
+def commit() -> str | None:
+    """The checkout's commit (short hash, ``+dirty`` when the tree has changes), or ``None`` when
+    this is not a git checkout (an installed wheel)."""
+    root = Path(__file__).resolve().parent.parent
+    if not (root / ".git").exists() or not (root / "pyproject.toml").is_file():
+        return None
+    try:
+        head = subprocess.run(["git", "-C", str(root), "rev-parse", "--short", "HEAD"],
+                              capture_output=True, text=True, timeout=10, check=True).stdout.strip()
+        dirty = subprocess.run(["git", "-C", str(root), "status", "--porcelain", "--untracked-files=no"],
+                               capture_output=True, text=True, timeout=10).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return None
+    return head + ("+dirty" if dirty else "")
+
+
+def version_line() -> str:
+    """``chaplygin-nd VERSION`` and, in a checkout, ``(commit HASH)``."""
+    c = commit()
+    return f"chaplygin-nd {__version__}" + (f" (commit {c})" if c else "")
+
+
+def _usage() -> str:
+    width = max(map(len, COMMANDS))
+    lines = [f"  {name:<{width}}  {help_}" for name, (_, _, help_) in COMMANDS.items()]
+    return ("usage: chaplygin [--version] COMMAND [ARGS ...]\n\ncommands:\n" + "\n".join(lines)
+            + "\n\n`chaplygin COMMAND -h` shows the options of COMMAND.")
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the ``chaplygin`` command; the exit status of the subcommand (2 on a usage error)."""
+    args = list(sys.argv[1:] if argv is None else argv)
+    if not args or args[0] in ("-h", "--help"):
+        print(_usage(), file=sys.stdout if args else sys.stderr)
+        return 0 if args else 2
+    if args[0] in ("-V", "--version"):
+        print(version_line())
+        return 0
+    name, rest = args[0], args[1:]
+    if name not in COMMANDS:
+        print(f"chaplygin: unknown command {name!r}\n\n{_usage()}", file=sys.stderr)
+        return 2
+    if name == "prove" and not [a for a in rest if not a.startswith("-")]:
+        print("chaplygin prove: name at least one ledger id (`chaplygin prove --list` lists them; "
+              "`chaplygin verify` runs them all)", file=sys.stderr)
+        if "--list" not in rest:
+            return 2
+    if name == "verify" and [a for a in rest if not a.startswith("-") and not _is_option_value(rest, a)]:
+        print("chaplygin verify: takes no ids (use `chaplygin prove ID ...`)", file=sys.stderr)
+        return 2
+    module, front, _ = COMMANDS[name]
+    return int(importlib.import_module(module).main(front + rest) or 0)
+
+
+def _is_option_value(args: list[str], value: str) -> bool:
+    """True when ``value`` follows an option that takes a value (``--seed 3``, ``-j 2``)."""
+    i = args.index(value)
+    return i > 0 and args[i - 1] in ("--seed", "--jobs", "-j", "--report-dir")
