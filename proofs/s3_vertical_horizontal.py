@@ -48,7 +48,7 @@ from chaplygin_nd.symbolic.algebra import (
     vector_symbols,
     wedge,
 )
-from chaplygin_nd.symbolic.exact import Check, rational_identity, zero_at_points
+from chaplygin_nd.symbolic.exact import Check, point_engines, rational_identity, zero_at_points
 from chaplygin_nd.symbolic.model import commutator, cross, mom3d, motion, motion3d
 from chaplygin_nd.symbolic.printed import section2 as printed2
 from chaplygin_nd.symbolic.printed import section3 as printed
@@ -67,7 +67,7 @@ inertia = sp.diag(I1, I2, I3)
 SPHERE = tuple(gamma)
 SAMPLERS = {s: (lambda r: points.rational(r, 0, 4, 6, open_lo=True)) for s in (I1, I2, I3, b)}
 SYMBOLIC_N = (3, 4, 5, 6)
-POINT_N = tuple(range(3, 13))
+POINT_N = tuple(points.all_n(3))
 
 
 def _nullity(A: sp.Matrix) -> int:
@@ -264,24 +264,26 @@ def vertical_horizontal_nd() -> Verdict:
     invariance = [(f"symbolic n={n}", rational_identity(_nd_invariance(n))) for n in SYMBOLIC_N]
     invariance += [(f"points n={n}", zero_at_points(
         lambda p, n=n: _nd_invariance(n, p), _nd_point(n), count=2, label=f"inv{n}",
-        describe=f"so({n}) x so({n}) x S^{n - 1}")) for n in POINT_N]
+        describe=f"so({n}) x so({n}) x S^{n - 1}", engines=point_engines(n))) for n in POINT_N]
     forms = [(f"n={n}", zero_at_points(lambda p, n=n: _space_forms(n, p), _nd_point(n), count=2,
-                                       label=f"forms{n}", describe=f"S^{n - 1} x so({n})"))
+                                       label=f"forms{n}", describe=f"S^{n - 1} x so({n})",
+                                       engines=point_engines(n)))
              for n in POINT_N]
     dims = [(f"n={n}", zero_at_points(lambda p, n=n: _dimension_residual(n, p), _nd_point(n),
-                                      count=2, label=f"dims{n}", describe=f"S^{n - 1}"))
+                                      count=2, label=f"dims{n}", describe=f"S^{n - 1}",
+                                      engines=point_engines(n)))
             for n in POINT_N]
     parts = [
         Verdict.all_of(invariance, n_values=POINT_N, method=(
             "d/dt(M gamma) = -Omega (M gamma) and d/dt g_H = [g_H, Omega] for any skew Omega: "
-            "exact symbolic n=3..6, exact at 2 seeded points for n=3..12")).as_part("V and H invariant"),
+            f"exact symbolic n=3..6, exact at 2 seeded points for n=3..{points.ALL_N_MAX}")).as_part("V and H invariant"),
         Verdict.all_of(forms, n_values=POINT_N, method=(
             "R gamma = e_n with R rational in SO(n); R M R^T has the printed block form on V and H, "
-            "and masked matrices pull back into V and H: exact at 2 seeded points, n=3..12"))
+            f"and masked matrices pull back into V and H: exact at 2 seeded points, n=3..{points.ALL_N_MAX}"))
         .as_part("space forms"),
         Verdict.all_of(dims, n_values=POINT_N, method=(
             "fibre dimensions (exact ranks) + (n-1) equal n(n-1)/2 and 2(n-1): exact at 2 seeded "
-            "points, n=3..12; M -> M gamma is onto gamma-perp for every unit gamma")).as_part("dimensions"),
+            f"points, n=3..{points.ALL_N_MAX}; M -> M gamma is onto gamma-perp for every unit gamma")).as_part("dimensions"),
     ]
     return Verdict.of_parts(parts, n_values=POINT_N)
 

@@ -36,7 +36,7 @@ import sympy as sp
 from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import skew_symbols, vector_symbols, wedge
 from chaplygin_nd.symbolic.axisymmetric import a, b
-from chaplygin_nd.symbolic.exact import Check, rational_identity, zero_at_points
+from chaplygin_nd.symbolic.exact import Check, point_engines, rational_identity, zero_at_points
 from chaplygin_nd.symbolic.vertical import vertical_point
 
 __all__ = [
@@ -170,7 +170,8 @@ def point_checks(residual: Callable[[dict], object], ns: Iterable[int], *, count
             return random_point(r, n, vertical=vertical)
 
         checks.append(zero_at_points(residual, sample, count=count, label=f"{label}-n{n}",
-                                     describe="V" if vertical else "so(n) x S^{n-1}"))
+                                     describe="V" if vertical else "so(n) x S^{n-1}",
+                                     engines=point_engines(n)))
     return combine(checks, method=f"exact at {count} seeded rational point(s) "
                                   f"{'of V ' if vertical else ''}for each n in "
                                   f"{min(ns)}..{max(ns)} (seed {points.ledger_seed()})")

@@ -39,6 +39,7 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from random import Random
 
+import flint
 import sympy as sp
 from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.flint_engine import (
@@ -57,12 +58,18 @@ from sympy.polys.rings import PolyElement
 __all__ = [
     "Check", "Counterexample", "rational_identity", "zero_at_points", "exact_zero",
     "numerator_polynomial", "Sampler", "engine_tally", "reset_engine_tally", "engine_note",
-    "SYMPY_POINT_MAX_N",
+    "SYMPY_POINT_MAX_N", "point_engines", "point_timings",
 ]
 
 #: Above this n the seeded point checks are decided by FLINT alone (SymPy's dense QQ linear
 #: algebra grows as n^4..n^6: its n = 24 determinant took 46 s); at and below it, by both.
 SYMPY_POINT_MAX_N = 12
+
+
+def point_engines(n: int) -> tuple[str, ...]:
+    """The engines of a seeded point check at dimension ``n``: both up to
+    :data:`SYMPY_POINT_MAX_N`, FLINT alone above."""
+    return ("sympy", "flint") if n <= SYMPY_POINT_MAX_N else ("flint",)
 
 #: A sampler draws one exact value (number or matrix) for one symbol or name.
 Sampler = Callable[[Random], sp.Expr]
@@ -172,6 +179,25 @@ class Check:
 # --------------------------------------------------------------------------------------------
 
 _TALLY: Counter = Counter()
+#: (label, n, engine, seconds) of every seeded point evaluation (the bench reads it)
+_TIMINGS: list[tuple[str, int | None, str, float]] = []
+
+
+def point_timings(clear: bool = False) -> list[tuple[str, int | None, str, float]]:
+    """(label, n, engine, seconds) of each engine's evaluation of each seeded point (value and
+    zero test); ``clear`` empties the record."""
+    out = list(_TIMINGS)
+    if clear:
+        _TIMINGS.clear()
+    return out
+
+
+def _dimension(pt: dict) -> int | None:
+    """n of a sampled point: its ``n``, else the length of its ``gamma``."""
+    if isinstance(pt.get("n"), int):
+        return pt["n"]
+    g = pt.get("gamma")
+    return len(g) if g is not None else None
 
 
 def _record(kind: str, engines: str) -> None:
@@ -416,7 +442,11 @@ def exact_zero(value) -> tuple[bool, str, object]:
 
 
 def _fmpq_entries(value) -> list:
-    """The entries of an exact value as FLINT rationals (``TypeError`` on a float)."""
+    """The entries of an exact value as FLINT rationals (``TypeError`` on a float); an
+    ``fmpq_mat`` (a value computed by the FLINT engine) is read directly."""
+    if isinstance(value, flint.fmpq_mat):
+        return [(f"entry ({i + 1}, {j + 1})", value[i, j], value[i, j])
+                for i in range(value.nrows()) for j in range(value.ncols())]
     out = []
     for where, e in _entries(value):
         if isinstance(e, PolyElement):
@@ -476,20 +506,24 @@ def zero_at_points(residual: Callable[[dict], object], sample: Callable[[Random]
 def _evaluate(residual, pt, engines, label) -> tuple[bool, str, object]:
     """(zero, where, first non-zero entry) of ``residual(pt)``, decided by each engine; with
     both engines the two values must be equal entry by entry."""
-    values, value, reuse = {}, None, False
+    values, value, reuse, n = {}, None, False, _dimension(pt)
+    decided: dict = {}
     for engine in engines:
+        t0 = time.perf_counter()
         if not reuse:
             before = linear_algebra_calls()
             with use_engine(engine):
                 value = residual(pt)
             reuse = linear_algebra_calls() == before
         values[engine] = value
-    decided = {}
-    if "sympy" in values:
-        decided["sympy"] = exact_zero(values["sympy"])
+        if engine == "sympy":
+            decided["sympy"] = exact_zero(value)
+        else:
+            flint_values = _fmpq_entries(value)
+        _TIMINGS.append((label, n, engine, time.perf_counter() - t0))
     if "flint" in values:
-        flint_values = _fmpq_entries(values["flint"])
-        bad = next(((w, e) for w, e, v in flint_values if v != 0), None)
+        bad = next(((w, sp.Rational(int(v.p), int(v.q))) for w, _, v in flint_values if v != 0),
+                   None)
         decided["flint"] = (True, "", 0) if bad is None else (False, *bad)
         if "sympy" in values:
             same = values["sympy"] is values["flint"] or (

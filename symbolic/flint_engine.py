@@ -43,7 +43,7 @@ from sympy.polys.matrices import DomainMatrix
 __all__ = [
     "ENGINES_ENV", "EngineDisagreement", "active_engines", "engine_label", "sympy_ground_types", "FlintRing",
     "use_engine", "current_engine", "solve", "det", "rank", "inverse", "to_fmpq",
-    "linear_algebra_calls",
+    "linear_algebra_calls", "note_call", "to_sympy_matrix", "native", "as_values",
 ]
 
 ENGINES_ENV = "CHAPLYGIN_ND_ENGINES"
@@ -242,30 +242,55 @@ def current_engine() -> str:
     return _ENGINE.get()
 
 
+def note_call() -> None:
+    """Count one engine-dispatched exact computation (see :func:`linear_algebra_calls`); for
+    dispatching functions outside this module (``model.angular_velocity``, ...)."""
+    _CALLS["count"] += 1
+
+
 def linear_algebra_calls() -> int:
     """How many engine-dispatched linear-algebra calls this process made (a residual that makes
     none gives the same value in both engines, so it is evaluated once)."""
     return _CALLS["count"]
 
 
-def _fmpq_mat(A: sp.Matrix) -> flint.fmpq_mat:
+def _fmpq_mat(A) -> flint.fmpq_mat:
+    if isinstance(A, flint.fmpq_mat):
+        return A
+    if isinstance(A, DomainMatrix):
+        A = A.to_Matrix()
     return flint.fmpq_mat(A.rows, A.cols, [to_fmpq(v) for v in A])
 
 
-def _sympy_matrix(X: flint.fmpq_mat) -> sp.Matrix:
+def to_sympy_matrix(X: flint.fmpq_mat) -> sp.Matrix:
+    """An ``fmpq_mat`` as a SymPy matrix of ``Rational``."""
     return sp.Matrix(X.nrows(), X.ncols(),
                      [sp.Rational(int(v.p), int(v.q)) for row in X.tolist() for v in row])
 
 
-def _qq(A: sp.Matrix) -> DomainMatrix:
+def _qq(A) -> DomainMatrix:
+    if isinstance(A, DomainMatrix):
+        return A.convert_to(sp.QQ)
     return DomainMatrix.from_Matrix(A).convert_to(sp.QQ)
+
+
+def native(A):
+    """A rational matrix in the current engine's own type: ``DomainMatrix`` over QQ (SymPy) or
+    ``fmpq_mat`` (FLINT). Arithmetic (``+ - *``) on natives stays in that engine."""
+    return _fmpq_mat(A) if current_engine() == "flint" else _qq(A)
+
+
+def as_values(X):
+    """A native matrix as the value of a point residual: ``fmpq_mat`` stays (FLINT's zero test
+    reads it directly), a ``DomainMatrix`` becomes a SymPy matrix."""
+    return X.to_Matrix() if isinstance(X, DomainMatrix) else X
 
 
 def solve(A: sp.Matrix, B: sp.Matrix) -> sp.Matrix:
     r"""$X$ with $AX = B$ for an invertible square rational $A$ (exact)."""
     _CALLS["count"] += 1
     if current_engine() == "flint":
-        return _sympy_matrix(_fmpq_mat(A).solve(_fmpq_mat(B)))
+        return to_sympy_matrix(_fmpq_mat(A).solve(_fmpq_mat(B)))
     return _qq(A).lu_solve(_qq(B)).to_Matrix()
 
 
@@ -273,8 +298,12 @@ def det(A: sp.Matrix) -> sp.Rational:
     r"""$\det A$ of a square rational matrix (exact)."""
     _CALLS["count"] += 1
     if current_engine() == "flint":
-        d = _fmpq_mat(A).det()
-        return sp.Rational(int(d.p), int(d.q))
+        # clear denominators: fmpz_mat.det is multimodular (FLINT's fmpq_mat.det was 10x slower
+        # on L_gamma at n = 24); det(A) = det(N) / d^rows for A = N/d
+        Aq = _fmpq_mat(A)
+        N, d = Aq.numer_denom()
+        value = flint.fmpq(N.det()) / flint.fmpq(d) ** Aq.nrows()
+        return sp.Rational(int(value.p), int(value.q))
     return sp.QQ.to_sympy(_qq(A).det())
 
 
@@ -290,5 +319,5 @@ def inverse(A: sp.Matrix) -> sp.Matrix:
     r"""$A^{-1}$ of an invertible square rational matrix (exact)."""
     _CALLS["count"] += 1
     if current_engine() == "flint":
-        return _sympy_matrix(_fmpq_mat(A).inv())
+        return to_sympy_matrix(_fmpq_mat(A).inv())
     return _qq(A).inv().to_Matrix()

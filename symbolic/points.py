@@ -20,8 +20,17 @@ from chaplygin_nd.symbolic.algebra import column, unvec
 
 __all__ = [
     "DEFAULT_SEED", "ledger_seed", "set_ledger_seed", "generator", "rational", "rationals", "sphere_point", "skew_matrix",
-    "rational_rotation", "axisymmetric_parameters",
+    "rational_rotation", "axisymmetric_parameters", "ALL_N_MAX", "all_n",
 ]
+
+#: The largest n of the seeded exact point checks of the rows about every n (DESIGN.md, "All n,
+#: honestly"); above ``symbolic.exact.SYMPY_POINT_MAX_N`` FLINT alone decides them.
+ALL_N_MAX = 24
+
+
+def all_n(start: int = 3) -> range:
+    """``start..ALL_N_MAX``: the n of the seeded exact point checks of an all-n row."""
+    return range(start, ALL_N_MAX + 1)
 
 #: The seed of a ledger run unless ``chaplygin verify --seed N`` (``make verify SEED=N``) names another.
 DEFAULT_SEED = 20261121
