@@ -179,13 +179,15 @@ class Check:
 # --------------------------------------------------------------------------------------------
 
 _TALLY: Counter = Counter()
-#: (label, n, engine, seconds) of every seeded point evaluation (the bench reads it)
-_TIMINGS: list[tuple[str, int | None, str, float]] = []
+#: (kind, label, size, engine, seconds) of every zero test (the bench reads it); size is n for a
+#: seeded point, the number of variables for an identity
+_TIMINGS: list[tuple[str, str, int | None, str, float]] = []
 
 
-def point_timings(clear: bool = False) -> list[tuple[str, int | None, str, float]]:
-    """(label, n, engine, seconds) of each engine's evaluation of each seeded point (value and
-    zero test); ``clear`` empties the record."""
+def point_timings(clear: bool = False) -> list[tuple[str, str, int | None, str, float]]:
+    """(kind, label, size, engine, seconds) of each engine's part of each zero test: ``points``
+    (one seeded point, value and zero test; size = n) and ``identity`` (one
+    :func:`rational_identity`; size = number of variables). ``clear`` empties the record."""
     out = list(_TIMINGS)
     if clear:
         _TIMINGS.clear()
@@ -200,8 +202,11 @@ def _dimension(pt: dict) -> int | None:
     return len(g) if g is not None else None
 
 
-def _record(kind: str, engines: str) -> None:
+def _record(kind: str, engines: str, label: str = "", size: int | None = None,
+            spent: Mapping[str, float] | None = None) -> None:
     _TALLY[(kind, engines)] += 1
+    for engine, seconds in (spent or {}).items():
+        _TIMINGS.append((kind, label, size, engine, seconds))
 
 
 def engine_tally() -> dict[tuple[str, str], int]:
@@ -308,13 +313,18 @@ def rational_identity(residual, *, sphere: Sequence[sp.Symbol] | None = None,
     engines = active_engines()
     ring = FlintRing(gens, sphere) if "flint" in engines else None
     who = engine_label(engines)
+    spent = dict.fromkeys(engines, 0.0)
     for where, e in entries:
         sympy_cx = flint_cx = None
         if "sympy" in engines:
+            t0 = time.perf_counter()
             sympy_cx = _sympy_entry(e, gens, sphere, samplers or {}, seed, label, where)
+            spent["sympy"] += time.perf_counter() - t0
         if ring is not None:
+            t0 = time.perf_counter()
             flint_cx = _flint_entry(ring, e, gens, sphere, samplers or {}, seed, label, where,
                                     check_at=sympy_cx)
+            spent["flint"] += time.perf_counter() - t0
         if "sympy" in engines and ring is not None and (sympy_cx is None) != (flint_cx is None):
             raise EngineDisagreement(
                 f"{label or 'identity'} {where}: SymPy says "
@@ -322,9 +332,9 @@ def rational_identity(residual, *, sphere: Sequence[sp.Symbol] | None = None,
                 f"{'holds' if flint_cx is None else 'fails'}")
         cx = sympy_cx if "sympy" in engines else flint_cx
         if cx is not None:
-            _record("identity", who)
+            _record("identity", who, label, len(gens), spent)
             return Check(False, method, cx, time.perf_counter() - start, engines=who)
-    _record("identity", who)
+    _record("identity", who, label, len(gens), spent)
     return Check(True, method, None, time.perf_counter() - start, engines=who)
 
 
@@ -362,7 +372,10 @@ def _flint_entry(ring: FlintRing, e, gens, sphere, samplers, seed, label, where,
     if check_at is not None:
         named = dict(check_at.point)
         point = {s: named[str(s)] for s in gens}
-        mine = ring.value(num, den, point)
+        try:
+            mine = ring.value(num, den, point)
+        except ZeroDivisionError:  # FLINT's uncancelled denominator vanishes there: no value
+            return check_at
         if mine != to_fmpq(check_at.residual):
             raise EngineDisagreement(f"{label or 'identity'} {where}: at SymPy's counterexample "
                                      f"SymPy's residual is {check_at.residual}, FLINT's {mine}")
@@ -520,7 +533,7 @@ def _evaluate(residual, pt, engines, label) -> tuple[bool, str, object]:
             decided["sympy"] = exact_zero(value)
         else:
             flint_values = _fmpq_entries(value)
-        _TIMINGS.append((label, n, engine, time.perf_counter() - t0))
+        _TIMINGS.append(("points", label, n, engine, time.perf_counter() - t0))
     if "flint" in values:
         bad = next(((w, sp.Rational(int(v.p), int(v.q))) for w, _, v in flint_values if v != 0),
                    None)
