@@ -41,8 +41,10 @@ def measure(top: int, sympy_n: int, rows=ROWS) -> dict:
     from chaplygin_nd.ledger.registry import registry
     from chaplygin_nd.symbolic import exact, points
 
-    old = points.ALL_N_MAX, exact.SYMPY_POINT_MAX_N
+    old = points.ALL_N_MAX, exact.SYMPY_POINT_MAX_N, points.SPARSE_LARGE_N
+    # every n up to ``top``, also for the rows the ledger samples sparsely above 12
     points.ALL_N_MAX, exact.SYMPY_POINT_MAX_N = top, sympy_n
+    points.SPARSE_LARGE_N = tuple(range(13, top + 1))
     try:
         discover()
         specs = registry()
@@ -63,7 +65,7 @@ def measure(top: int, sympy_n: int, rows=ROWS) -> dict:
                     kinds[("identity", engine)] += seconds
             print(f"  {row:24s} {verdicts[row]:8s} {wall:7.2f} s", flush=True)
     finally:
-        points.ALL_N_MAX, exact.SYMPY_POINT_MAX_N = old
+        points.ALL_N_MAX, exact.SYMPY_POINT_MAX_N, points.SPARSE_LARGE_N = old
     table = [{"row": r, "n": n, "engine": e, "seconds": round(s, 5)}
              for (r, n, e), s in sorted(per_n.items())]
     return {"rows": table, "fits": fits(table), "verdicts": verdicts,

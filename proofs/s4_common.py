@@ -174,7 +174,7 @@ def point_checks(residual: Callable[[dict], object], ns: Iterable[int], *, count
                                      engines=point_engines(n)))
     return combine(checks, method=f"exact at {count} seeded rational point(s) "
                                   f"{'of V ' if vertical else ''}for each n in "
-                                  f"{min(ns)}..{max(ns)} (seed {points.ledger_seed()})")
+                                  f"{points.n_text(ns)} (seed {points.ledger_seed()})")
 
 
 def combine(checks: Sequence[Check], *, method: str = "") -> Check:

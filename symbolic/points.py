@@ -20,7 +20,7 @@ from chaplygin_nd.symbolic.algebra import column, unvec
 
 __all__ = [
     "DEFAULT_SEED", "ledger_seed", "set_ledger_seed", "generator", "rational", "rationals", "sphere_point", "skew_matrix",
-    "rational_rotation", "axisymmetric_parameters", "ALL_N_MAX", "all_n",
+    "rational_rotation", "axisymmetric_parameters", "ALL_N_MAX", "all_n", "SPARSE_LARGE_N", "n_text",
 ]
 
 #: The largest n of the seeded exact point checks of the rows about every n (DESIGN.md, "All n,
@@ -28,9 +28,32 @@ __all__ = [
 ALL_N_MAX = 24
 
 
-def all_n(start: int = 3) -> range:
-    """``start..ALL_N_MAX``: the n of the seeded exact point checks of an all-n row."""
-    return range(start, ALL_N_MAX + 1)
+#: Above n = 12, the rows whose point step is a full exact inverse of L_gamma (n(n-1)/2 square;
+#: its entries grow to thousands of bits, ~n^6 time) sample these n only.
+SPARSE_LARGE_N = (16, 20, 24)
+
+
+def all_n(start: int = 3, *, sparse_above_12: bool = False) -> tuple[int, ...]:
+    """The n of the seeded exact point checks of an all-n row: ``start..ALL_N_MAX``, or with
+    ``sparse_above_12`` every n up to 12 and then :data:`SPARSE_LARGE_N` (at most ALL_N_MAX)."""
+    if not sparse_above_12:
+        return tuple(range(start, ALL_N_MAX + 1))
+    return tuple(range(start, min(12, ALL_N_MAX) + 1)) + tuple(
+        n for n in SPARSE_LARGE_N if n <= ALL_N_MAX and n >= start)
+
+
+def n_text(ns) -> str:
+    """``(3, 4, 5, 6, 16, 20)`` -> ``"3..6, 16, 20"`` (runs of consecutive n shortened)."""
+    ns = sorted(set(ns))
+    runs, out = [], []
+    for n in ns:
+        if runs and n == runs[-1][-1] + 1:
+            runs[-1].append(n)
+        else:
+            runs.append([n])
+    for r in runs:
+        out.append(f"{r[0]}..{r[-1]}" if len(r) > 2 else ", ".join(map(str, r)))
+    return ", ".join(out)
 
 #: The seed of a ledger run unless ``chaplygin verify --seed N`` (``make verify SEED=N``) names another.
 DEFAULT_SEED = 20261121
