@@ -56,6 +56,7 @@ from types import FunctionType
 
 import sympy as sp
 from chaplygin_nd.ledger.catalog import ROOT
+from chaplygin_nd.ledger.reach import load as load_reach
 from chaplygin_nd.ledger.reach import (
     printed_functions,
     rows_by_function,
@@ -78,6 +79,8 @@ PER_FUNCTION = 4
 BUDGET_FACTOR, MIN_BUDGET = 5.0, 15.0
 #: Rows tried per mutant: cheapest first, until the summed unmutated time passes this (s).
 ROW_TIME_CAP = 90.0
+#: ``--sample``: draw among mutants whose reaching rows took less than this in the saved reach map
+SAMPLE_ROW_SECONDS = 8.0
 
 
 #: Printed functions whose *claim* cannot see a non-zero constant factor of the value: a zero set
@@ -568,7 +571,9 @@ def main(argv: list[str] | None = None) -> int:
                         help="who decides the exact zero tests: SymPy and FLINT (default), or "
                              "FLINT alone (SymPy abstains: CHAPLYGIN_ND_ENGINES=flint)")
     parser.add_argument("--sample", type=int, default=0,
-                        help="run a seeded sample of this many mutants (0: all)")
+                        help="run a seeded sample of this many mutants among those whose rows "
+                             f"are cheap (< {SAMPLE_ROW_SECONDS:.0f} s in ledger/reach.json), "
+                             "with a baseline of those rows only (0: all)")
     parser.add_argument("--compare", type=Path, default=None,
                         help="a mutation.json of another run: report mutants whose outcome differs")
     args = parser.parse_args(argv)
@@ -579,15 +584,24 @@ def main(argv: list[str] | None = None) -> int:
     from chaplygin_nd.ledger.catalog import discover
 
     discover()
-    base = baseline(jobs=args.jobs)
+    sample_rows = None
+    if args.sample:  # a seeded sample among mutants whose rows (saved reach map) are cheap
+        saved_rows, saved_seconds = load_reach()
+        by_function = rows_by_function(saved_rows)
+        cheap = [m for m in select_all(args.per_function)
+                 if (not args.function or m.function in args.function) and by_function.get(m.function)
+                 and sum(saved_seconds.get(r, 99.0) for r in by_function[m.function]) < SAMPLE_ROW_SECONDS]
+        chosen = random.Random(20261123).sample(cheap, min(args.sample, len(cheap)))
+        sample_rows = sorted({r for m in chosen for r in by_function[m.function]})
+    base = baseline(sample_rows, jobs=args.jobs)
     reach = {row: info[2] for row, info in base.items()}
-    missing = unreached(reach)
+    missing = unreached(reach) if not args.sample else []
     if not args.function and args.engines == "both" and not args.sample:
         save_reach(reach, {row: info[1] for row, info in base.items()})
     selection = [m for m in select_all(args.per_function)
                  if not args.function or m.function in args.function]
-    if args.sample and args.sample < len(selection):
-        selection = random.Random(20261123).sample(selection, args.sample)
+    if args.sample:
+        selection = chosen
     tasks = plan(base, selection)
     print(f"baseline: {len(base)} rows in {time.perf_counter() - start:.0f} s; "
           f"{len(tasks)} mutants to run", flush=True)
@@ -615,7 +629,7 @@ def main(argv: list[str] | None = None) -> int:
     problems = [f"printed function {f} is reached by no ledger row" for f in missing]
     problems += [f"{r['function']} {r['mutation']}: {r['outcome']}" for r in records
                  if r["outcome"] in ("survived", "error")]
-    if not args.function:
+    if not args.function and not args.sample:
         covered = {r["function"] for r in records}
         problems += [f"printed function {f} has no mutant" for f in printed_functions()
                      if f not in covered]
