@@ -81,7 +81,7 @@ def eq_v_velocity() -> Verdict:
                         label=f"V->vel-{n}", engines=point_engines(n)) for n in points.all_n(3)]
         + [zero_at_points(_velocity_to_V, lambda r, n=n: _velocity_point(r, n), count=1,
                           label=f"vel->V-{n}", engines=point_engines(n)) for n in points.all_n(3)],
-        method=f"exact at seeded rational points of each description, n = 3..{points.ALL_N_MAX}")
+        method=f"exact at seeded rational points of each description, n = {points.n_text(points.all_n(3))}")
     return Verdict.of_parts([
         Verdict.decide(ident, method=ident.method + "; " + REDUCTION).as_part(
             "M gamma = [(2+b) Omega gamma + a x Omega E_n] + a <Omega gamma, E_n> E_n"),

@@ -18,7 +18,7 @@ $\sum_k c_k T_k(M)$ solved by exact linear algebra. Here we prove, modulo $\lVer
 (i) $L_\gamma(\sum c_kT_k(M)) = M$ (symbolic $n = 3, 4$ after clearing the denominator
 $2\Delta(2+a+b)$), (ii) the printed $\Omega$ equals ours (symbolic $n = 3, 4, 5$), and (iii) the
 printed $\Omega$ equals an exact linear solve of $L_\gamma$ at seeded rational points for
-$n = 6..24$ — a route that uses neither formula. All identities are linear in $M$ and natural, so
+$n = 6..12, 16, 20, 24$ — a route that uses neither formula. All identities are linear in $M$ and natural, so
 the reduction argument of :mod:`proofs.s4_common` extends $n = 4$ to every $n \ge 4$. Every
 intermediate formula of the proof is compared with the same derived $\Omega$.
 

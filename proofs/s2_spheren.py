@@ -44,7 +44,12 @@ from chaplygin_nd.symbolic.algebra import (
     vector_symbols,
     wedge,
 )
-from chaplygin_nd.symbolic.exact import point_engines, rational_identity, zero_at_points
+from chaplygin_nd.symbolic.exact import (
+    SYMPY_INVERSE_MAX_N,
+    point_engines,
+    rational_identity,
+    zero_at_points,
+)
 from chaplygin_nd.symbolic.measure import chaplygin_divergence_at
 from chaplygin_nd.symbolic.model import (
     L_gamma,
@@ -60,9 +65,9 @@ from sympy.polys.matrices import DomainMatrix
 
 SYMBOLIC_N = (3, 4, 5, 6)
 POINT_N = tuple(points.all_n(3))
-#: the rows whose point step inverts L_gamma exactly (two solves; the full inverse): sparse above 12
-ENERGY_N = points.all_n(3, sparse_above_12=True)
-MEASURE_N = points.all_n(3, sparse_above_12=True)
+#: the rows whose point step inverts L_gamma exactly: SymPy decides their points up to n = 8
+ENERGY_N = points.all_n(3)
+MEASURE_N = points.all_n(3)
 eps = sp.Symbol("epsilon")
 b = sp.Symbol("b", positive=True)
 
@@ -94,7 +99,7 @@ def _point(n: int):
 
 
 def _both(name: str, symbolic_residual, point_residual, *, sphere: bool = False,
-          symbolic_n=SYMBOLIC_N, point_n=POINT_N, count: int = 2):
+          symbolic_n=SYMBOLIC_N, point_n=POINT_N, count: int = 2, sympy_max: int | None = None):
     """Symbolic identity for ``symbolic_n`` and exact points for ``point_n``: a list of checks."""
     checks = []
     for n in symbolic_n:
@@ -106,7 +111,7 @@ def _both(name: str, symbolic_residual, point_residual, *, sphere: bool = False,
     for n in point_n:
         checks.append((f"{name}, points n={n}", zero_at_points(
             lambda p, n=n: point_residual(n, p), _point(n), count=count, label=f"{name}{n}",
-            describe=f"so({n}) x S^{n - 1} x (J, b)", engines=point_engines(n))))
+            describe=f"so({n}) x S^{n - 1} x (J, b)", engines=point_engines(n, sympy_max))))
     return checks
 
 
@@ -188,7 +193,7 @@ def motion_velocity_nd() -> Verdict:
                    lambda n, p: _velocity_residuals(n, p)[0])
     return Verdict.all_of(checks, n_values=_ns(),
                           method="the two residuals are equal as polynomials: exact symbolic for "
-                                 f"n=3..6, exact at 2 seeded rational points each for n=3..{points.ALL_N_MAX}",
+                                 f"n=3..6, exact at 2 seeded rational points each for n={points.n_text(points.all_n(3))}",
                           notes="Holds for every gamma in R^n, not only on the sphere.")
 
 
@@ -212,7 +217,7 @@ def iso_spectral() -> Verdict:
                    lambda n, p: _iso_residual(n, p))
     return Verdict.all_of(checks, n_values=_ns(),
                           method="identity for any skew Omega: exact symbolic for n=3..6, exact at "
-                                 f"2 seeded rational points each for n=3..{points.ALL_N_MAX} (sigma rational)")
+                                 f"2 seeded rational points each for n={points.n_text(points.all_n(3))} (sigma rational)")
 
 
 def _charpoly_symbolic(n):
@@ -245,7 +250,7 @@ def polynomial_integrals() -> Verdict:
         checks, n_values=_ns((3, 4)),
         method="the Lie derivative of det(M + sigma gg^T - lambda) along the flow, for any skew "
                "Omega, is the zero polynomial in (lambda, sigma, M, gamma, Omega): exact symbolic "
-               f"for n=3,4; exact at 3 seeded rational (M, gamma, Omega, lambda, sigma) for n=3..{points.ALL_N_MAX} "
+               f"for n=3,4; exact at 3 seeded rational (M, gamma, Omega, lambda, sigma) for n={points.n_text(points.all_n(3))} "
                "(Jacobi's formula)")
 
 
@@ -294,7 +299,7 @@ def _momentum_is_gradient(n: int = 4):
 @claim("S2.2:energy", uses=("eq:motion-general", "eq:M-O"))
 def energy() -> Verdict:
     checks = _both("dH/dt", _energy_symbolic, _energy_at, sphere=True, symbolic_n=(3,),
-                   point_n=ENERGY_N)
+                   point_n=ENERGY_N, sympy_max=SYMPY_INVERSE_MAX_N)
     checks.append(("dH/dOmega = M = L_gamma(Omega) (H is the energy of eq:M-O), n = 4",
                    _momentum_is_gradient()))
     return Verdict.all_of(
@@ -315,8 +320,8 @@ def _measure_at(n, p):
 def invariant_measure() -> Verdict:
     checks = [(f"div(rho X)/rho, points n={n}", zero_at_points(
         lambda p, n=n: _measure_at(n, p), _point(n), count=2 if n <= 8 else 1, label=f"measure{n}",
-        describe=f"so({n}) x S^{n - 1} x (J, b)", engines=point_engines(n)))
-        for n in MEASURE_N]
+        describe=f"so({n}) x S^{n - 1} x (J, b)",
+        engines=point_engines(n, SYMPY_INVERSE_MAX_N))) for n in MEASURE_N]
     # dM = det(L_gamma) dOmega (coordinates vec), so the exponent in front of dOmega is one more.
     exps = printed.measure_nd_exponents()
     checks.append(("exponent shift dOmega vs dM is 1", rational_identity(

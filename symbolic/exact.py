@@ -58,7 +58,7 @@ from sympy.polys.rings import PolyElement
 __all__ = [
     "Check", "Counterexample", "rational_identity", "zero_at_points", "exact_zero",
     "numerator_polynomial", "Sampler", "engine_tally", "reset_engine_tally", "engine_note",
-    "SYMPY_POINT_MAX_N", "point_engines", "point_timings",
+    "SYMPY_POINT_MAX_N", "SYMPY_INVERSE_MAX_N", "point_engines", "point_timings",
 ]
 
 #: Above this n the seeded point checks are decided by FLINT alone (SymPy's dense QQ linear
@@ -66,10 +66,16 @@ __all__ = [
 SYMPY_POINT_MAX_N = 12
 
 
-def point_engines(n: int) -> tuple[str, ...]:
-    """The engines of a seeded point check at dimension ``n``: both up to
-    :data:`SYMPY_POINT_MAX_N`, FLINT alone above."""
-    return ("sympy", "flint") if n <= SYMPY_POINT_MAX_N else ("flint",)
+#: For the rows whose point step is a full exact inverse of L_gamma (SymPy's costs grow as n^6:
+#: 5.5 s at n = 12 for one divergence point under load), SymPy decides up to this n.
+SYMPY_INVERSE_MAX_N = 8
+
+
+def point_engines(n: int, sympy_max: int | None = None) -> tuple[str, ...]:
+    """The engines of a seeded point check at dimension ``n``: both up to ``sympy_max``
+    (default :data:`SYMPY_POINT_MAX_N`), FLINT alone above."""
+    top = SYMPY_POINT_MAX_N if sympy_max is None else min(sympy_max, SYMPY_POINT_MAX_N)
+    return ("sympy", "flint") if n <= top else ("flint",)
 
 #: A sampler draws one exact value (number or matrix) for one symbol or name.
 Sampler = Callable[[Random], sp.Expr]

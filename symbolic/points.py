@@ -30,18 +30,16 @@ __all__ = [
 ALL_N_MAX = 24
 
 
-#: Above n = 12, the rows whose point step is a full exact inverse of L_gamma (n(n-1)/2 square;
-#: its entries grow to thousands of bits, ~n^6 time) sample these n only.
+#: Above n = 12 the all-n rows sample these n (exact points cost ~n^4..n^6 even in FLINT:
+#: bench/out/exact_growth.md); ``chaplygin bench exact_growth`` measures every n up to ALL_N_MAX.
 SPARSE_LARGE_N = (16, 20, 24)
 
 
-def all_n(start: int = 3, *, sparse_above_12: bool = False) -> tuple[int, ...]:
-    """The n of the seeded exact point checks of an all-n row: ``start..ALL_N_MAX``, or with
-    ``sparse_above_12`` every n up to 12 and then :data:`SPARSE_LARGE_N` (at most ALL_N_MAX)."""
-    if not sparse_above_12:
-        return tuple(range(start, ALL_N_MAX + 1))
+def all_n(start: int = 3) -> tuple[int, ...]:
+    """The n of the seeded exact point checks of an all-n row: every n from ``start`` to 12, then
+    :data:`SPARSE_LARGE_N` (up to ALL_N_MAX)."""
     return tuple(range(start, min(12, ALL_N_MAX) + 1)) + tuple(
-        n for n in SPARSE_LARGE_N if n <= ALL_N_MAX and n >= start)
+        n for n in SPARSE_LARGE_N if start <= n <= ALL_N_MAX)
 
 
 def n_text(ns) -> str:
