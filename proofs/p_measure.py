@@ -202,9 +202,9 @@ def p_measure() -> Verdict:
                      sympy_max=SYMPY_INVERSE_MAX_N),
     ])
     det = combine([
-        sym_checks(_det_symbolic, (3, 4), label="det",
+        sym_checks(_det_symbolic, (3, 4), label="det"),
+        point_checks(_det_at_point, points.all_n(5), label="det",
                      sympy_max=SYMPY_INVERSE_MAX_N),
-        point_checks(_det_at_point, points.all_n(5), label="det"),
         rational_identity([det_L_axisym(n) - printed.det_L(n, x, a, b) for n in points.all_n(3)]),
     ])
     parallel = _parallel_checks()
