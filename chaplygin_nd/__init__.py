@@ -15,6 +15,14 @@ under this namespace):
 The command line is ``chaplygin`` (``python -m chaplygin_nd``): see :mod:`chaplygin_nd.cli`.
 """
 
+import os
+
+# SymPy's ground types, decided before SymPy is first imported: with python-flint installed,
+# SymPy >= 1.13 would silently switch to "flint" and its QQ arithmetic and DomainMatrix would
+# then run on FLINT — the second engine (symbolic/flint_engine.py) would share code with the
+# first. "gmpy" keeps SymPy's engine its own (README: "Two exact engines").
+os.environ.setdefault("SYMPY_GROUND_TYPES", "gmpy")
+
 __version__ = "0.2.0"
 
 __all__ = ["__version__"]

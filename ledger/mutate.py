@@ -29,6 +29,11 @@ are compared with the unmutated run. Outcomes:
 
 Writes ``mutation.json`` (``{"mutants": [{"function", "row", "mutation", "outcome", "reason"},
 ...]}``) atomically at the repository root and prints one summary line.
+
+``--engines flint`` makes SymPy abstain from every exact zero test (FLINT alone decides them,
+:mod:`symbolic.flint_engine`) and writes ``mutation-flint.json``; ``--compare mutation.json``
+lists the mutants whose outcome differs from the two-engine run; ``--sample K`` runs a seeded
+sample of K mutants.
 """
 
 from __future__ import annotations
@@ -37,6 +42,7 @@ import argparse
 import ast
 import inspect
 import multiprocessing as mp
+import os
 import random
 import signal
 import sys
@@ -50,6 +56,7 @@ from types import FunctionType
 
 import sympy as sp
 from chaplygin_nd.ledger.catalog import ROOT
+from chaplygin_nd.ledger.reach import load as load_reach
 from chaplygin_nd.ledger.reach import (
     printed_functions,
     rows_by_function,
@@ -57,6 +64,7 @@ from chaplygin_nd.ledger.reach import (
     write_json_atomic,
 )
 from chaplygin_nd.ledger.reach import save as save_reach
+from chaplygin_nd.symbolic.flint_engine import ENGINES_ENV, active_engines, engine_label
 
 OUT_PATH = ROOT / "mutation.json"
 #: Name pairs swapped by the ``swap`` operator (each direction).
@@ -71,6 +79,8 @@ PER_FUNCTION = 4
 BUDGET_FACTOR, MIN_BUDGET = 5.0, 15.0
 #: Rows tried per mutant: cheapest first, until the summed unmutated time passes this (s).
 ROW_TIME_CAP = 90.0
+#: ``--sample``: draw among mutants whose reaching rows took less than this in the saved reach map
+SAMPLE_ROW_SECONDS = 8.0
 
 
 #: Printed functions whose *claim* cannot see a non-zero constant factor of the value: a zero set
@@ -536,25 +546,62 @@ def summary(records: list[dict], functions: int, seconds: float) -> str:
             f"{len(records) - count['equivalent']} non-equivalent killed; {seconds:.0f} s")
 
 
+def _compare(records: list[dict], other: Path) -> list[str]:
+    """Mutants run in both ``records`` and the run saved at ``other`` whose outcome differs."""
+    import json
+
+    theirs = {(r["function"], r["mutation"]): r["outcome"]
+              for r in json.loads(other.read_text())["mutants"]}
+    return [f"{r['function']} {r['mutation']}: {theirs[(r['function'], r['mutation'])]} there, "
+            f"{r['outcome']} here" for r in records
+            if (r["function"], r["mutation"]) in theirs
+            and theirs[(r["function"], r["mutation"])] != r["outcome"]]
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="chaplygin mutate", description=__doc__.splitlines()[0])
     parser.add_argument("--jobs", "-j", type=int, default=2)
     parser.add_argument("--per-function", type=int, default=PER_FUNCTION)
     parser.add_argument("--function", action="append", default=[],
                         help="only these printed functions (e.g. section4.K)")
-    parser.add_argument("--out", type=Path, default=OUT_PATH)
+    parser.add_argument("--out", type=Path, default=None,
+                        help="where to write (default mutation.json; mutation-flint.json with "
+                             "--engines flint)")
+    parser.add_argument("--engines", choices=("both", "flint"), default="both",
+                        help="who decides the exact zero tests: SymPy and FLINT (default), or "
+                             "FLINT alone (SymPy abstains: CHAPLYGIN_ND_ENGINES=flint)")
+    parser.add_argument("--sample", type=int, default=0,
+                        help="run a seeded sample of this many mutants among those whose rows "
+                             f"are cheap (< {SAMPLE_ROW_SECONDS:.0f} s in ledger/reach.json), "
+                             "with a baseline of those rows only (0: all)")
+    parser.add_argument("--compare", type=Path, default=None,
+                        help="a mutation.json of another run: report mutants whose outcome differs")
     args = parser.parse_args(argv)
+    os.environ[ENGINES_ENV] = args.engines
+    if args.out is None:
+        args.out = OUT_PATH if args.engines == "both" else ROOT / "mutation-flint.json"
     start = time.perf_counter()
     from chaplygin_nd.ledger.catalog import discover
 
     discover()
-    base = baseline(jobs=args.jobs)
+    sample_rows = None
+    if args.sample:  # a seeded sample among mutants whose rows (saved reach map) are cheap
+        saved_rows, saved_seconds = load_reach()
+        by_function = rows_by_function(saved_rows)
+        cheap = [m for m in select_all(args.per_function)
+                 if (not args.function or m.function in args.function) and by_function.get(m.function)
+                 and sum(saved_seconds.get(r, 99.0) for r in by_function[m.function]) < SAMPLE_ROW_SECONDS]
+        chosen = random.Random(20261123).sample(cheap, min(args.sample, len(cheap)))
+        sample_rows = sorted({r for m in chosen for r in by_function[m.function]})
+    base = baseline(sample_rows, jobs=args.jobs)
     reach = {row: info[2] for row, info in base.items()}
-    missing = unreached(reach)
-    if not args.function:
+    missing = unreached(reach) if not args.sample else []
+    if not args.function and args.engines == "both" and not args.sample:
         save_reach(reach, {row: info[1] for row, info in base.items()})
     selection = [m for m in select_all(args.per_function)
                  if not args.function or m.function in args.function]
+    if args.sample:
+        selection = chosen
     tasks = plan(base, selection)
     print(f"baseline: {len(base)} rows in {time.perf_counter() - start:.0f} s; "
           f"{len(tasks)} mutants to run", flush=True)
@@ -567,13 +614,22 @@ def main(argv: list[str] | None = None) -> int:
     records = run_mutants(tasks, jobs=args.jobs, on_record=show)
     functions = len(printed_functions())
     line = summary(records, functions, time.perf_counter() - start)
-    write_json_atomic({"summary": line, "mutants": records}, args.out)
+    line = f"engines {engine_label(active_engines())}: {line}"
+    if args.sample:
+        line += f" (seeded sample of {len(selection)} mutants)"
+    differ = _compare(records, args.compare) if args.compare else []
+    write_json_atomic({"summary": line, "engines": args.engines, "mutants": records,
+                       "differs_from_compared": differ}, args.out)
     print(line)
+    if args.compare:
+        print(f"compared with {args.compare}: {len(differ)} mutants with another outcome")
+        for d in differ:
+            print(f"  {d}")
     print(f"wrote {args.out}")
     problems = [f"printed function {f} is reached by no ledger row" for f in missing]
     problems += [f"{r['function']} {r['mutation']}: {r['outcome']}" for r in records
                  if r["outcome"] in ("survived", "error")]
-    if not args.function:
+    if not args.function and not args.sample:
         covered = {r["function"] for r in records}
         problems += [f"printed function {f} has no mutant" for f in printed_functions()
                      if f not in covered]

@@ -18,6 +18,7 @@ from pathlib import Path
 import sympy
 from chaplygin_nd.ledger.registry import ERRATA_KINDS, KINDS, NEEDS_KIND, VERDICTS
 from chaplygin_nd.ledger.runner import Result
+from chaplygin_nd.symbolic.points import n_text
 
 #: What each verdict means, for the reader of the report (one entry per verdict of the ledger).
 VERDICT_TEXT = {
@@ -61,7 +62,7 @@ class RunInfo:
 def line(result: Result) -> str:
     """``id  verdict  seconds  method [n=...]`` — one line, as printed by ``make verify``."""
     v = result.verdict
-    ns = f" [n={','.join(map(str, v.n_values))}]" if v.n_values else ""
+    ns = f" [n={n_text(v.n_values)}]" if v.n_values else ""
     method = v.method if result.status != "open" else f"open: {v.notes.strip() or 'NO REASON'}"
     if result.error:
         method = "ERROR: " + result.error.strip().splitlines()[-1]
@@ -182,7 +183,7 @@ def write_markdown(results: Sequence[Result], path: Path, info: RunInfo) -> None
             "|---|---|---|---|---|---|---|"]
     for r in results:
         v = r.verdict
-        ns = ",".join(map(str, v.n_values))
+        ns = n_text(v.n_values) if v.n_values else ""
         method = v.method if r.status != "open" else f"open: {v.notes}"
         out.append(f"| `{r.row.id}` | **{r.status}** | {v.kind or ''} | {r.seconds:.2f} | {ns} "
                    f"| {_cell(method)} | {r.module} |")

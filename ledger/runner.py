@@ -8,12 +8,13 @@ import time
 import traceback
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from chaplygin_nd.ledger.catalog import Row, all_rows, discover, pending_reason
 from chaplygin_nd.ledger.reach import Recorder
 from chaplygin_nd.ledger.registry import Verdict, registry
 from chaplygin_nd.symbolic import points
+from chaplygin_nd.symbolic.exact import engine_note, engine_tally, reset_engine_tally
 
 
 @dataclass(frozen=True)
@@ -51,11 +52,16 @@ def _run_one(claim_id: str, seed: int = points.DEFAULT_SEED
     previous = points.set_ledger_seed(seed)
     start = time.perf_counter()
     recorder = Recorder()
+    reset_engine_tally()
     try:
         with recorder:
             verdict = spec.run()
         if not isinstance(verdict, Verdict):
             raise TypeError(f"proof of {claim_id} returned {type(verdict).__name__}, not Verdict")
+        tally = engine_tally()
+        if tally or verdict.verdict in ("holds", "corrected", "fails"):
+            # which engines decided the row's zero tests (symbolic.exact): said in its method
+            verdict = replace(verdict, method=f"{verdict.method}; {engine_note(tally)}")
         return verdict, time.perf_counter() - start, "", tuple(sorted(recorder.calls))
     except Exception:  # a proof that raises is an error row, never a silent pass
         return (Verdict("fails", "raised an exception", notes="see error"),

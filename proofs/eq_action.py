@@ -20,7 +20,7 @@ naturality (each term of $L_\gamma$ is built from $\Omega$, $\gamma$, $E_n$ with
 and $hE_n = E_n$); since $L_\gamma$ is invertible (P:Measure), $L^{-1}_{h\gamma}(hMh^{-1}) =
 hL^{-1}_\gamma(M)h^{-1}$. (ii) The same for the derived closed form of $L_\gamma^{-1}$ and for the
 vector field $X(M,\gamma) = ([M,\Omega], -\Omega\gamma)$: exact at seeded rational rotations of
-$SO(n-1)$ (Cayley of rational skew matrices), $n = 3..12$.
+$SO(n-1)$ (Cayley of rational skew matrices), $n = 3..12, 16, 20, 24$.
 
 Uses: eq:M-O-axi-symm, P:Measure, P:inversion, eq:motion-general.
 """
@@ -34,7 +34,7 @@ from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import commutator, skew_symbols
 from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
 from chaplygin_nd.symbolic.axisymmetric import E_n, L_gamma_axisym
-from chaplygin_nd.symbolic.exact import zero_at_points
+from chaplygin_nd.symbolic.exact import point_engines, zero_at_points
 from chaplygin_nd.symbolic.printed import section4 as printed
 
 
@@ -121,16 +121,16 @@ def eq_action() -> Verdict:
                    method="exact symbolic: finite (Cayley h of a generic S) for n = 3; "
                           "infinitesimal (generic S in so(n-1), generic gamma) for n = 3, 4, 5")
     inv_eq = combine([zero_at_points(_inverse_equivariance, lambda r, n=n: _rotation_point(r, n),
-                                     count=1, label=f"inv-equiv-{n}") for n in range(3, 13)],
-                     method="exact at seeded rational (M, gamma, h in SO(n-1)), n = 3..12")
+                                     count=1, label=f"inv-equiv-{n}", engines=point_engines(n)) for n in points.all_n(3)],
+                     method=f"exact at seeded rational (M, gamma, h in SO(n-1)), n = {points.n_text(points.all_n(3))}")
     X_eq = combine([zero_at_points(_field_equivariance, lambda r, n=n: _rotation_point(r, n),
-                                   count=1, label=f"X-equiv-{n}") for n in range(3, 13)],
-                   method="exact at seeded rational (M, gamma, h in SO(n-1)), n = 3..12")
+                                   count=1, label=f"X-equiv-{n}", engines=point_engines(n)) for n in points.all_n(3)],
+                   method=f"exact at seeded rational (M, gamma, h in SO(n-1)), n = {points.n_text(points.all_n(3))}")
     return Verdict.of_parts([
         Verdict.decide(L_eq, method=L_eq.method + "; naturality covers all n").as_part(
             "L_gamma is SO(n-1)-equivariant"),
         Verdict.decide(inv_eq).as_part("Omega -> h Omega h^{-1}"),
         Verdict.decide(X_eq).as_part("eq:motion-general is equivariant"),
-    ], n_values=(3, 4, 12))
+    ], n_values=(3, 4, points.ALL_N_MAX))
 
 

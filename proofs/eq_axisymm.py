@@ -43,6 +43,7 @@ from chaplygin_nd.proofs.s4_common import (
     point_checks,
     sym_checks,
 )
+from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import commutator, skew_symbols, wedge
 from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
 from chaplygin_nd.symbolic.axisymmetric import L_gamma_axisym, inertia_axisym, mass_tensor
@@ -91,12 +92,12 @@ def eq_m_o_axisymm() -> Verdict:
         sym_checks(lambda n: inertia_axisym(skew_symbols("w", n)) - printed.inertia_axisymm(
             skew_symbols("w", n), a), (3, 4), sphere=False, label="I"),
         point_checks(lambda p: inertia_axisym(p["M"], p["a"]) - printed.inertia_axisymm(p["M"], p["a"]),
-                     range(5, 13), label="I")])
+                     points.all_n(5), label="I")])
     L = combine([
         sym_checks(lambda n: L_gamma_axisym(*generic(n)) - printed.L_axisymm(*generic(n), a, b),
                    (3, 4), sphere=False, label="L"),
         point_checks(lambda p: L_gamma_axisym(p["M"], p["gamma"], p["a"], p["b"])
-                     - printed.L_axisymm(p["M"], p["gamma"], p["a"], p["b"]), range(5, 13), label="L")])
+                     - printed.L_axisymm(p["M"], p["gamma"], p["a"], p["b"]), points.all_n(5), label="L")])
     velocity = sym_checks(_velocity_residual_difference, (3, 4, 5, 6), sphere=False, label="vel",
                           uses_gamma=True)
     a0 = sym_checks(_a0_Omega_dot, (3, 4), label="a0")
@@ -109,4 +110,4 @@ def eq_m_o_axisymm() -> Verdict:
                        "covers all n)").as_part("velocity form equivalent to M_dot = [M, Omega]"),
         Verdict.decide(a0, method=a0.method + " (d/dt of the derived L_gamma^{-1} along the flow at "
                        "a = 0); " + REDUCTION).as_part("a = 0 => Omega_dot = 0"),
-    ], n_values=(3, 4, 5, 6, 12))
+    ], n_values=(3, 4, 5, 6, points.ALL_N_MAX))

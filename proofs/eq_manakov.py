@@ -44,6 +44,7 @@ from chaplygin_nd.proofs.s4_common import (
     sym_checks,
     sym_gamma,
 )
+from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import commutator, skew_symbols
 from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
 from chaplygin_nd.symbolic.axisymmetric import E_n, L_gamma_axisym, inertia_axisym
@@ -91,7 +92,7 @@ def eq_itildendim() -> Verdict:
 
     f = combine([sym_checks(formula, (3, 4), sphere=False, label="It"),
                  point_checks(lambda p: inertia_axisym(p["M"], p["a"]) + p["b"] * p["M"]
-                              - printed.Itilde(p["M"], p["a"], p["b"]), range(5, 13), label="It")])
+                              - printed.Itilde(p["M"], p["a"], p["b"]), points.all_n(5), label="It")])
     gf = sym_checks(gamma_formulas, (3, 4), label="It-gamma")
     ev = sym_checks(equals_V, (3, 4), label="It-V")
     return Verdict.of_parts([
@@ -102,7 +103,7 @@ def eq_itildendim() -> Verdict:
         Verdict.decide(ev, method=ev.method + " (L_gamma(Omega) gamma = Itilde(Omega) gamma, so "
                        "{Itilde(Omega) gamma = 0} = {M gamma = 0}); " + REDUCTION).as_part(
             "{Itilde(Omega) gamma = 0} = V"),
-    ], n_values=(3, 4, 12))
+    ], n_values=(3, 4, points.ALL_N_MAX))
 
 
 @claim("eq:solManakov", uses=("eq:Manakov", "eq:itildendim", "eq:action", "eq:V-velocity"))
@@ -135,9 +136,9 @@ def eq_solmanakov() -> Verdict:
     comm = combine([sym_checks(commutators, (3, 4, 5, 6), sphere=False, label="chi-comm"),
                     point_checks(lambda p: inertia_tilde(commutator(printed.chi(p["M"], p["a"], p["b"]), p["M"]), p["a"], p["b"])
                                  - commutator(inertia_tilde(p["M"], p["a"], p["b"]), p["M"]),
-                                 range(7, 13), label="chi-comm")])
+                                 points.all_n(7), label="chi-comm")])
     gam = combine([sym_checks(on_V, (3, 4), label="chi-V"),
-                   point_checks(on_V_pt, range(5, 13), vertical=True, label="chi-V")])
+                   point_checks(on_V_pt, points.all_n(5), vertical=True, label="chi-V")])
     return Verdict.of_parts([
         Verdict.decide(same, method=same.method + "; " + REDUCTION).as_part(
             "chi (printed = derived) and chi E_n = 0"),
@@ -147,4 +148,4 @@ def eq_solmanakov() -> Verdict:
             "[Itilde Omega_0, Omega_0] = [chi, Itilde Omega_0] = Itilde([chi, Omega_0])"),
         Verdict.decide(gam, method=gam.method + "; linear in M_0 on V: " + REDUCTION).as_part(
             "chi gamma_0 = -Omega_0 gamma_0 on V; with eq:action the curve is a solution"),
-    ], n_values=(3, 4, 6, 12))
+    ], n_values=(3, 4, 6, points.ALL_N_MAX))

@@ -36,10 +36,11 @@ from chaplygin_nd.proofs.s4_common import (
     sym_checks,
     sym_gamma,
 )
+from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import skew_symbols
 from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
 from chaplygin_nd.symbolic.axisymmetric import E_n, L_gamma_axisym
-from chaplygin_nd.symbolic.exact import zero_at_points
+from chaplygin_nd.symbolic.exact import point_engines, zero_at_points
 from chaplygin_nd.symbolic.printed import section4 as printed
 
 
@@ -77,13 +78,13 @@ def eq_v_velocity() -> Verdict:
     ident = sym_checks(_identity, (3, 4), label="Vvel")
     pts = combine(
         [zero_at_points(_V_to_velocity, lambda r, n=n: random_point(r, n, vertical=True), count=1,
-                        label=f"V->vel-{n}") for n in range(3, 13)]
+                        label=f"V->vel-{n}", engines=point_engines(n)) for n in points.all_n(3)]
         + [zero_at_points(_velocity_to_V, lambda r, n=n: _velocity_point(r, n), count=1,
-                          label=f"vel->V-{n}") for n in range(3, 13)],
-        method="exact at seeded rational points of each description, n = 3..12")
+                          label=f"vel->V-{n}", engines=point_engines(n)) for n in points.all_n(3)],
+        method=f"exact at seeded rational points of each description, n = {points.n_text(points.all_n(3))}")
     return Verdict.of_parts([
         Verdict.decide(ident, method=ident.method + "; " + REDUCTION).as_part(
             "M gamma = [(2+b) Omega gamma + a x Omega E_n] + a <Omega gamma, E_n> E_n"),
         Verdict.decide(pts).as_part("both inclusions at exact points"),
-    ], n_values=(3, 4, 12), notes="The second condition <Omega gamma, E_n> = 0 is implied by the "
+    ], n_values=(3, 4, points.ALL_N_MAX), notes="The second condition <Omega gamma, E_n> = 0 is implied by the "
                                   "first (its E_n-component is (2+b)<Omega gamma, E_n>): redundant.")

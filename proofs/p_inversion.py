@@ -18,7 +18,7 @@ $\sum_k c_k T_k(M)$ solved by exact linear algebra. Here we prove, modulo $\lVer
 (i) $L_\gamma(\sum c_kT_k(M)) = M$ (symbolic $n = 3, 4$ after clearing the denominator
 $2\Delta(2+a+b)$), (ii) the printed $\Omega$ equals ours (symbolic $n = 3, 4, 5$), and (iii) the
 printed $\Omega$ equals an exact linear solve of $L_\gamma$ at seeded rational points for
-$n = 6..12$ — a route that uses neither formula. All identities are linear in $M$ and natural, so
+$n = 6..12, 16, 20, 24$ — a route that uses neither formula. All identities are linear in $M$ and natural, so
 the reduction argument of :mod:`proofs.s4_common` extends $n = 4$ to every $n \ge 4$. Every
 intermediate formula of the proof is compared with the same derived $\Omega$.
 
@@ -38,16 +38,17 @@ from chaplygin_nd.proofs.s4_common import (
     point_checks,
     sym_checks,
 )
-from chaplygin_nd.symbolic.algebra import skew_symbols, unvec, vec, wedge
+from chaplygin_nd.symbolic import points
+from chaplygin_nd.symbolic.algebra import skew_symbols, wedge
 from chaplygin_nd.symbolic.axisym_inverse import (
     inverse_closed_form,
     inverse_denominator,
     inverse_numerator,
 )
-from chaplygin_nd.symbolic.axisymmetric import Delta, E_n, L_gamma_axisym, L_matrix_axisym, x
+from chaplygin_nd.symbolic.axisymmetric import Delta, E_n, L_gamma_axisym, mass_tensor, x
 from chaplygin_nd.symbolic.exact import rational_identity
+from chaplygin_nd.symbolic.model import angular_velocity
 from chaplygin_nd.symbolic.printed import section4 as printed
-from sympy.polys.matrices import DomainMatrix
 
 
 def _solves(n: int):
@@ -63,8 +64,8 @@ def _printed_vs_derived(n: int):
 
 def _printed_vs_solve(p: dict):
     n, g, M = p["n"], p["gamma"], p["M"]
-    L = DomainMatrix.from_Matrix(L_matrix_axisym(g, p["a"], p["b"])).convert_to(sp.QQ)
-    Omega = unvec(L.lu_solve(DomainMatrix.from_Matrix(vec(M)).convert_to(sp.QQ)).to_Matrix(), n)
+    # an exact solve of eq:M-O in the engine of this evaluation (DomainMatrix or fmpq_mat)
+    Omega = angular_velocity(M, g, mass_tensor(n, p["a"]), p["b"])
     return printed.Omega_inverse(M, g, p["a"], p["b"]) - Omega
 
 
@@ -72,13 +73,13 @@ def _printed_vs_solve(p: dict):
 def p_inversion() -> Verdict:
     solves = sym_checks(_solves, (3, 4), label="inv-solves")
     same = combine([sym_checks(_printed_vs_derived, (3, 4, 5), label="inv-printed"),
-                    point_checks(_printed_vs_solve, range(6, 13), label="inv-solve")])
+                    point_checks(_printed_vs_solve, points.all_n(6), label="inv-solve")])
     return Verdict.of_parts([
         Verdict.decide(solves, method=solves.method + " (derived ansatz inverse, denominators "
                        "cleared); " + REDUCTION).as_part("derived inverse solves L_gamma(Omega) = M"),
         Verdict.decide(same, method=same.method + " against an exact linear solve; "
                        + REDUCTION).as_part("Omega = M/2 + K/(2 Delta) with the printed K"),
-    ], n_values=(3, 4, 5, 12))
+    ], n_values=(3, 4, 5, points.ALL_N_MAX))
 
 
 def _parts(n: int):
@@ -133,11 +134,11 @@ def eq_aux_inversion() -> Verdict:
         ("the linear system for U, Z", sym_checks(system, ns, label="aux-sys")),
         ("its determinant is Delta", det),
         ("U = (Omega E_n)^E_n solved", combine([sym_checks(U, ns, label="aux-U"),
-                                               point_checks(U_at, range(5, 13), label="aux-U")])),
+                                               point_checks(U_at, points.all_n(5), label="aux-U")])),
         ("(Omega gamma)^gamma solved", combine([sym_checks(Y, ns, label="aux-Y"),
-                                               point_checks(Y_at, range(5, 13), label="aux-Y")])),
+                                               point_checks(Y_at, points.all_n(5), label="aux-Y")])),
     ]
     return Verdict.of_parts(
         [Verdict.decide(c, method=c.method + ("; " + REDUCTION if name != "its determinant is Delta"
                                               else "")).as_part(name) for name, c in checks],
-        n_values=(3, 4, 12))
+        n_values=(3, 4, points.ALL_N_MAX))

@@ -44,7 +44,12 @@ from chaplygin_nd.symbolic.algebra import (
     vector_symbols,
     wedge,
 )
-from chaplygin_nd.symbolic.exact import rational_identity, zero_at_points
+from chaplygin_nd.symbolic.exact import (
+    SYMPY_INVERSE_MAX_N,
+    point_engines,
+    rational_identity,
+    zero_at_points,
+)
 from chaplygin_nd.symbolic.measure import chaplygin_divergence_at
 from chaplygin_nd.symbolic.model import (
     L_gamma,
@@ -59,7 +64,10 @@ from sympy.polys.domains import QQ
 from sympy.polys.matrices import DomainMatrix
 
 SYMBOLIC_N = (3, 4, 5, 6)
-POINT_N = tuple(range(3, 13))
+POINT_N = tuple(points.all_n(3))
+#: the rows whose point step inverts L_gamma exactly: SymPy decides their points up to n = 8
+ENERGY_N = points.all_n(3)
+MEASURE_N = points.all_n(3)
 eps = sp.Symbol("epsilon")
 b = sp.Symbol("b", positive=True)
 
@@ -91,7 +99,7 @@ def _point(n: int):
 
 
 def _both(name: str, symbolic_residual, point_residual, *, sphere: bool = False,
-          symbolic_n=SYMBOLIC_N, point_n=POINT_N, count: int = 2):
+          symbolic_n=SYMBOLIC_N, point_n=POINT_N, count: int = 2, sympy_max: int | None = None):
     """Symbolic identity for ``symbolic_n`` and exact points for ``point_n``: a list of checks."""
     checks = []
     for n in symbolic_n:
@@ -103,7 +111,7 @@ def _both(name: str, symbolic_residual, point_residual, *, sphere: bool = False,
     for n in point_n:
         checks.append((f"{name}, points n={n}", zero_at_points(
             lambda p, n=n: point_residual(n, p), _point(n), count=count, label=f"{name}{n}",
-            describe=f"so({n}) x S^{n - 1} x (J, b)")))
+            describe=f"so({n}) x S^{n - 1} x (J, b)", engines=point_engines(n, sympy_max))))
     return checks
 
 
@@ -185,7 +193,7 @@ def motion_velocity_nd() -> Verdict:
                    lambda n, p: _velocity_residuals(n, p)[0])
     return Verdict.all_of(checks, n_values=_ns(),
                           method="the two residuals are equal as polynomials: exact symbolic for "
-                                 "n=3..6, exact at 2 seeded rational points each for n=3..12",
+                                 f"n=3..6, exact at 2 seeded rational points each for n={points.n_text(points.all_n(3))}",
                           notes="Holds for every gamma in R^n, not only on the sphere.")
 
 
@@ -209,7 +217,7 @@ def iso_spectral() -> Verdict:
                    lambda n, p: _iso_residual(n, p))
     return Verdict.all_of(checks, n_values=_ns(),
                           method="identity for any skew Omega: exact symbolic for n=3..6, exact at "
-                                 "2 seeded rational points each for n=3..12 (sigma rational)")
+                                 f"2 seeded rational points each for n={points.n_text(points.all_n(3))} (sigma rational)")
 
 
 def _charpoly_symbolic(n):
@@ -237,12 +245,12 @@ def _charpoly_point(n, p):
 @claim("eq:pol-first-integrals", uses=("eq:iso-spectral",))
 def polynomial_integrals() -> Verdict:
     checks = _both("d/dt p(lambda, sigma)", _charpoly_symbolic, _charpoly_point,
-                   symbolic_n=(3, 4), point_n=range(3, 13), count=3)
+                   symbolic_n=(3, 4), point_n=points.all_n(3), count=3)
     return Verdict.all_of(
         checks, n_values=_ns((3, 4)),
         method="the Lie derivative of det(M + sigma gg^T - lambda) along the flow, for any skew "
                "Omega, is the zero polynomial in (lambda, sigma, M, gamma, Omega): exact symbolic "
-               "for n=3,4; exact at 3 seeded rational (M, gamma, Omega, lambda, sigma) for n=3..12 "
+               f"for n=3,4; exact at 3 seeded rational (M, gamma, Omega, lambda, sigma) for n={points.n_text(points.all_n(3))} "
                "(Jacobi's formula)")
 
 
@@ -291,13 +299,13 @@ def _momentum_is_gradient(n: int = 4):
 @claim("S2.2:energy", uses=("eq:motion-general", "eq:M-O"))
 def energy() -> Verdict:
     checks = _both("dH/dt", _energy_symbolic, _energy_at, sphere=True, symbolic_n=(3,),
-                   point_n=range(3, 13))
+                   point_n=ENERGY_N, sympy_max=SYMPY_INVERSE_MAX_N)
     checks.append(("dH/dOmega = M = L_gamma(Omega) (H is the energy of eq:M-O), n = 4",
                    _momentum_is_gradient()))
     return Verdict.all_of(
-        checks, n_values=_ns((3,)),
+        checks, n_values=_ns((3,), ENERGY_N),
         method="exact symbolic for n=3 (general J, in coordinates (Omega, gamma), modulo "
-               "||gamma||^2=1); exact at 2 seeded rational points each for n=3..12 (Omega and "
+               f"||gamma||^2=1); exact at 2 seeded rational points each for n={points.n_text(ENERGY_N)} (Omega and "
                "Omega' by exact linear solves of eq:M-O); the Omega-gradient of H is M, exact "
                "symbolic n = 4")
 
@@ -312,15 +320,16 @@ def _measure_at(n, p):
 def invariant_measure() -> Verdict:
     checks = [(f"div(rho X)/rho, points n={n}", zero_at_points(
         lambda p, n=n: _measure_at(n, p), _point(n), count=2 if n <= 8 else 1, label=f"measure{n}",
-        describe=f"so({n}) x S^{n - 1} x (J, b)")) for n in range(3, 13)]
+        describe=f"so({n}) x S^{n - 1} x (J, b)",
+        engines=point_engines(n, SYMPY_INVERSE_MAX_N))) for n in MEASURE_N]
     # dM = det(L_gamma) dOmega (coordinates vec), so the exponent in front of dOmega is one more.
     exps = printed.measure_nd_exponents()
     checks.append(("exponent shift dOmega vs dM is 1", rational_identity(
         sp.Rational(exps["dOmega dgamma"] - exps["dM dgamma"]) - 1)))
     return Verdict.all_of(
-        checks, n_values=tuple(range(3, 13)),
+        checks, n_values=MEASURE_N,
         method="ambient divergence of (det L)^(-1/2) X at seeded exact points (2 for n<=8, 1 above) of "
-               "so(n) x S^(n-1) (general diagonal J, b) for each n=3..12, computed exactly via "
+               f"so(n) x S^(n-1) (general diagonal J, b) for each n={points.n_text(MEASURE_N)}, computed exactly via "
                "d(L^-1) = -L^-1 dL L^-1 and Jacobi's formula (symbolic.measure); the Leray-form "
                "argument reduces invariance on P to the ambient divergence on ||gamma||=1",
         notes="The general-J claim (Fedorov-Kozlov) is backed by exact evidence at points, not a "

@@ -36,7 +36,7 @@ import sympy as sp
 from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import skew_symbols, vector_symbols, wedge
 from chaplygin_nd.symbolic.axisymmetric import a, b
-from chaplygin_nd.symbolic.exact import Check, rational_identity, zero_at_points
+from chaplygin_nd.symbolic.exact import Check, point_engines, rational_identity, zero_at_points
 from chaplygin_nd.symbolic.vertical import vertical_point
 
 __all__ = [
@@ -161,8 +161,9 @@ def random_vertical_point(rng, n: int) -> dict:
 
 
 def point_checks(residual: Callable[[dict], object], ns: Iterable[int], *, count: int = 1,
-                 vertical: bool = False, label: str) -> Check:
-    """``zero_at_points`` at ``count`` seeded rational points for each n in ``ns``."""
+                 vertical: bool = False, label: str, sympy_max: int | None = None) -> Check:
+    """``zero_at_points`` at ``count`` seeded rational points for each n in ``ns``; SymPy and
+    FLINT up to ``sympy_max`` (default ``exact.SYMPY_POINT_MAX_N``), FLINT alone above."""
     ns = list(ns)
     checks = []
     for n in ns:
@@ -170,10 +171,11 @@ def point_checks(residual: Callable[[dict], object], ns: Iterable[int], *, count
             return random_point(r, n, vertical=vertical)
 
         checks.append(zero_at_points(residual, sample, count=count, label=f"{label}-n{n}",
-                                     describe="V" if vertical else "so(n) x S^{n-1}"))
+                                     describe="V" if vertical else "so(n) x S^{n-1}",
+                                     engines=point_engines(n, sympy_max)))
     return combine(checks, method=f"exact at {count} seeded rational point(s) "
                                   f"{'of V ' if vertical else ''}for each n in "
-                                  f"{min(ns)}..{max(ns)} (seed {points.ledger_seed()})")
+                                  f"{points.n_text(ns)} (seed {points.ledger_seed()})")
 
 
 def combine(checks: Sequence[Check], *, method: str = "") -> Check:

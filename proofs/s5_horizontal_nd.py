@@ -31,7 +31,7 @@ obeys $\dot g = [g, \Omega]$ for any $\Omega$). **Conservation of $\omega^2$**: 
 all of $P$ ($\langle M, [M, \Omega]\rangle_\kappa = 0$, ad-invariance); $h$ by S2.2:energy, whose
 symbolic proof is at $n = 3$ for a general $J$ (so on $\mathcal{H}$ of the axisymmetric sphere), and
 the reduction argument below carries it to every $n$; we also check $\frac{d}{dt}\omega^2 = 0$ on
-$\mathcal{H}$ exactly at seeded points for $n = 3..12$ (a symbolic $\dot\Omega$ is too slow for the
+$\mathcal{H}$ exactly at seeded points for $n = 3..12, 16, 20, 24$ (a symbolic $\dot\Omega$ is too slow for the
 ledger budget).
 
 The parametrisation. For $\lVert\gamma\rVert = 1$, $M = v\wedge\gamma$ lies in $\mathcal{H}$ for every
@@ -55,7 +55,7 @@ tests). The same reasoning shows more: $\Omega \in \Lambda^2 W$ for
 $W = \operatorname{span}\{E_n, \gamma, v\}$, so $W$ is invariant and a horizontal motion in
 $\mathbb{R}^n$ *is* a 3D horizontal motion inside $W$. The ledger also checks $n = 4$ symbolically
 ($\gamma = (0, \dots, 0, s, x)$, no loss by $SO(n-1)$-naturality), and every residual at one seeded
-exact rational point of $\mathcal{H}$ for each $n = 3..12$, where $\Omega$ and $\dot\Omega$ come from
+exact rational point of $\mathcal{H}$ for each $n = 3..12, 16, 20, 24$, where $\Omega$ and $\dot\Omega$ come from
 exact linear solves of eq:M-O (a route to $L_\gamma^{-1}$ independent of the closed form of
 P:inversion used symbolically). tests/test_section5_horizontal_nd.py (slow) repeats the symbolic
 check for $n = 5, 6$ and with fully generic $\gamma$ for $n = 3$.
@@ -78,7 +78,7 @@ from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import commutator, killing, skew_symbols, vector_symbols, wedge
 from chaplygin_nd.symbolic.axisym_inverse import inverse_denominator, inverse_numerator
 from chaplygin_nd.symbolic.axisymmetric import E_n, a, b, mass_tensor
-from chaplygin_nd.symbolic.exact import rational_identity, zero_at_points
+from chaplygin_nd.symbolic.exact import point_engines, rational_identity, zero_at_points
 from chaplygin_nd.symbolic.model import angular_velocity
 from chaplygin_nd.symbolic.printed import section5 as printed
 from chaplygin_nd.symbolic.reduced import horizontal_solution
@@ -88,7 +88,7 @@ SYMBOLIC_N = (3, 4)
 #: Also proved symbolically, in tests/test_section5_horizontal_nd.py (slow): n = 5, 6 and a
 #: fully generic gamma at n = 3.
 SLOW_SYMBOLIC_N = (5, 6)
-POINT_N = tuple(range(3, 13))
+POINT_N = tuple(points.all_n(3))
 S = a + b + 2
 
 #: Names of the residuals of :func:`residuals`, in order.
@@ -176,8 +176,8 @@ SYMBOLIC_METHOD = ("exact symbolic identity on H (M = v ^ gamma, v generic) modu
 
 def _points(which: slice, label: str):
     pts = [zero_at_points(lambda p: _at_point(p, which), _point(n), count=1, label=f"{label}-pt{n}",
-                          describe=f"H in so({n}) x S^{n - 1}") for n in POINT_N]
-    return combine(pts, method=f"exact at 1 seeded rational point of H for each n in 3..12, Omega "
+                          describe=f"H in so({n}) x S^{n - 1}", engines=point_engines(n)) for n in POINT_N]
+    return combine(pts, method=f"exact at 1 seeded rational point of H for each n in {points.n_text(points.all_n(3))}, Omega "
                                f"(and Omega_dot) by exact linear solves of eq:M-O (seed "
                                f"{points.ledger_seed()})")
 
@@ -234,7 +234,7 @@ def h_linear_nd() -> Verdict:
 
     every_n = _points(slice(0, len(NAMES)), "HnD")
     return Verdict.of_parts([
-        part("all residuals at seeded exact points of H, n = 3..12 (Omega by linear solve)", every_n),
+        part(f"all residuals at seeded exact points of H, n = {points.n_text(points.all_n(3))} (Omega by linear solve)", every_n),
         part("the linear system x_dot = G/S, G_dot = -omega^2 x (as printed for n = 4)",
              _checks(slice(0, 2), "lin")),
         part("omega^2: both printed expressions agree; S(1-x^2) omega^2 = G^2 + 2SA/Delta >= 0",

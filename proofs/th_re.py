@@ -54,7 +54,7 @@ from chaplygin_nd.symbolic.printed import section4 as printed
 from chaplygin_nd.symbolic.vertical import zeta
 
 NS = (3, 4)
-POINTS = range(5, 13)
+POINTS = points.all_n(5)
 LINEAR = "; linear in M_0 on V = Lambda^2 gamma_0^perp: " + REDUCTION
 
 
@@ -127,7 +127,7 @@ def th_re() -> Verdict:
         Verdict.decide(xdot, method=xdot.method + " (x_dot = -<Omega gamma, E_n> = 0 on V, and V is "
                        "invariant); " + REDUCTION).as_part("x constant"),
     ]
-    return Verdict.of_parts(parts, n_values=(3, 4, 12))
+    return Verdict.of_parts(parts, n_values=(3, 4, points.ALL_N_MAX))
 
 
 def _corollary(M0, g, av, bv):
@@ -190,8 +190,8 @@ def th_re_corollary() -> Verdict:
     sym = sym_checks(lambda n: _corollary(*generic_vertical(n, frame=True), a, b), (3, 4),
                      label="cor", frame_n3=True)
     inf = combine([sym, point_checks(lambda p: _corollary(p["M"], p["gamma"], p["a"], p["b"]),
-                                     range(5, 13), vertical=True, label="cor"), _printed_curves()])
-    return Verdict.decide(inf, n_values=(3, 4, 12), method=inf.method + " (infinitesimal form: "
+                                     points.all_n(5), vertical=True, label="cor"), _printed_curves()])
+    return Verdict.decide(inf, n_values=(3, 4, points.ALL_N_MAX), method=inf.method + " (infinitesimal form: "
                           "d/dt Omega(M(t), gamma(t)) = [zeta, Omega] at t = 0)" + LINEAR + "; for all t "
                           "it is the equivariance Omega -> h Omega h^{-1} (eq:action) with "
                           "h = exp(zeta t) in SO(n-1); the printed curve and Omega(t) exactly for all "
@@ -218,4 +218,4 @@ def eq_xivnd() -> Verdict:
         Verdict.decide(same, method=same.method + LINEAR).as_part("zeta in terms of Omega_0, gamma_0"),
         Verdict.decide(inline, method=inline.method + LINEAR).as_part(
             "0 = M_0 gamma_0 = Omega_0((2+b) gamma_0 + a x_0 E_n) on V"),
-    ], n_values=(3, 4, 12))
+    ], n_values=(3, 4, points.ALL_N_MAX))

@@ -20,113 +20,65 @@ Two routes, both exact (no floating point anywhere):
 
 A false identity always comes back with an exact :class:`Counterexample`: a rational point
 inside the stated domain (on the sphere where asked) and the exact non-zero value there.
+
+Two engines. Every zero test above is decided by SymPy (its sparse polynomials / ``DomainMatrix``)
+and, independently, by FLINT (:mod:`symbolic.flint_engine`: the SymPy-built expression read by a
+tree walk into ``fmpq_mpoly``, ``divmod`` by the sphere polynomial, ``fmpq_mat`` at points). The
+two must agree — on the verdict, and at a counterexample on its exact value — or
+:class:`~symbolic.flint_engine.EngineDisagreement` is raised (an ``error`` row). Each check records
+which engines decided it (:func:`engine_tally`); the ledger prints it in the row's method.
+``CHAPLYGIN_ND_ENGINES=flint`` makes SymPy abstain (the FLINT-only mutation run).
 """
 
 from __future__ import annotations
 
-import re
 import time
+from collections import Counter
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from random import Random
 
+import flint
 import sympy as sp
 from chaplygin_nd.symbolic import points
+from chaplygin_nd.symbolic.counterexample import Counterexample
+from chaplygin_nd.symbolic.flint_engine import (
+    EngineDisagreement,
+    FlintRing,
+    active_engines,
+    engine_label,
+    linear_algebra_calls,
+    to_fmpq,
+    use_engine,
+)
 from sympy.polys.fields import field as fraction_field
 from sympy.polys.orderings import lex
 from sympy.polys.rings import PolyElement
 
 __all__ = [
     "Check", "Counterexample", "rational_identity", "zero_at_points", "exact_zero",
-    "numerator_polynomial", "Sampler",
+    "numerator_polynomial", "Sampler", "engine_tally", "reset_engine_tally", "engine_note",
+    "SYMPY_POINT_MAX_N", "SYMPY_INVERSE_MAX_N", "point_engines", "point_timings",
 ]
+
+#: Above this n the seeded point checks are decided by FLINT alone (SymPy's dense QQ linear
+#: algebra grows as n^4..n^6: its n = 24 determinant took 46 s); at and below it, by both.
+SYMPY_POINT_MAX_N = 12
+
+
+#: For the rows whose point step is a full exact inverse of L_gamma (SymPy's costs grow as n^6:
+#: 5.5 s at n = 12 for one divergence point under load), SymPy decides up to this n.
+SYMPY_INVERSE_MAX_N = 8
+
+
+def point_engines(n: int, sympy_max: int | None = None) -> tuple[str, ...]:
+    """The engines of a seeded point check at dimension ``n``: both up to ``sympy_max``
+    (default :data:`SYMPY_POINT_MAX_N`), FLINT alone above."""
+    top = SYMPY_POINT_MAX_N if sympy_max is None else min(sympy_max, SYMPY_POINT_MAX_N)
+    return ("sympy", "flint") if n <= top else ("flint",)
 
 #: A sampler draws one exact value (number or matrix) for one symbol or name.
 Sampler = Callable[[Random], sp.Expr]
-
-
-@dataclass(frozen=True)
-class Counterexample:
-    """An exact point where a claimed identity fails, with the exact non-zero residual there."""
-
-    point: tuple[tuple[str, object], ...]
-    residual: object
-    where: str = ""
-
-    def text(self) -> str:
-        at = ", ".join(f"{name} = {_text_value(value)}" for name, value in _grouped(self.point))
-        loc = f" ({self.where})" if self.where else ""
-        return f"at {at}: residual{loc} = {_text_value(self.residual)} != 0"
-
-    def latex(self) -> str:
-        r"""The point as a reader writes it: components gathered into vectors
-        ($\gamma = (\tfrac{2}{3}, \dots)$), then the exact non-zero residual."""
-        at = ",\\; ".join(f"{_latex_name(name)} = {_latex_value(value)}"
-                          for name, value in _grouped(self.point))
-        loc = f"\\ \\text{{({self.where})}}" if self.where else ""
-        return (f"{at} \\;\\Rightarrow\\; \\text{{residual}}{loc} = "
-                f"{_latex_value(self.residual)} \\neq 0")
-
-
-_INDEXED = re.compile(r"^([A-Za-z]+)_?(\d+)$")
-#: indexed names that are separate quantities, not the components of one vector (the integrals)
-_NOT_VECTORS = {"F", "f"}
-
-
-def _grouped(point) -> list[tuple[str, object]]:
-    """``gamma1, gamma2, gamma3`` (in any order) -> ``gamma = (gamma1, gamma2, gamma3)`` when the
-    indices of one base name are exactly 1..k (k >= 2); other names stay as they are, in order."""
-    bases: dict[str, dict[int, object]] = {}
-    for name, value in point:
-        m = _INDEXED.match(name)
-        if m:
-            bases.setdefault(m.group(1), {})[int(m.group(2))] = value
-    vectors = {base: comps for base, comps in bases.items()
-               if len(comps) >= 2 and sorted(comps) == list(range(1, len(comps) + 1))
-               and base not in {name for name, _ in point} and base not in _NOT_VECTORS}
-    out, done = [], set()
-    for name, value in point:
-        m = _INDEXED.match(name)
-        if m and m.group(1) in vectors:
-            if m.group(1) not in done:
-                comps = vectors[m.group(1)]
-                out.append((m.group(1), tuple(comps[i] for i in sorted(comps))))
-                done.add(m.group(1))
-            continue
-        out.append((name, value))
-    return out
-
-
-def _as_tuple(value):
-    """A vector (tuple, list, or a one-row/one-column matrix) as a tuple; anything else: None."""
-    if isinstance(value, (tuple, list)):
-        return tuple(value)
-    if isinstance(value, sp.MatrixBase) and 1 in value.shape:
-        return tuple(value)
-    return None
-
-
-def _text_value(value) -> str:
-    vec = _as_tuple(value)
-    if vec is not None:
-        return "(" + ", ".join(sp.sstr(v) for v in vec) + ")"
-    if isinstance(value, sp.MatrixBase):
-        return "[" + "; ".join(", ".join(sp.sstr(v) for v in value.row(i))
-                               for i in range(value.rows)) + "]"
-    return sp.sstr(value)
-
-
-def _latex_value(value) -> str:
-    vec = _as_tuple(value)
-    if vec is not None:
-        return "(" + ", ".join(_latex_value(v) for v in vec) + ")"
-    if isinstance(value, sp.MatrixBase):  # full-size fractions keep the rows of a matrix apart
-        return sp.latex(value).replace("\\frac", "\\dfrac")
-    return sp.latex(value).replace("\\frac", "\\tfrac").replace("\\dfrac", "\\tfrac")
-
-
-def _latex_name(name: str) -> str:
-    return sp.latex(sp.Symbol(name))
 
 
 @dataclass(frozen=True)
@@ -137,9 +89,72 @@ class Check:
     method: str
     counterexample: Counterexample | None = None
     seconds: float = field(default=0.0, compare=False)
+    #: which engines decided it ("SymPy+FLINT", "FLINT"); empty for a check made by a proof itself
+    engines: str = field(default="", compare=False)
 
     def __bool__(self) -> bool:
         return self.ok
+
+
+# --------------------------------------------------------------------------------------------
+# Which engines decided what (per process; the runner reads it after each row).
+# --------------------------------------------------------------------------------------------
+
+_TALLY: Counter = Counter()
+#: (kind, label, size, engine, seconds) of every zero test (the bench reads it); size is n for a
+#: seeded point, the number of variables for an identity
+_TIMINGS: list[tuple[str, str, int | None, str, float]] = []
+
+
+def point_timings(clear: bool = False) -> list[tuple[str, str, int | None, str, float]]:
+    """(kind, label, size, engine, seconds) of each engine's part of each zero test: ``points``
+    (one seeded point, value and zero test; size = n) and ``identity`` (one
+    :func:`rational_identity`; size = number of variables). ``clear`` empties the record."""
+    out = list(_TIMINGS)
+    if clear:
+        _TIMINGS.clear()
+    return out
+
+
+def _dimension(pt: dict) -> int | None:
+    """n of a sampled point: its ``n``, else the length of its ``gamma``."""
+    if isinstance(pt.get("n"), int):
+        return pt["n"]
+    g = pt.get("gamma")
+    return len(g) if g is not None else None
+
+
+def _record(kind: str, engines: str, label: str = "", size: int | None = None,
+            spent: Mapping[str, float] | None = None) -> None:
+    _TALLY[(kind, engines)] += 1
+    for engine, seconds in (spent or {}).items():
+        _TIMINGS.append((kind, label, size, engine, seconds))
+
+
+def engine_tally() -> dict[tuple[str, str], int]:
+    """(kind, engines) -> number of zero tests since :func:`reset_engine_tally`; kind is
+    ``identity`` (:func:`rational_identity`) or ``points`` (one seeded point of
+    :func:`zero_at_points`)."""
+    return dict(_TALLY)
+
+
+def reset_engine_tally() -> None:
+    """Forget the tally (the runner calls it before each row)."""
+    _TALLY.clear()
+
+
+def engine_note(tally: Mapping[tuple[str, str], int]) -> str:
+    """The sentence a row's method ends with: which engines decided its zero tests."""
+    if not tally:
+        return ("engines: no zero test through symbolic.exact (exact values computed in the "
+                "proof's own SymPy code; one engine)")
+    kinds = {"identity": "identities", "points": "points"}
+    parts = []
+    for kind in ("identity", "points"):
+        items = sorted((e, c) for (k, e), c in tally.items() if k == kind)
+        if items:
+            parts.append(f"{kinds[kind]} " + ", ".join(f"{e} x{c}" for e, c in items))
+    return "engines: " + "; ".join(parts) + " (expressions and point values built by SymPy)"
 
 
 # --------------------------------------------------------------------------------------------
@@ -217,27 +232,105 @@ def rational_identity(residual, *, sphere: Sequence[sp.Symbol] | None = None,
     where_sphere = f" modulo ||{','.join(map(str, sphere))}||^2 = 1" if sphere else ""
     method = (f"exact rational-function identity in {len(gens)} variables{where_sphere}" if gens
               else "exact: the residual expands to zero")
+    engines = active_engines()
+    ring = FlintRing(gens, sphere) if "flint" in engines else None
+    who = engine_label(engines)
+    spent = dict.fromkeys(engines, 0.0)
     for where, e in entries:
-        if isinstance(e, PolyElement):
-            # Already a sparse polynomial: reduce it in its own ring. {g} is a Groebner basis of
-            # (g) for every monomial order, so the remainder criterion is the same as above.
-            ring_gens = list(e.ring.symbols)
-            num = e.rem(e.ring(sum(s**2 for s in sphere) - 1)) if sphere else e
-            if num:
-                cx = _counterexample(e, num, e.ring.one, ring_gens, sphere, samplers or {}, seed,
-                                     label, where)
-                return Check(False, method, cx, time.perf_counter() - start)
-            continue
-        if not gens:
-            if sp.expand(e) != 0:
-                return Check(False, method, Counterexample((), e, where),
-                             time.perf_counter() - start)
-            continue
-        num, den = numerator_polynomial(e, gens, sphere)
+        sympy_cx = flint_cx = None
+        if "sympy" in engines:
+            t0 = time.perf_counter()
+            sympy_cx = _sympy_entry(e, gens, sphere, samplers or {}, seed, label, where)
+            spent["sympy"] += time.perf_counter() - t0
+        if ring is not None:
+            t0 = time.perf_counter()
+            flint_cx = _flint_entry(ring, e, gens, sphere, samplers or {}, seed, label, where,
+                                    check_at=sympy_cx)
+            spent["flint"] += time.perf_counter() - t0
+        if "sympy" in engines and ring is not None and (sympy_cx is None) != (flint_cx is None):
+            raise EngineDisagreement(
+                f"{label or 'identity'} {where}: SymPy says "
+                f"{'holds' if sympy_cx is None else 'fails'}, FLINT says "
+                f"{'holds' if flint_cx is None else 'fails'}")
+        cx = sympy_cx if "sympy" in engines else flint_cx
+        if cx is not None:
+            _record("identity", who, label, len(gens), spent)
+            return Check(False, method, cx, time.perf_counter() - start, engines=who)
+    _record("identity", who, label, len(gens), spent)
+    return Check(True, method, None, time.perf_counter() - start, engines=who)
+
+
+def _sympy_entry(e, gens, sphere, samplers, seed, label, where) -> Counterexample | None:
+    """SymPy's decision on one entry: None if it vanishes (on the sphere), else a counterexample."""
+    if isinstance(e, PolyElement):
+        # Already a sparse polynomial: reduce it in its own ring. {g} is a Groebner basis of
+        # (g) for every monomial order, so the remainder criterion is the same as above.
+        ring_gens = list(e.ring.symbols)
+        num = e.rem(e.ring(sum(s**2 for s in sphere) - 1)) if sphere else e
         if num:
-            cx = _counterexample(e, num, den, gens, sphere, samplers or {}, seed, label, where)
-            return Check(False, method, cx, time.perf_counter() - start)
-    return Check(True, method, None, time.perf_counter() - start)
+            return _counterexample(e, num, e.ring.one, ring_gens, sphere, samplers, seed,
+                                   label, where)
+        return None
+    if not gens:
+        return Counterexample((), e, where) if sp.expand(e) != 0 else None
+    num, den = numerator_polynomial(e, gens, sphere)
+    if num:
+        return _counterexample(e, num, den, gens, sphere, samplers, seed, label, where)
+    return None
+
+
+def _flint_entry(ring: FlintRing, e, gens, sphere, samplers, seed, label, where,
+                 check_at: Counterexample | None) -> Counterexample | None:
+    """FLINT's decision on one entry (the expression read by a tree walk, its numerator reduced
+    by ``divmod``): None if it vanishes, else a counterexample. At SymPy's counterexample
+    ``check_at`` the exact value must be the same in both engines."""
+    if isinstance(e, PolyElement):
+        num, den = ring.from_ring_element(e), ring.one
+    else:
+        num, den = ring.fraction(e)
+    normal = ring.decide(num, den)
+    if normal.is_zero():
+        return None
+    if check_at is not None:
+        named = dict(check_at.point)
+        point = {s: named[str(s)] for s in gens}
+        try:
+            mine = ring.value(num, den, point)
+        except ZeroDivisionError:  # FLINT's uncancelled denominator vanishes there: no value
+            return check_at
+        if mine != to_fmpq(check_at.residual):
+            raise EngineDisagreement(f"{label or 'identity'} {where}: at SymPy's counterexample "
+                                     f"SymPy's residual is {check_at.residual}, FLINT's {mine}")
+        return check_at
+    return _flint_counterexample(ring, num, den, normal, gens, sphere, samplers, seed, label,
+                                 where)
+
+
+def _flint_counterexample(ring, num, den, normal, gens, sphere, samplers, seed, label, where
+                          ) -> Counterexample:
+    """The same seeded search as :func:`_counterexample`, every value computed in fmpq."""
+    rng = points.generator(seed, "counterexample", label, where)
+    sphere = list(sphere or ())
+    for attempt in range(400):
+        values: dict[sp.Symbol, sp.Expr] = {}
+        if sphere:
+            values.update(zip(sphere, points.sphere_point(rng, len(sphere))))
+        for s in gens:
+            if s in values:
+                continue
+            draw = samplers.get(s)
+            values[s] = draw(rng) if draw else points.rational(rng, -2, 2, 4 + attempt // 20)
+        args = {s: to_fmpq(values[s]) for s in gens}
+        if not gens:
+            value = ring.value(num, den, {})
+            return Counterexample((), sp.Rational(int(value.p), int(value.q)), where)
+        at = [args[s] for s in gens]
+        if den(*at) == 0 or normal(*at) == 0:
+            continue
+        value = num(*at) / den(*at)
+        pt = tuple((str(s), values[s]) for s in gens)
+        return Counterexample(pt, sp.Rational(int(value.p), int(value.q)), where)
+    raise RuntimeError("normal form is non-zero but no rational point found a non-zero value")
 
 
 def _counterexample(expr, num, den, gens, sphere, samplers, seed, label, where) -> Counterexample:
@@ -283,24 +376,96 @@ def exact_zero(value) -> tuple[bool, str, object]:
     return True, "", 0
 
 
+def _fmpq_entries(value) -> list:
+    """The entries of an exact value as FLINT rationals (``TypeError`` on a float); an
+    ``fmpq_mat`` (a value computed by the FLINT engine) is read directly."""
+    if isinstance(value, flint.fmpq_mat):
+        return [(f"entry ({i + 1}, {j + 1})", value[i, j], value[i, j])
+                for i in range(value.nrows()) for j in range(value.ncols())]
+    out = []
+    for where, e in _entries(value):
+        if isinstance(e, PolyElement):
+            raise TypeError(f"a point value must be a number, not a polynomial ({where})")
+        if e.has(sp.Float):
+            raise TypeError(f"inexact value {e} {where}: points must carry exact rationals")
+        out.append((where, e, e if e.is_Rational else None))
+    ring = None
+    values = []
+    for where, e, rational in out:
+        if rational is not None:
+            values.append((where, e, to_fmpq(rational)))
+            continue
+        ring = ring or FlintRing([])
+        num, den = ring.fraction(e)
+        values.append((where, e, ring.value(num, den, {})))
+    return values
+
+
 def zero_at_points(residual: Callable[[dict], object], sample: Callable[[Random], dict], *,
                    count: int, seed: int | None = None, label: str,
-                   describe: str = "") -> Check:
+                   describe: str = "", engines: Sequence[str] = ("sympy", "flint")) -> Check:
     r"""Evaluate ``residual(point)`` exactly at ``count`` seeded points ``sample(rng)``; it must be 0.
 
     ``sample`` returns a dict name -> exact value (numbers, vectors, matrices); ``residual``
     returns an exact number, matrix or list. ``describe`` names the space sampled (for the
     method string). A non-zero value stops the check and becomes the counterexample. ``seed``:
     default :func:`symbolic.points.ledger_seed` (the seed of the ledger run).
+
+    ``engines``: who evaluates. The residual runs once per engine inside
+    :func:`~symbolic.flint_engine.use_engine`, so its exact linear algebra (``solve``, ``det``,
+    ``rank``, ``inverse`` of :mod:`symbolic.flint_engine`) is SymPy's ``DomainMatrix`` in one run
+    and FLINT's ``fmpq_mat`` in the other; SymPy tests its value with ``expand``, FLINT converts
+    it to ``fmpq``; the two values must be equal. A residual that makes no such call is evaluated
+    once (the value is the same SymPy arithmetic) and tested by both. Engines not active in this
+    process (``CHAPLYGIN_ND_ENGINES``) abstain; if none of ``engines`` is active, the active ones
+    decide.
     """
     start = time.perf_counter()
     seed = points.ledger_seed() if seed is None else seed
     method = f"exact at {count} seeded rational points{' of ' + describe if describe else ''} (seed {seed})"
+    active = active_engines()
+    engines = tuple(e for e in engines if e in active) or active
+    who = engine_label(engines)
     for i in range(count):
         rng = points.generator(seed, label, i)
         pt = sample(rng)
-        zero, where, value = exact_zero(residual(pt))
+        value = _evaluate(residual, pt, engines, label)
+        _record("points", who)
+        zero, where, entry = value
         if not zero:
-            cx = Counterexample(tuple(pt.items()), value, where)
-            return Check(False, method, cx, time.perf_counter() - start)
-    return Check(True, method, None, time.perf_counter() - start)
+            cx = Counterexample(tuple(pt.items()), entry, where)
+            return Check(False, method, cx, time.perf_counter() - start, engines=who)
+    return Check(True, method, None, time.perf_counter() - start, engines=who)
+
+
+def _evaluate(residual, pt, engines, label) -> tuple[bool, str, object]:
+    """(zero, where, first non-zero entry) of ``residual(pt)``, decided by each engine; with
+    both engines the two values must be equal entry by entry."""
+    values, value, reuse, n = {}, None, False, _dimension(pt)
+    decided: dict = {}
+    for engine in engines:
+        t0 = time.perf_counter()
+        if not reuse:
+            before = linear_algebra_calls()
+            with use_engine(engine):
+                value = residual(pt)
+            reuse = linear_algebra_calls() == before
+        values[engine] = value
+        if engine == "sympy":
+            decided["sympy"] = exact_zero(value)
+        else:
+            flint_values = _fmpq_entries(value)
+        _TIMINGS.append(("points", label, n, engine, time.perf_counter() - t0))
+    if "flint" in values:
+        bad = next(((w, sp.Rational(int(v.p), int(v.q))) for w, _, v in flint_values if v != 0),
+                   None)
+        decided["flint"] = (True, "", 0) if bad is None else (False, *bad)
+        if "sympy" in values:
+            same = values["sympy"] is values["flint"] or (
+                [v for _, _, v in _fmpq_entries(values["sympy"])]
+                == [v for _, _, v in flint_values])
+            if decided["sympy"][0] != decided["flint"][0] or not same:
+                raise EngineDisagreement(
+                    f"{label}: SymPy says zero={decided['sympy'][0]}, FLINT says "
+                    f"zero={decided['flint'][0]}" + ("" if same else "; the values differ"))
+    return decided["sympy" if "sympy" in decided else "flint"]

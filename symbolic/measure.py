@@ -69,6 +69,11 @@ def chaplygin_divergence_at(M: sp.Matrix, gamma: sp.Matrix, J: sp.Matrix, b) -> 
     Then $\operatorname{div}(\rho X)/\rho = \texttt{div} + \sum_k \dot\gamma_k\,\partial_k\log\rho$ for
     any density $\rho(\gamma)$; e.g. $\rho = (\det L_\gamma)^{-1/2}$ (eq:invmeasuredet).
     """
+    from chaplygin_nd.symbolic import flint_engine  # the engine of this evaluation
+    flint_engine.note_call()
+    if flint_engine.current_engine() == "flint":
+        from chaplygin_nd.symbolic.flint_model import divergence_at_fmpq
+        return divergence_at_fmpq(M, gamma, J, b)
     n = gamma.rows
     basis = so_basis(n)
     L = L_matrix_qq(gamma, J, b)

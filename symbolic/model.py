@@ -116,11 +116,17 @@ def L_matrix_qq(gamma: sp.Matrix, J: sp.Matrix, b, derivative: int | None = None
 def angular_velocity(M: sp.Matrix, gamma: sp.Matrix, J: sp.Matrix, b) -> sp.Matrix:
     r"""$\Omega = L_\gamma^{-1}(M)$ by an exact linear solve of eq:M-O in $\mathfrak{so}(n)$.
 
-    At exact rational points (any $n$) the solve is over $\mathbb{Q}$ with ``DomainMatrix``; for
+    At exact rational points (any $n$) the solve is over $\mathbb{Q}$ with ``DomainMatrix``, or
+    with FLINT's ``fmpq_mat`` inside ``flint_engine.use_engine("flint")``; for
     symbolic entries (small $n$) with SymPy. Raises if $L_\gamma$ is singular at the point."""
     n = gamma.rows
     rhs = vec(M)
     if all(sp.sympify(e).is_Rational for e in list(gamma) + list(J.diagonal()) + [b] + list(rhs)):
+        from chaplygin_nd.symbolic import flint_engine  # the engine of this evaluation
+        flint_engine.note_call()
+        if flint_engine.current_engine() == "flint":
+            from chaplygin_nd.symbolic.flint_model import angular_velocity_fmpq
+            return angular_velocity_fmpq(M, gamma, J, b)
         dL = L_matrix_qq(gamma, J, b)
         col = DomainMatrix([[QQ.from_sympy(e)] for e in rhs], (len(rhs), 1), QQ).to_sparse()
         return unvec(dL.lu_solve(col).to_Matrix(), n)

@@ -15,13 +15,45 @@ import hashlib
 import random
 from collections.abc import Sequence
 
+import flint
 import sympy as sp
 from chaplygin_nd.symbolic.algebra import column, unvec
+from chaplygin_nd.symbolic.flint_engine import to_fmpq, to_sympy_matrix
 
 __all__ = [
     "DEFAULT_SEED", "ledger_seed", "set_ledger_seed", "generator", "rational", "rationals", "sphere_point", "skew_matrix",
-    "rational_rotation", "axisymmetric_parameters",
+    "rational_rotation", "axisymmetric_parameters", "ALL_N_MAX", "all_n", "SPARSE_LARGE_N", "n_text",
 ]
+
+#: The largest n of the seeded exact point checks of the rows about every n (DESIGN.md, "All n,
+#: honestly"); above ``symbolic.exact.SYMPY_POINT_MAX_N`` FLINT alone decides them.
+ALL_N_MAX = 24
+
+
+#: Above n = 12 the all-n rows sample these n (exact points cost ~n^4..n^6 even in FLINT:
+#: bench/out/exact_growth.md); ``chaplygin bench exact_growth`` measures every n up to ALL_N_MAX.
+SPARSE_LARGE_N = (16, 20, 24)
+
+
+def all_n(start: int = 3) -> tuple[int, ...]:
+    """The n of the seeded exact point checks of an all-n row: every n from ``start`` to 12, then
+    :data:`SPARSE_LARGE_N` (up to ALL_N_MAX)."""
+    return tuple(range(start, min(12, ALL_N_MAX) + 1)) + tuple(
+        n for n in SPARSE_LARGE_N if start <= n <= ALL_N_MAX)
+
+
+def n_text(ns) -> str:
+    """``(3, 4, 5, 6, 16, 20)`` -> ``"3..6, 16, 20"`` (runs of consecutive n shortened)."""
+    ns = sorted(set(ns))
+    runs, out = [], []
+    for n in ns:
+        if runs and n == runs[-1][-1] + 1:
+            runs[-1].append(n)
+        else:
+            runs.append([n])
+    for r in runs:
+        out.append(f"{r[0]}..{r[-1]}" if len(r) > 2 else ", ".join(map(str, r)))
+    return ", ".join(out)
 
 #: The seed of a ledger run unless ``chaplygin verify --seed N`` (``make verify SEED=N``) names another.
 DEFAULT_SEED = 20261121
@@ -97,7 +129,12 @@ def rational_rotation(rng: random.Random, n: int) -> sp.Matrix:
     $h = (I - S)^{-1}(I + S)$ of a random skew $S$ (always invertible, $\det h = 1$)."""
     S = skew_matrix(rng, n, -2, 2, 4)
     eye = sp.eye(n)
-    return (eye - S).LUsolve(eye + S)
+    # the exact solve by FLINT's fmpq_mat (the same rationals as SymPy's LUsolve, ~50x faster at
+    # n = 23); a sample point, not a verdict, so one engine suffices here
+    def mat(A):
+        return flint.fmpq_mat(A.rows, A.cols, [to_fmpq(v) for v in A])
+
+    return to_sympy_matrix(mat(eye - S).solve(mat(eye + S)))
 
 
 def axisymmetric_parameters(rng: random.Random, *, a_zero: bool = False) -> dict[str, sp.Rational]:

@@ -7,8 +7,11 @@ with it off, the heyoka tests add about 15 s of JIT to a run on 2 cores."""
 
 import os
 
-import mpmath
-import pytest
+# before any test module imports SymPy: the same ground types as the package (chaplygin_nd/__init__)
+os.environ.setdefault("SYMPY_GROUND_TYPES", "gmpy")
+
+import mpmath  # noqa: E402
+import pytest  # noqa: E402
 
 
 @pytest.fixture(scope="session", autouse=True)
