@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 from chaplygin_nd.generated import axisym as g
+from chaplygin_nd.generated import expression_builders as eb
 
 __all__ = ["vec", "unvec", "L_gamma", "angular_velocity", "vector_field", "energy", "zeta", "chi",
            "expm_skew", "vertical_solution"]
@@ -90,12 +91,54 @@ def angular_velocity(M, gamma, a, b, method: str = "auto") -> np.ndarray:
     return _terms_apply(c, M, gamma)
 
 
+class _NumpyOps:
+    """``ops`` of the generated expression builders for float arrays."""
+
+    sqrt = staticmethod(np.sqrt)
+
+    @staticmethod
+    def rational(p: int, q: int) -> float:
+        return p / q
+
+
+#: The pairs of the structured field's weights (order of ``structured_field_weights``).
+_STRUCTURED_PAIRS = [(i, j) for i in range(6) for j in range(i + 1, 6)]
+
+
+def _matvec(M: np.ndarray, v: np.ndarray) -> np.ndarray:
+    return np.einsum("...ij,...j->...i", M, v)
+
+
 def vector_field(M, gamma, a, b, method: str = "auto") -> tuple[np.ndarray, np.ndarray]:
     r"""$(\dot M, \dot\gamma) = ([M, \Omega], -\Omega\gamma)$, $\Omega = L_\gamma^{-1}M$ (eq:motion-general);
-    domain as :func:`angular_velocity`."""
+    domain as :func:`angular_velocity`. ``method``: ``"auto"`` — the structured $O(n^2)$ form of row
+    S4:structured-field, $\dot M = \sum w_{ij}V_i\wedge V_j$, $\dot\gamma = \sum u_iV_i$ over
+    $V = (M^2\gamma, M^2E_n, M\gamma, ME_n, \gamma, E_n)$ with the generated weights (structural
+    zeros skipped); ``"matrix"`` — $M\Omega - \Omega M$ with the matrix $\Omega$ (for comparisons)."""
     M, gamma = np.asarray(M, dtype=float), np.asarray(gamma, dtype=float)
-    Omega = angular_velocity(M, gamma, a, b, method)
-    return M @ Omega - Omega @ M, -np.einsum("...ij,...j->...i", Omega, gamma)
+    if method == "matrix":
+        Omega = angular_velocity(M, gamma, a, b, method)
+        return M @ Omega - Omega @ M, -_matvec(Omega, gamma)
+    n = M.shape[-1]
+    e = np.zeros(n)
+    e[-1] = 1.0
+    Mg = _matvec(M, gamma)
+    Me = M[..., :, -1]
+    V = [_matvec(M, Mg), _matvec(M, Me), Mg, Me, gamma, e]
+    weights = eb.structured_field_weights(gamma[..., -1], Mg[..., -1],
+                                          np.einsum("...i,...i->...", gamma, gamma),
+                                          np.asarray(a, dtype=float), np.asarray(b, dtype=float),
+                                          _NumpyOps)
+    w, u = weights[:len(_STRUCTURED_PAIRS)], weights[len(_STRUCTURED_PAIRS):]
+    A: dict[int, np.ndarray] = {}
+    for (i, j), wij in zip(_STRUCTURED_PAIRS, w):
+        if not (isinstance(wij, int) and wij == 0):
+            A[j] = A.get(j, 0) + np.asarray(wij)[..., None] * V[i]
+    Mdot = sum(_wedge(Aj, V[j]) for j, Aj in A.items())
+    gdot = sum(np.asarray(ui)[..., None] * Vi for ui, Vi in zip(u, V)
+               if not (isinstance(ui, int) and ui == 0))
+    shape = np.broadcast_shapes(M.shape, gamma.shape[:-1] + (n, n))
+    return np.broadcast_to(Mdot, shape).copy(), np.broadcast_to(gdot, shape[:-1]).copy()
 
 
 def energy(M, gamma, a, b, method: str = "auto") -> np.ndarray:
