@@ -14,9 +14,10 @@ Compiled integrators are cached on disk (:mod:`runtime.jit_cache`); the solution
 reports the compile or load time in ``compile_seconds`` apart from the run time ``seconds``.
 
 Compact mode (heyoka's loop-based code generation) compiles several times faster and runs slower;
-``compact=None`` chooses it for ``real128`` and ``real`` (where compiling the unrolled code is slow
-and the arithmetic dominates) and for systems with more than 20 variables (e.g. with the
-reconstruction), and not otherwise (measured: ``bench/bench_heyoka.py``).
+``compact=None`` chooses it (:func:`default_compact`). Measured with the O(n^2) field (tol 1e-12,
+2 shared cores): unrolled compiles in 2.1 / 3.6 / 5.8 / 9.6 / 18 s at n = 3 / 4 / 5 / 6 / 8 against
+0.7–1.1 s compact, and steps about 2x faster; so unrolled pays only on long runs or when it is
+already cached — a choice the planner's cost model makes (:mod:`simulate.cost`) and passes here.
 """
 
 from __future__ import annotations
@@ -32,7 +33,7 @@ from chaplygin_nd.simulate.integrators import heyoka_systems
 from chaplygin_nd.simulate.integrators.base import Solution
 
 __all__ = ["available", "integrate", "order_for", "bits_for_digits", "compiled_integrator",
-           "default_tol"]
+           "default_tol", "default_compact"]
 
 
 def available() -> bool:
@@ -88,25 +89,36 @@ class _Numbers:
         return np.array(flat).reshape(values.shape)
 
 
+def default_compact(system, kind: str) -> bool:
+    """Compact mode unless told otherwise (see the module docstring); ``system`` and ``kind`` are
+    accepted for a future rule."""
+    return True
+
+
 def compiled_integrator(system, precision="double", tol=None, compact=None, batch: int = 1,
                         cache: bool = True):
     r"""``(integrator, seconds, how)``: a heyoka Taylor integrator of ``system``
     (:class:`heyoka_systems.System`) at ``precision``, tolerance ``tol`` (default: epsilon),
     ``batch`` trajectories per step (double only), from the disk cache when possible
     (``how`` = "cold compile" / "warm load" / "in memory"; ``seconds`` of that)."""
-    import heyoka as hy
-
     kind, bits = _kind(precision)
     tol = default_tol(precision) if tol is None else float(tol)
     if compact is None:
-        compact = kind != "double" or system.dim > 20
+        compact = default_compact(system, kind)
     if batch > 1 and kind != "double":
         raise ValueError("batch mode needs double precision")
+    token = ("taylor_adaptive", system.name, system.parameters, kind, bits, tol, bool(compact),
+             int(batch), bool(cache))
+    hit = jit_cache.memory_hit(token)
+    if hit is not None:  # a warm call: one dictionary lookup, no graph, no hash
+        return hit, 0.0, "in memory"
+    import heyoka as hy
+
+    key = {"object": "taylor_adaptive", "system": system.name, "parameters": list(system.parameters),
+           "tol": repr(tol), "precision": f"{kind}:{bits}", "compact": bool(compact),
+           "batch": int(batch), "heyoka": hy.__version__}
     ops = HeyokaArithmetic(hy, kind, bits)
     numbers = _Numbers(hy, kind, bits)
-    key = {"source": system.fingerprint(hy, ops), "system": system.name, "tol": repr(tol),
-           "precision": f"{kind}:{bits}", "compact": bool(compact), "batch": int(batch),
-           "heyoka": hy.__version__}
 
     def build():
         eqs = system.equations(hy, ops)
@@ -125,7 +137,16 @@ def compiled_integrator(system, precision="double", tol=None, compact=None, batc
         return hy.taylor_adaptive(eqs, state, pars=pars, tol=hy.real(tol, bits),
                                   compact_mode=compact, fp_type=hy.real, prec=bits)
 
-    return jit_cache.load_or_build(key, build, use_disk=cache)
+    return jit_cache.load_or_build(key, build, use_disk=cache,
+                                   source=lambda: system.fingerprint(hy, ops),
+                                   expect=_integrator_types(hy), token=token)
+
+
+def _integrator_types(hy) -> tuple[type, ...]:
+    """The classes a cached integrator may have (a loaded object of another type is rebuilt)."""
+    names = ("taylor_adaptive_dbl", "taylor_adaptive_f128", "taylor_adaptive_real",
+             "taylor_adaptive_batch_dbl")
+    return tuple(getattr(hy, k) for k in names if hasattr(hy, k))
 
 
 def integrate(field, y0: np.ndarray, t: np.ndarray, tol: float | None = None,
@@ -153,7 +174,7 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, tol: float | None = None,
     out = np.empty((len(t), count, system.dim))
     high = np.empty((len(t), count, system.dim), dtype=object) if kind != "double" else None
     steps = 0
-    watch = _watch(progress)
+    watch = _watch(progress) if progress is not None else None  # no Python call per step otherwise
     start = time.perf_counter()
     if width > 1:
         for s in range(0, count, width):
@@ -164,7 +185,8 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, tol: float | None = None,
             ta.pars[:] = np.repeat(np.asarray(values, float)[:, None], width, 1)
             ta.set_time(float(t[0]))
             _, states = ta.propagate_grid(np.repeat(t[:, None], width, 1), callback=watch)
-            watch.raise_error()
+            if watch is not None:
+                watch.raise_error()
             for lane, (outcome, _, _, n) in enumerate(ta.propagate_res):
                 _check(hy, outcome, system, ta.time[lane])
                 steps = max(steps, n)
@@ -178,7 +200,8 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, tol: float | None = None,
             ta.pars[:] = numbers.array(values)
             ta.time = numbers.scalar(float(t[0]))
             outcome, _, _, n, _, states = ta.propagate_grid(grid, callback=watch)
-            watch.raise_error()
+            if watch is not None:
+                watch.raise_error()
             _check(hy, outcome, system, ta.time)
             steps += n
             if kind == "double":
@@ -208,8 +231,6 @@ def _watch(progress):
     error: list[BaseException] = []
 
     def callback(ta) -> bool:
-        if progress is None:
-            return True
         try:
             reached = np.min(np.asarray(ta.time, dtype=float))
             progress(float(reached))
