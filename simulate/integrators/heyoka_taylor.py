@@ -33,7 +33,7 @@ from chaplygin_nd.simulate.integrators import heyoka_systems
 from chaplygin_nd.simulate.integrators.base import Solution
 
 __all__ = ["available", "integrate", "order_for", "bits_for_digits", "compiled_integrator",
-           "default_tol", "default_compact"]
+           "default_tol", "default_compact", "cache_key"]
 
 
 def available() -> bool:
@@ -95,6 +95,17 @@ def default_compact(system, kind: str) -> bool:
     return True
 
 
+def cache_key(system, precision, tol: float, compact: bool, batch: int) -> dict:
+    """What identifies a compiled integrator in :mod:`runtime.jit_cache` (known without importing
+    heyoka or building the graph: the planner asks the cache state with it)."""
+    from importlib.metadata import version
+
+    kind, bits = _kind(precision)
+    return {"object": "taylor_adaptive", "system": system.name, "parameters": list(system.parameters),
+            "tol": repr(float(tol)), "precision": f"{kind}:{bits}", "compact": bool(compact),
+            "batch": int(batch), "heyoka": version("heyoka")}
+
+
 def compiled_integrator(system, precision="double", tol=None, compact=None, batch: int = 1,
                         cache: bool = True):
     r"""``(integrator, seconds, how)``: a heyoka Taylor integrator of ``system``
@@ -114,9 +125,7 @@ def compiled_integrator(system, precision="double", tol=None, compact=None, batc
         return hit, 0.0, "in memory"
     import heyoka as hy
 
-    key = {"object": "taylor_adaptive", "system": system.name, "parameters": list(system.parameters),
-           "tol": repr(tol), "precision": f"{kind}:{bits}", "compact": bool(compact),
-           "batch": int(batch), "heyoka": hy.__version__}
+    key = cache_key(system, precision, tol, compact, batch)
     ops = HeyokaArithmetic(hy, kind, bits)
     numbers = _Numbers(hy, kind, bits)
 
@@ -170,14 +179,20 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, tol: float | None = None,
     width = (hy.recommended_simd_size() if batch is True else int(batch or 1)) if kind == "double" else 1
     width = max(1, min(width, count)) if count > 1 else 1
     ta, compile_seconds, how = compiled_integrator(system, precision, tol, compact, width, cache)
+    restart = getattr(progress, "restart", None)
+    if restart is not None:
+        restart()  # a run budget measures the integration, not the compile or load before it
     numbers = _Numbers(hy, kind, bits)
     out = np.empty((len(t), count, system.dim))
     high = np.empty((len(t), count, system.dim), dtype=object) if kind != "double" else None
     steps = 0
-    watch = _watch(progress) if progress is not None else None  # no Python call per step otherwise
+    passes = -(-count // width)  # the members run in this many passes, one after the other
+    watch = _watch(progress, float(t[0]), float(t[-1]), passes) if progress is not None else None
     start = time.perf_counter()
     if width > 1:
         for s in range(0, count, width):
+            if watch is not None:
+                watch.done = s // width
             chunk = y0[s:s + width]
             used = chunk.shape[0]
             block = np.concatenate([chunk, np.repeat(chunk[-1:], width - used, 0)])  # pad
@@ -196,6 +211,8 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, tol: float | None = None,
     else:
         grid = numbers.array(t)
         for e in range(count):
+            if watch is not None:
+                watch.done = e
             ta.state[:] = numbers.array(y0[e])
             ta.pars[:] = numbers.array(values)
             ta.time = numbers.scalar(float(t[0]))
@@ -223,17 +240,23 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, tol: float | None = None,
                     compile_seconds=compile_seconds)
 
 
-def _watch(progress):
+def _watch(progress, t0: float, t_end: float, passes: int):
     """A step callback for ``propagate_grid`` that reports the time reached to ``progress`` (which
-    may stop a run: non-finite time, a projected cost past the limit). heyoka cannot carry a Python
-    exception through its loop, so the callback stops the integration and :meth:`raise_error`
-    re-raises the exception afterwards. A closure, not an object: heyoka may copy the callback."""
+    may stop a run: non-finite time, a projected cost past the limit). With the ensemble run in
+    ``passes`` passes (``callback.done`` of them finished) the time reported is that of the whole
+    work done, $t_0 + (\text{done} + (t - t_0)/(t_1 - t_0))(t_1 - t_0)/\text{passes}$, so a projection
+    from it covers every pass. heyoka cannot carry a Python exception through its loop, so the
+    callback stops the integration and :meth:`raise_error` re-raises the exception afterwards. A
+    closure, not an object: heyoka may copy the callback."""
     error: list[BaseException] = []
+    span = t_end - t0
 
     def callback(ta) -> bool:
         try:
-            reached = np.min(np.asarray(ta.time, dtype=float))
-            progress(float(reached))
+            reached = float(np.min(np.asarray(ta.time, dtype=float)))
+            if passes > 1 and span > 0 and math.isfinite(reached):
+                reached = t0 + (callback.done + (reached - t0) / span) * span / passes
+            progress(reached)
         except Exception as exc:  # noqa: BLE001 - re-raised by raise_error
             error.append(exc)
             return False
@@ -244,6 +267,7 @@ def _watch(progress):
             raise error[0]
 
     callback.raise_error = raise_error
+    callback.done = 0
     return callback
 
 
