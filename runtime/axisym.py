@@ -19,7 +19,8 @@ import numpy as np
 from chaplygin_nd.generated import axisym as g
 from chaplygin_nd.generated import expression_builders as eb
 
-__all__ = ["vec", "unvec", "L_gamma", "angular_velocity", "vector_field", "energy", "zeta", "chi",
+__all__ = ["vec", "unvec", "L_gamma", "angular_velocity", "vector_field", "energy", "p_coefficients",
+           "zeta", "chi",
            "expm_skew", "vertical_solution"]
 
 
@@ -147,6 +148,37 @@ def energy(M, gamma, a, b, method: str = "auto") -> np.ndarray:
     M = np.asarray(M, dtype=float)
     Omega = angular_velocity(M, gamma, a, b, method)
     return 0.5 * np.sum(vec(M) * vec(Omega), axis=-1)
+
+
+def _poly_from_roots(roots: np.ndarray) -> np.ndarray:
+    """Coefficients (highest power first) of prod_k (lambda - roots[..., k]), vectorised over the
+    batch (what numpy.poly does for one set of roots)."""
+    c = np.zeros(roots.shape[:-1] + (roots.shape[-1] + 1,), dtype=complex)
+    c[..., 0] = 1.0
+    for k in range(roots.shape[-1]):
+        c[..., 1:k + 2] = c[..., 1:k + 2] - roots[..., k:k + 1] * c[..., 0:k + 1]
+    return c
+
+
+def p_coefficients(M, gamma) -> np.ndarray:
+    r"""Coefficients of $p(\lambda,\sigma) = \det(M + \sigma\gamma\gamma^T - \lambda\,\mathrm{Id})$
+    (eq:pol-first-integrals), ``out[..., i, j]`` multiplying $\lambda^i\sigma^j$, shape ``(..., n+1, 2)``;
+    $M$ ``(..., n, n)``, $\gamma$ ``(..., n)``, any $n$. For $n = 3, 4$ the generated kernels (the
+    expanded determinant, emitted from the derived expression); otherwise, since $p$ is affine in
+    $\sigma$, $p = \det(M - \lambda) + \sigma(\det(M + \gamma\gamma^T - \lambda) - \det(M - \lambda))$
+    from batched eigenvalues (one LAPACK call for the whole batch, no Python loop)."""
+    M, gamma = np.asarray(M, dtype=float), np.asarray(gamma, dtype=float)
+    n = M.shape[-1]
+    if n in (3, 4):
+        kernel = g.p_coefficients_3d if n == 3 else g.p_coefficients_4d
+        return kernel(vec(M), gamma)
+    shape = np.broadcast_shapes(M.shape[:-2], gamma.shape[:-1])
+    M = np.broadcast_to(M, shape + (n, n))
+    G = M + gamma[..., :, None] * gamma[..., None, :]
+    c0 = np.real(_poly_from_roots(np.linalg.eigvals(M)))
+    c1 = np.real(_poly_from_roots(np.linalg.eigvals(G)))
+    sign = (-1.0) ** n  # det(M - lambda) = (-1)^n det(lambda - M)
+    return np.stack([sign * c0[..., ::-1], sign * (c1 - c0)[..., ::-1]], axis=-1)
 
 
 def zeta(M0, gamma0, a, b) -> np.ndarray:
