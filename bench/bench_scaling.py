@@ -144,6 +144,8 @@ def _scene_variant(scene: str, method: str | None, folder: Path) -> Path:
     text = (ROOT / "scenes" / f"{scene}.toml").read_text()
     if method is not None:
         text = re.sub(r"(?m)^\s*method\s*=.*$", "", text)
+        if "[accuracy]" not in text:
+            text += "\n[accuracy]\n"
         text = text.replace("[accuracy]", f'[accuracy]\nmethod = "{method}"', 1)
     path = folder / f"{scene}-{method or 'auto'}.toml"
     path.write_text(text)
@@ -197,8 +199,14 @@ def first_result_rows(scenes=SCENES) -> list[dict]:
                             env = dict(env, CHAPLYGIN_ND_CACHE=str(tmp / f"cache-{scene}-{k}-0" / "nd"),
                                        XDG_CACHE_HOME=str(tmp / f"cache-{scene}-{k}-0" / "xdg"))
                         r = _run_cli(path, env, tmp / f"out-{scene}-{k}-{state}-{rep}")
+                        if k in best and best[k]["integration"] and r["integration"]:
+                            # a ~1 ms integration is one scheduler quantum from 10 ms on a loaded
+                            # machine: the best of the two is the estimate's reference
+                            r["integration"] = min(r["integration"], best[k]["integration"])
                         if k not in best or r["wall"] < best[k]["wall"]:
-                            best[k] = r
+                            best[k] = dict(r, integration=r["integration"] if k not in best else
+                                           min(r["integration"] or math.inf,
+                                               best[k]["integration"] or math.inf))
                 for k, r in best.items():
                     rows.append({"scene": scene, "caches": state, "variant": k, **r})
                 print(f"  {scene} {state}: " + ", ".join(
@@ -239,9 +247,16 @@ def _figure(rows, path: Path) -> dict:
     ax2.set_xlabel("n")
     ax2.set_ylabel("elementary operations")
     ax2.set_title("heyoka's decomposition of the full field")
+    from matplotlib.ticker import FixedLocator, NullLocator, ScalarFormatter
+
+    ticks = sorted({r["n"] for r in rows})
     for a in (ax, ax2):
+        a.xaxis.set_major_locator(FixedLocator(ticks))
+        a.xaxis.set_major_formatter(ScalarFormatter())
+        a.xaxis.set_minor_locator(NullLocator())
         a.grid(True, which="both", lw=0.3)
-        a.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(0.0, 0.6))
+    ax2.legend(fontsize=8, loc="upper left")
     save_figure(fig, path)
     plt.close(fig)
     return fits
