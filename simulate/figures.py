@@ -119,7 +119,11 @@ def _constant(ax, y) -> bool:
 def _ensemble(ax, t, Y, color="C0", label=None, legend=True):
     """All members of ``Y (S, count)`` thin, the median bold and the 5-95 % band."""
     count = Y.shape[1]
-    lo, med, hi = np.nanpercentile(Y, [5, 50, 95], axis=1)
+    import warnings
+
+    with warnings.catch_warnings():  # a sample where every member is nan (e.g. a zero drift at t0)
+        warnings.simplefilter("ignore", RuntimeWarning)
+        lo, med, hi = np.nanpercentile(Y, [5, 50, 95], axis=1)
     ax.fill_between(t, lo, hi, color=color, alpha=0.12, lw=0, label="5–95 % of members")
     from matplotlib.collections import LineCollection
 
