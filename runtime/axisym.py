@@ -17,8 +17,10 @@ from __future__ import annotations
 
 import numpy as np
 from chaplygin_nd.generated import axisym as g
+from chaplygin_nd.generated import expression_builders as eb
 
-__all__ = ["vec", "unvec", "L_gamma", "angular_velocity", "vector_field", "energy", "zeta", "chi",
+__all__ = ["vec", "unvec", "L_gamma", "angular_velocity", "vector_field", "energy", "p_coefficients",
+           "zeta", "chi",
            "expm_skew", "vertical_solution"]
 
 
@@ -90,12 +92,54 @@ def angular_velocity(M, gamma, a, b, method: str = "auto") -> np.ndarray:
     return _terms_apply(c, M, gamma)
 
 
+class _NumpyOps:
+    """``ops`` of the generated expression builders for float arrays."""
+
+    sqrt = staticmethod(np.sqrt)
+
+    @staticmethod
+    def rational(p: int, q: int) -> float:
+        return p / q
+
+
+#: The pairs of the structured field's weights (order of ``structured_field_weights``).
+_STRUCTURED_PAIRS = [(i, j) for i in range(6) for j in range(i + 1, 6)]
+
+
+def _matvec(M: np.ndarray, v: np.ndarray) -> np.ndarray:
+    return np.einsum("...ij,...j->...i", M, v)
+
+
 def vector_field(M, gamma, a, b, method: str = "auto") -> tuple[np.ndarray, np.ndarray]:
     r"""$(\dot M, \dot\gamma) = ([M, \Omega], -\Omega\gamma)$, $\Omega = L_\gamma^{-1}M$ (eq:motion-general);
-    domain as :func:`angular_velocity`."""
+    domain as :func:`angular_velocity`. ``method``: ``"auto"`` — the structured $O(n^2)$ form of row
+    S4:structured-field, $\dot M = \sum w_{ij}V_i\wedge V_j$, $\dot\gamma = \sum u_iV_i$ over
+    $V = (M^2\gamma, M^2E_n, M\gamma, ME_n, \gamma, E_n)$ with the generated weights (structural
+    zeros skipped); ``"matrix"`` — $M\Omega - \Omega M$ with the matrix $\Omega$ (for comparisons)."""
     M, gamma = np.asarray(M, dtype=float), np.asarray(gamma, dtype=float)
-    Omega = angular_velocity(M, gamma, a, b, method)
-    return M @ Omega - Omega @ M, -np.einsum("...ij,...j->...i", Omega, gamma)
+    if method == "matrix":
+        Omega = angular_velocity(M, gamma, a, b, method)
+        return M @ Omega - Omega @ M, -_matvec(Omega, gamma)
+    n = M.shape[-1]
+    e = np.zeros(n)
+    e[-1] = 1.0
+    Mg = _matvec(M, gamma)
+    Me = M[..., :, -1]
+    V = [_matvec(M, Mg), _matvec(M, Me), Mg, Me, gamma, e]
+    weights = eb.structured_field_weights(gamma[..., -1], Mg[..., -1],
+                                          np.einsum("...i,...i->...", gamma, gamma),
+                                          np.asarray(a, dtype=float), np.asarray(b, dtype=float),
+                                          _NumpyOps)
+    w, u = weights[:len(_STRUCTURED_PAIRS)], weights[len(_STRUCTURED_PAIRS):]
+    A: dict[int, np.ndarray] = {}
+    for (i, j), wij in zip(_STRUCTURED_PAIRS, w):
+        if not (isinstance(wij, int) and wij == 0):
+            A[j] = A.get(j, 0) + np.asarray(wij)[..., None] * V[i]
+    Mdot = sum(_wedge(Aj, V[j]) for j, Aj in A.items())
+    gdot = sum(np.asarray(ui)[..., None] * Vi for ui, Vi in zip(u, V)
+               if not (isinstance(ui, int) and ui == 0))
+    shape = np.broadcast_shapes(M.shape, gamma.shape[:-1] + (n, n))
+    return np.broadcast_to(Mdot, shape).copy(), np.broadcast_to(gdot, shape[:-1]).copy()
 
 
 def energy(M, gamma, a, b, method: str = "auto") -> np.ndarray:
@@ -104,6 +148,37 @@ def energy(M, gamma, a, b, method: str = "auto") -> np.ndarray:
     M = np.asarray(M, dtype=float)
     Omega = angular_velocity(M, gamma, a, b, method)
     return 0.5 * np.sum(vec(M) * vec(Omega), axis=-1)
+
+
+def _poly_from_roots(roots: np.ndarray) -> np.ndarray:
+    """Coefficients (highest power first) of prod_k (lambda - roots[..., k]), vectorised over the
+    batch (what numpy.poly does for one set of roots)."""
+    c = np.zeros(roots.shape[:-1] + (roots.shape[-1] + 1,), dtype=complex)
+    c[..., 0] = 1.0
+    for k in range(roots.shape[-1]):
+        c[..., 1:k + 2] = c[..., 1:k + 2] - roots[..., k:k + 1] * c[..., 0:k + 1]
+    return c
+
+
+def p_coefficients(M, gamma) -> np.ndarray:
+    r"""Coefficients of $p(\lambda,\sigma) = \det(M + \sigma\gamma\gamma^T - \lambda\,\mathrm{Id})$
+    (eq:pol-first-integrals), ``out[..., i, j]`` multiplying $\lambda^i\sigma^j$, shape ``(..., n+1, 2)``;
+    $M$ ``(..., n, n)``, $\gamma$ ``(..., n)``, any $n$. For $n = 3, 4$ the generated kernels (the
+    expanded determinant, emitted from the derived expression); otherwise, since $p$ is affine in
+    $\sigma$, $p = \det(M - \lambda) + \sigma(\det(M + \gamma\gamma^T - \lambda) - \det(M - \lambda))$
+    from batched eigenvalues (one LAPACK call for the whole batch, no Python loop)."""
+    M, gamma = np.asarray(M, dtype=float), np.asarray(gamma, dtype=float)
+    n = M.shape[-1]
+    if n in (3, 4):
+        kernel = g.p_coefficients_3d if n == 3 else g.p_coefficients_4d
+        return kernel(vec(M), gamma)
+    shape = np.broadcast_shapes(M.shape[:-2], gamma.shape[:-1])
+    M = np.broadcast_to(M, shape + (n, n))
+    G = M + gamma[..., :, None] * gamma[..., None, :]
+    c0 = np.real(_poly_from_roots(np.linalg.eigvals(M)))
+    c1 = np.real(_poly_from_roots(np.linalg.eigvals(G)))
+    sign = (-1.0) ** n  # det(M - lambda) = (-1)^n det(lambda - M)
+    return np.stack([sign * c0[..., ::-1], sign * (c1 - c0)[..., ::-1]], axis=-1)
 
 
 def zeta(M0, gamma0, a, b) -> np.ndarray:

@@ -27,20 +27,36 @@ __all__ = ["angular_velocity_function", "angular_velocity_columns", "angular_vel
 def angular_velocity_function(n: int, cache: bool = True):
     r"""``(cfunc, seconds, how)``: the compiled $\mathrm{vec}\,L_\gamma^{-1}M$ for this $n$ (P:inversion),
     variables $(\mathrm{vec}\,M, \gamma)$, parameters $(a, b)$; ``how``: cold compile / warm load / in
-    memory, ``seconds`` of that."""
+    memory, ``seconds`` of that. A warm call is a dictionary lookup (the graph is built and hashed
+    only when it must be compiled, :mod:`runtime.jit_cache`)."""
+    hit = jit_cache.memory_hit(("cfunc angular_velocity", n, cache))
+    if hit is not None:
+        return hit, 0.0, "in memory"
     import heyoka as hy
 
-    ops = rx.HeyokaArithmetic(hy, "double", 53)
-    pairs = rx.pairs(n)
-    m = [hy.expression(f"M{i + 1}_{j + 1}") for i, j in pairs]
-    gamma = [hy.expression(f"gamma{i + 1}") for i in range(n)]
-    Omega = rx.angular_velocity(rx.unvec(m, n), gamma, hy.par[0], hy.par[1], ops)
-    outputs = [Omega[i][j] if not isinstance(Omega[i][j], int) else hy.expression(0.0)
-               for i, j in pairs]
-    source = hashlib.sha256("\n".join(map(str, outputs)).encode()).hexdigest()
-    key = {"source": source, "function": f"angular_velocity n={n}", "precision": "double",
+    key = {"object": "cfunc", "function": f"angular_velocity n={n}", "precision": "double",
            "heyoka": hy.__version__}
-    return jit_cache.load_or_build(key, lambda: hy.cfunc(outputs, m + gamma), use_disk=cache)
+    graph: list = []
+
+    def outputs_and_variables():
+        if not graph:
+            ops = rx.HeyokaArithmetic(hy, "double", 53)
+            pairs = rx.pairs(n)
+            m = [hy.expression(f"M{i + 1}_{j + 1}") for i, j in pairs]
+            gamma = [hy.expression(f"gamma{i + 1}") for i in range(n)]
+            Omega = rx.angular_velocity(rx.unvec(m, n), gamma, hy.par[0], hy.par[1], ops)
+            outputs = [Omega[i][j] if not isinstance(Omega[i][j], int) else hy.expression(0.0)
+                       for i, j in pairs]
+            graph.extend([outputs, m + gamma])
+        return graph
+
+    def source() -> str:
+        return hashlib.sha256("\n".join(map(str, outputs_and_variables()[0])).encode()).hexdigest()
+
+    return jit_cache.load_or_build(
+        key, lambda: hy.cfunc(*outputs_and_variables()), use_disk=cache, source=source,
+        expect=(hy.cfunc_dbl,) if hasattr(hy, "cfunc_dbl") else (),
+        token=("cfunc angular_velocity", n, cache))
 
 
 def angular_velocity_columns(inputs: np.ndarray, a, b, out: np.ndarray | None = None,

@@ -1,20 +1,37 @@
-r"""A disk cache of compiled heyoka objects (integrators, compiled functions).
+r"""A cache of compiled heyoka objects (integrators, compiled functions): in memory and on disk.
 
 heyoka objects pickle together with their LLVM-compiled code, so the second run of a system loads
-in milliseconds instead of compiling for seconds. An entry is keyed by everything the compiled
-code depends on — the SHA-256 of the expressions handed to heyoka (their source hash), the
-tolerance, the precision, the mode (compact, batch size) and the heyoka version — and stores that
-key beside the object. An entry that does not unpickle, or whose stored key differs from the one
-asked for, is rebuilt with a warning and overwritten; it is never trusted. Writes are atomic
+in milliseconds instead of compiling for seconds.
+
+**Keys.** An entry is keyed by what *identifies* the compiled code, known without building
+anything: the kind of object and its system (name, $n$), tolerance, precision, mode (compact,
+batch size) and the versions — heyoka's, and :func:`code_version`, a SHA-256 of the source of the
+modules that build the expression graphs (generated builders, their assembly, the systems). The
+in-memory lookup is a dictionary lookup on that key (a warm call costs microseconds); the text of
+the expressions (their own SHA-256, ``source``) is computed only on a disk miss, when the graph
+is built anyway, and stored beside the object for the record.
+
+**A cache is an optimisation, never a failure and never a way in.**
+
+* Nothing is unpickled (``pickle.load`` runs code) from a folder another user could write: before
+  reading, the file, its folder and the cache root must be owned by this user and not writable by
+  group or others (as ssh checks its keys). Otherwise the cache is refused with one warning and the
+  run goes on uncached (nothing read, nothing written there).
+* An entry that does not unpickle, whose stored key differs, or whose object is not of the expected
+  type is rebuilt with a warning and overwritten; it is never trusted.
+* A cache that cannot be written (read-only or full file system, ``$CHAPLYGIN_ND_CACHE`` naming a
+  file) warns once and the run goes on with the built object.
+
+Every warning names the path and the variable ``CHAPLYGIN_ND_CACHE`` that moves the cache, and is
+given once per process and path. Folders are created private (0700), files 0600, writes atomic
 (a temporary file in the same folder, then ``os.replace``).
 
-heyoka >= 7 also keeps its own cache of compiled object code (``~/.cache/heyoka``, on by default),
-keyed by the LLVM IR; a hit there still rebuilds the decomposition and the IR. Measured (2 shared
-cores): n = 4 full field, tol 1e-11 — construction with a heyoka disk-cache hit 54 ms, our unpickle
-17 ms; n = 6 — 265 ms vs 17 ms; a cold compile is 3–20 s. Both caches are left on.
+heyoka >= 7 also keeps its own cache of compiled object code (``~/.cache/heyoka``), keyed by the
+LLVM IR; a hit there still rebuilds the decomposition and the IR. Measured (2 shared cores):
+n = 4 full field, tol 1e-11 — construction with a heyoka disk-cache hit 54 ms, our unpickle 17 ms;
+a cold compile is 1–20 s. Both caches are left on.
 
-Folder: the ``heyoka/`` subfolder of the project's one cache folder (:mod:`chaplygin_nd.cache`:
-``$CHAPLYGIN_ND_CACHE``, else the platform's user cache folder).
+Folder: the ``heyoka/`` subfolder of the project's one cache folder (:mod:`chaplygin_nd.cache`).
 """
 
 from __future__ import annotations
@@ -23,22 +40,31 @@ import hashlib
 import json
 import os
 import pickle
+import stat
 import tempfile
 import time
 import warnings
 from collections.abc import Callable
+from functools import cache
 from pathlib import Path
 
 from chaplygin_nd import cache as project_cache
 
-__all__ = ["cache_dir", "load_or_build", "CacheWarning"]
+__all__ = ["cache_dir", "load_or_build", "memory_hit", "CacheWarning", "code_version", "forget_memory",
+           "cache_state", "unsafe_reason"]
 
 ENV = project_cache.ENV
-_MEMORY: dict[str, object] = {}
+_MEMORY: dict[tuple, object] = {}
+_WARNED: set[tuple[str, str]] = set()
+
+#: Modules whose source decides the expression graphs heyoka compiles (see :func:`code_version`).
+CODE_MODULES = ("chaplygin_nd.generated.expression_builders", "chaplygin_nd.runtime.expressions",
+                "chaplygin_nd.simulate.integrators.heyoka_systems", "chaplygin_nd.runtime.compiled",
+                "chaplygin_nd.simulate.integrators.heyoka_taylor")
 
 
 class CacheWarning(UserWarning):
-    """A cache entry was corrupt or stale and has been rebuilt."""
+    """A cache entry was corrupt, stale or unsafe, or the cache could not be written; the run goes on."""
 
 
 def cache_dir() -> Path:
@@ -46,12 +72,57 @@ def cache_dir() -> Path:
     return project_cache.cache_dir("heyoka")
 
 
-def _digest(key: dict) -> str:
-    return hashlib.sha256(json.dumps(key, sort_keys=True).encode()).hexdigest()[:32]
+@cache
+def code_version() -> str:
+    """SHA-256 (16 hex digits) of the source files of :data:`CODE_MODULES` (read once per process)."""
+    import importlib.util
+
+    h = hashlib.sha256()
+    for name in CODE_MODULES:
+        spec = importlib.util.find_spec(name)
+        h.update(name.encode())
+        if spec is not None and spec.origin:
+            h.update(Path(spec.origin).read_bytes())
+    return h.hexdigest()[:16]
+
+
+def _warn(path: Path, problem: str, what: str) -> None:
+    if (str(path), problem) in _WARNED:
+        return
+    _WARNED.add((str(path), problem))
+    warnings.warn(f"heyoka cache {path}: {problem}; {what} (the cache folder is set by {ENV})",
+                  CacheWarning, stacklevel=4)
+
+
+def unsafe_reason(path: Path) -> str | None:
+    """Why ``path`` (a file or folder of the cache) may not be trusted, or None: it must be owned by
+    this user and not writable by group or others. Not applicable on Windows (None)."""
+    if os.name == "nt" or not hasattr(os, "getuid"):
+        return None
+    try:
+        st = path.lstat()
+    except OSError as exc:
+        return f"cannot be inspected ({exc.strerror})"
+    if stat.S_ISLNK(st.st_mode):
+        return "is a symbolic link"
+    if st.st_uid != os.getuid():
+        return f"is owned by uid {st.st_uid}, not by this user (uid {os.getuid()})"
+    if st.st_mode & (stat.S_IWGRP | stat.S_IWOTH):
+        return f"is writable by {'group' if st.st_mode & stat.S_IWGRP else 'others'} (mode {stat.S_IMODE(st.st_mode):04o})"
+    return None
+
+
+def _chain_unsafe(path: Path) -> tuple[Path, str] | None:
+    """The first of the file, its folder and the cache root that may not be trusted."""
+    root = project_cache.cache_root()
+    for p in (path, path.parent, root):
+        reason = unsafe_reason(p)
+        if reason is not None:
+            return p, reason
+    return None
 
 
 def _write_atomic(path: Path, payload: bytes) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name + ".", suffix=".tmp")
     try:
         with os.fdopen(fd, "wb") as fh:
@@ -62,40 +133,128 @@ def _write_atomic(path: Path, payload: bytes) -> None:
         raise
 
 
-def load_or_build(key: dict, build: Callable[[], object], use_disk: bool = True):
+def _memory_key(key: dict) -> tuple:
+    return tuple(sorted((k, v if isinstance(v, str | int | float | bool) else repr(v))
+                        for k, v in key.items()))
+
+
+def _file_name(key: dict) -> str:
+    return hashlib.sha256(json.dumps(key, sort_keys=True).encode()).hexdigest()[:32] + ".pkl"
+
+
+def cache_state(key: dict, use_disk: bool = True) -> str:
+    """Where the object of ``key`` would come from now: ``"in memory"``, ``"on disk"`` (an entry
+    exists; it may still turn out stale) or ``"cold"``; used by the planner's cost model."""
+    key = dict(key, code=code_version())
+    if _memory_key(key) in _MEMORY:
+        return "in memory"
+    if use_disk:
+        try:
+            if (cache_dir() / _file_name(key)).is_file():
+                return "on disk"
+        except OSError:
+            pass
+    return "cold"
+
+
+def memory_hit(token: tuple):
+    """The object stored in memory under ``token`` (see :func:`load_or_build`), or None: the
+    cheapest warm lookup, before a key is even made."""
+    return _MEMORY.get(("token",) + token)
+
+
+def load_or_build(key: dict, build: Callable[[], object], use_disk: bool = True,
+                  source: Callable[[], str] | None = None, expect: tuple[type, ...] = (),
+                  token: tuple | None = None):
     r"""``(object, seconds, how)``: the object for ``key`` from memory (``how = "in memory"``), from
     disk (``"warm load"``) or from ``build()`` (``"cold compile"``, then stored); ``seconds`` is the
-    time of that load or compile. ``key``: a JSON-serialisable dict (see the module docstring)."""
-    name = _digest(key)
-    if name in _MEMORY:
-        return _MEMORY[name], 0.0, "in memory"
-    path = cache_dir() / f"{name}.pkl"
+    time of that load or compile. ``key``: a JSON-serialisable dict of what identifies the object
+    (:func:`code_version` is added); ``source()``: the expressions' text hash, called on a disk miss
+    only; ``expect``: the types a loaded object must have; ``token``: a hashable alias of ``key``
+    for :func:`memory_hit`. Never raises because of the cache."""
+    key = dict(key, code=code_version())
+    mkey = _memory_key(key)
+    hit = _MEMORY.get(mkey)
+    if hit is not None:
+        if token is not None:
+            _MEMORY[("token",) + token] = hit
+        return hit, 0.0, "in memory"
+    obj, seconds, how = _load_or_build(key, mkey, build, use_disk, source, expect)
+    if token is not None:
+        _MEMORY[("token",) + token] = obj
+    return obj, seconds, how
+
+
+def _load_or_build(key, mkey, build, use_disk, source, expect):
     start = time.perf_counter()
-    if use_disk and path.exists():
-        problem = None
-        try:
-            with path.open("rb") as fh:
-                entry = pickle.load(fh)
-            if not isinstance(entry, dict) or entry.get("key") != key:
-                problem = "stale (its stored key differs)"
-            else:
-                obj = entry["object"]
-        except Exception as exc:  # a truncated or foreign file: never trusted
-            problem = f"corrupt ({type(exc).__name__}: {exc})"
-        if problem is None:
-            _MEMORY[name] = obj
+    path = cache_dir() / _file_name(key)
+    if use_disk:
+        obj = _load(path, key, expect)
+        if obj is not None:
+            _MEMORY[mkey] = obj
             return obj, time.perf_counter() - start, "warm load"
-        warnings.warn(f"heyoka cache entry {path} is {problem}; rebuilding it", CacheWarning,
-                      stacklevel=3)
         start = time.perf_counter()
     obj = build()
     seconds = time.perf_counter() - start
     if use_disk:
-        _write_atomic(path, pickle.dumps({"key": key, "object": obj}))
-    _MEMORY[name] = obj
+        _store(path, key, obj, source)
+    _MEMORY[mkey] = obj
     return obj, seconds, "cold compile"
 
 
+def _load(path: Path, key: dict, expect: tuple[type, ...]):
+    """The trusted object at ``path`` or None (after a warning when there was something wrong)."""
+    try:
+        if not path.is_file():
+            return None
+    except OSError:
+        return None
+    unsafe = _chain_unsafe(path)
+    if unsafe is not None:
+        where, reason = unsafe
+        _warn(where, f"{reason}; refused (nothing is unpickled from a folder another user could "
+                     "write; make it private: chmod 700, owned by you)", "running uncached")
+        return None
+    problem = None
+    try:
+        with path.open("rb") as fh:
+            entry = pickle.load(fh)
+        if not isinstance(entry, dict) or entry.get("key") != key:
+            problem = "stale (its stored key differs)"
+        elif expect and not isinstance(entry.get("object"), expect):
+            problem = f"wrong-shaped (holds a {type(entry.get('object')).__name__})"
+        else:
+            return entry["object"]
+    except Exception as exc:  # noqa: BLE001 - a truncated or foreign file: never trusted
+        problem = f"corrupt ({type(exc).__name__}: {exc})"
+    _warn(path, f"entry is {problem}", "rebuilding it")
+    return None
+
+
+def _store(path: Path, key: dict, obj, source) -> None:
+    try:
+        entry = {"key": key, "source": source() if source else None, "object": obj}
+        payload = pickle.dumps(entry)
+    except Exception as exc:  # noqa: BLE001 - an object heyoka cannot pickle: stay in memory
+        _warn(path, f"cannot be pickled ({type(exc).__name__}: {exc})", "kept in memory only")
+        return
+    try:
+        path.parent.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
+        path.parent.mkdir(exist_ok=True, mode=0o700)
+        unsafe = _chain_unsafe(path.parent)
+        if unsafe is not None:
+            where, reason = unsafe
+            _warn(where, f"{reason}; refused (the cache folder must be private: chmod 700, owned "
+                         "by you)", "running uncached")
+            return
+        _write_atomic(path, payload)
+    except OSError as exc:
+        root = project_cache.cache_root()
+        _warn(root, f"cannot be written ({exc.strerror or exc})", "running uncached")
+
+
 def forget_memory() -> None:
-    """Drop the in-process copies (the next call loads from disk; for tests and benchmarks)."""
+    """Drop the in-process copies and the record of warnings given (for tests and benchmarks)."""
     _MEMORY.clear()
+    _WARNED.clear()
+

@@ -95,7 +95,7 @@ def main(argv: list[str] | None = None) -> int:
                                   else ({}, []))
         text = "\n".join([summary(scene, p, traj, arrays, time.perf_counter() - start, check, out),
                           *extra_lines])
-        write(folder, arrays, text, plots=not args.no_plots, extra=extra)
+        write(folder, arrays, text, plots=not args.no_plots and scene.figures, extra=extra)
     except (SceneError, OutputError, RunStopped) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2

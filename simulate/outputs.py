@@ -33,20 +33,12 @@ __all__ = ["collect", "integrals", "p_coefficients", "write"]
 
 def p_coefficients(M: np.ndarray, gamma: np.ndarray) -> np.ndarray:
     r"""Coefficients of $p(\lambda,\sigma) = \det(M + \sigma\gamma\gamma^T - \lambda\,\mathrm{Id})$
-    (eq:pol-first-integrals), ``out[..., i, j]`` multiplying $\lambda^i\sigma^j$; $p$ is affine in
-    $\sigma$ (rank one), so $p = \det(M - \lambda) + \sigma(\det(M + \gamma\gamma^T - \lambda) - \det(M - \lambda))$.
-    Numerically from eigenvalues (``numpy.poly``); any $n$."""
-    n = M.shape[-1]
-    flatM = M.reshape(-1, n, n)
-    flatg = gamma.reshape(-1, n)
-    out = np.empty((flatM.shape[0], n + 1, 2))
-    sign = (-1.0) ** n
-    for i, (Mi, gi) in enumerate(zip(flatM, flatg, strict=True)):
-        c0 = np.real(np.poly(Mi))
-        c1 = np.real(np.poly(Mi + np.outer(gi, gi)))
-        out[i, :, 0] = sign * c0[::-1]
-        out[i, :, 1] = sign * (c1 - c0)[::-1]
-    return out.reshape(M.shape[:-2] + (n + 1, 2))
+    (eq:pol-first-integrals), ``out[..., i, j]`` multiplying $\lambda^i\sigma^j$, for all samples and
+    members at once (:func:`runtime.axisym.p_coefficients`: the generated closed form for
+    $n = 3, 4$, batched eigenvalues otherwise); any $n$."""
+    from chaplygin_nd.runtime.axisym import p_coefficients as kernel
+
+    return kernel(M, gamma)
 
 
 def integrals(M, gamma, Omega) -> dict[str, np.ndarray]:
@@ -113,8 +105,10 @@ def _csv(path: Path, t: np.ndarray, arr: np.ndarray, name: str) -> None:
     idx = np.stack(np.unravel_index(np.arange(comp.shape[-1]), arr.shape[2:] or (1,)), -1) + 1
     head = ["t", "member"] + [name + ("_" + "_".join(map(str, i)) if arr.ndim > 2 else "")
                               for i in idx]
-    rows = [np.concatenate([[t[s], e], comp[s, e]]) for e in range(count) for s in range(S)]
-    np.savetxt(path, np.array(rows), delimiter=",", header=",".join(head), comments="",
+    # rows ordered member by member, sample by sample (vectorised: no Python loop over rows)
+    rows = np.concatenate([np.tile(t, count)[:, None], np.repeat(np.arange(count), S)[:, None],
+                           comp.transpose(1, 0, 2).reshape(count * S, -1)], axis=1)
+    np.savetxt(path, rows, delimiter=",", header=",".join(head), comments="",
                fmt="%.17g")
 
 

@@ -20,9 +20,11 @@ depend on the scale of $M_0$; a point passes when its residual is at most
 distance $r$ from the family leaves it at a rate $\sim r\|\Omega\|$, an error no closed form
 accounts for). The plan line says which residual was tested against which bound.
 
-Integrator of the reduced and full models (``accuracy.method = "auto"``): heyoka's Taylor method
-(:mod:`simulate.integrators.heyoka_taylor`) when heyoka is importable, else DOP853; the plan line
-says which ("heyoka Taylor, order p, tol ..."). A scene may ask for ``heyoka``, ``dop853``, ``lie``
+Integrator of the reduced and full models (``accuracy.method = "auto"``): the candidate of least
+predicted cost — compile or cache load plus run — among heyoka compact, heyoka unrolled
+(:mod:`simulate.integrators.heyoka_taylor`, when heyoka is importable) and DOP853
+(:mod:`simulate.cost`); the plan line says which ("heyoka Taylor, order p, tol ...") and prints
+every prediction. A scene may ask for ``heyoka``, ``dop853``, ``lie``
 or ``reference`` explicitly.
 
 The reconstruction ($g$, contact path) is added only when ``orientation`` or ``contact_path`` is
@@ -74,6 +76,8 @@ class Plan:
     skipped: list[str] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)  # about the scene's parameters (simulate.ball)
     detail: str = ""  # what the integrator runs with (plan line)
+    compact: bool | None = None  # heyoka's mode, chosen by the cost model (simulate.cost)
+    costs: str = ""  # the cost model's predictions (plan line)
 
     def describe(self) -> str:
         """One paragraph: model, why, and what was ruled out."""
@@ -84,6 +88,8 @@ class Plan:
         if self.skipped:
             text += "\n  not used: " + "; ".join(self.skipped)
         text += "".join(f"\n  note: {note}" for note in self.notes)
+        if self.costs:
+            text += f"\n  cost: {self.costs}"
         return text
 
 
@@ -134,8 +140,18 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
 
     def make(model, reason):
         method = _method(scene, model)
+        compact, costs = None, ""
+        if model in ("full", "reduced-7D") and method in ("heyoka", "dop853"):
+            from chaplygin_nd.simulate import cost  # the method by predicted cost (compile + run)
+
+            allowed = "auto" if scene.method == "auto" and heyoka_taylor.available() else method
+            chosen = cost.for_scene(scene, model, reconstruct, allowed,
+                                    heyoka_tolerance(scene.target), max(scene.target / 100, 2.3e-14))
+            if chosen is not None:
+                (best, costs), method = chosen, chosen[0].method
+                compact = best.compact
         return Plan(model, reason, reconstruct, method, Omega0, skipped, list(scene.notes),
-                    detail=method_detail(scene, method))
+                    detail=method_detail(scene, method), compact=compact, costs=costs)
 
     if force_full:
         return make("full", "forced (cross-check)")

@@ -56,6 +56,12 @@ class Progress:
         self.last = self.start
         self.shown = False
 
+    def restart(self) -> None:
+        """The integrator is ready (compiled or loaded): the run's clocks start now."""
+        self.start = self.last = time.perf_counter()
+        if self.projection is not None:
+            self.projection.restart()
+
     def __call__(self, t: float) -> None:
         """Report that the integration reached time ``t``."""
         if not math.isfinite(t):
@@ -178,7 +184,7 @@ def _integrate(f, y0, t, plan, scene, progress=True, force=False):
         if plan.method == "heyoka":
             _checked(f)(t[0], y0)  # a non-finite start is named here (heyoka would only say nan)
             return heyoka_taylor.integrate(f, y0, t, tol=heyoka_tolerance(scene.target),
-                                           progress=bar)
+                                           compact=getattr(plan, "compact", None), progress=bar)
         if plan.method in ("dop853", "rk45"):
             rtol = max(scene.target / 100, 2.3e-14)  # global error ~ 10-100 x rtol (bench)
             return dop853.integrate(_checked(f), y0, t, rtol=rtol, atol=rtol, progress=bar,

@@ -119,6 +119,7 @@ class Scene:
     name: str = "scene"
     ball: Ball | None = None
     notes: tuple[str, ...] = ()
+    figures: bool = True  # outputs.figures = false: no PNG figures (as --no-plots)
 
     @property
     def count(self) -> int:
@@ -291,7 +292,11 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
     t = _times(times, fail)
 
     want = raw.get("outputs", {}).get("want")
-    _unknown(raw.get("outputs", {}), {"want"}, "outputs.", fail)
+    _unknown(raw.get("outputs", {}), {"want", "figures"}, "outputs.", fail)
+    figures = raw.get("outputs", {}).get("figures", True)
+    if not isinstance(figures, bool):
+        fail("outputs.figures", f"figures = {figures!r} is not true or false",
+             "write figures = false to skip the PNG figures (as --no-plots)")
     if not isinstance(want, list) or not want or not all(isinstance(w, str) for w in want):
         fail("outputs.want", "missing or not a list of names", f"list some of {', '.join(OUTPUTS)}")
     for w in want:
@@ -326,7 +331,7 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
                  family=family, claimed=explicit and family != "explicit", seed=seed, M0=M0,
                  gamma0=gamma0, Omega0=Omega0, t=t, outputs=tuple(dict.fromkeys(want)),
                  target=target, method=method, dps=dps, step=step, tolerance=tol,
-                 source=source, raw=raw, ball=ball, notes=tuple(notes))
+                 source=source, raw=raw, ball=ball, notes=tuple(notes), figures=figures)
 
 
 def _body(raw, n, fail):

@@ -33,7 +33,8 @@ __all__ = ["BUILDERS", "render_builders", "BuilderPrinter"]
 
 #: (producer "module:function" returning Kernel objects, names of the kernels to emit as builders).
 BUILDERS: tuple[tuple[str, tuple[str, ...]], ...] = (
-    ("chaplygin_nd.symbolic.emit.axisym:kernels", ("inverse_coefficients", "Delta", "vector_field_axisym_4d",
+    ("chaplygin_nd.symbolic.emit.axisym:kernels", ("inverse_coefficients", "Delta", "structured_field_weights",
+                                                                "vector_field_axisym_4d",
                                       "energy_axisym_4d")),
     ("chaplygin_nd.symbolic.emit.reduced:kernels", ("reduced_field", "reduced_integrals")),
     ("chaplygin_nd.symbolic.emit.sphere3d:kernels", ("vector_field_3d", "integrals_3d")),

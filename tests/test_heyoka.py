@@ -163,7 +163,7 @@ def test_corrupt_or_stale_cache_entry_is_rebuilt():
         again = heyoka_taylor.integrate(system, y0, t, tol=1e-13, compact=True, pars=pars)
     assert "cold compile" in again.note and np.array_equal(again.y, first.y)
     stored = pickle.loads(entry.read_bytes())
-    stored["key"] = dict(stored["key"], source="0" * 64)  # an entry of other expressions
+    stored["key"] = dict(stored["key"], code="0" * 16)  # an entry of other code
     entry.write_bytes(pickle.dumps(stored))
     heyoka_cache.forget_memory()
     with pytest.warns(heyoka_cache.CacheWarning, match="stale"):

@@ -12,7 +12,7 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 from chaplygin_nd.simulate import cli  # noqa: E402
 from chaplygin_nd.simulate.figures import REDUCED_NAMES, figure  # noqa: E402
-from matplotlib.collections import PolyCollection  # noqa: E402
+from matplotlib.collections import LineCollection, PolyCollection  # noqa: E402
 
 T = np.linspace(0.0, 5.0, 41)
 
@@ -100,7 +100,9 @@ def test_ensemble_figure_shows_every_member_and_the_band():
     rng = np.random.default_rng(3)
     fig = figure("x", T, rng.normal(size=(len(T), count)))
     ax = fig.axes[0]
-    assert len(ax.get_lines()) == count + 1  # members + median
+    members = [c for c in ax.collections if isinstance(c, LineCollection)]  # one artist for all
+    assert len(members) == 1 and len(members[0].get_segments()) == count
+    assert len(ax.get_lines()) == 1  # the median
     assert any(isinstance(c, PolyCollection) for c in ax.collections)  # the 5-95 % band
     assert ax.get_legend() is not None and labelled(ax)
     gamma = figure("gamma", T, rng.normal(size=(len(T), count, 3)))
@@ -140,6 +142,27 @@ def test_a_scene_writes_one_png_per_output(tmp_path):
     pngs = sorted(p.name for p in (tmp_path / "out").glob("*.png"))
     assert pngs == ["M.png", "contact_path.png", "drift.energy.png", "drift.gamma_norm2.png",
                     "drift.p.png", "x.png"]
+
+
+@pytest.mark.parametrize("how", ["scene", "option"])
+def test_figures_false_or_no_plots_writes_no_png(tmp_path, how):
+    """outputs.figures = false in the scene (or --no-plots): the outputs without the figures."""
+    scene = tmp_path / "s.toml"
+    scene.write_text('n = 4\na = 0.0\nb = 1.0\n[initial]\nfamily = "generic"\nseed = 1\n'
+                     '[times]\nt_end = 2.0\nsamples = 11\n[outputs]\nwant = ["M", "x"]\n'
+                     + ("figures = false\n" if how == "scene" else ""))
+    args = [str(scene), "--out", str(tmp_path / "out")] + (["--no-plots"] if how == "option" else [])
+    assert cli.main(args) == 0
+    assert not list((tmp_path / "out").glob("*.png"))
+    assert (tmp_path / "out" / "M.csv").exists() and (tmp_path / "out" / "x.csv").exists()
+
+
+def test_figures_must_be_true_or_false(tmp_path, capsys):
+    scene = tmp_path / "s.toml"
+    scene.write_text('n = 4\na = 0.0\nb = 1.0\n[initial]\nfamily = "generic"\nseed = 1\n'
+                     '[times]\nt_end = 2.0\nsamples = 11\n[outputs]\nwant = ["M"]\nfigures = "no"\n')
+    assert cli.main([str(scene), "--out", str(tmp_path / "out")]) == 2
+    assert "outputs.figures" in capsys.readouterr().err
 
 
 def test_a_constant_output_gets_a_readable_axis_and_says_so():

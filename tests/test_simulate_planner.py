@@ -58,8 +58,11 @@ def test_method_of_example_scenes():
     from chaplygin_nd.simulate.integrators import heyoka_taylor
 
     generic = plan(load(ROOT / "scenes/generic4d.toml"))
-    if heyoka_taylor.available():  # auto: heyoka when importable, and the plan line says so
-        assert generic.method == "heyoka"
+    # auto: the candidate of least predicted cost (simulate.cost), every prediction in the plan line
+    assert "cost: predicted" in generic.describe()
+    if heyoka_taylor.available():
+        assert "heyoka compact" in generic.describe() and "heyoka unrolled" in generic.describe()
+    if generic.method == "heyoka":
         assert "heyoka Taylor, order 18, tol 1e-14" in generic.describe()  # target 1e-12 / 100
     else:
         assert generic.method == "dop853" and "DOP853" in generic.describe()

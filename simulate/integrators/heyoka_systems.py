@@ -19,6 +19,7 @@ from __future__ import annotations
 import hashlib
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import cache
 
 from chaplygin_nd.generated import expression_builders as eb
 
@@ -54,9 +55,11 @@ class System:
         return hashlib.sha256(f"{self.name}|{self.parameters}\n{text}".encode()).hexdigest()
 
 
+@cache
 def full(n: int, reconstruct: bool = False) -> System:
     r"""eq:motion-general (axisymmetric, any $n \ge 3$), state of :class:`simulate.field.FullField`;
-    parameters $(a, b)$, and the radius $r$ with the reconstruction. Domain: $\gamma \in S^{n-1}$, $|a| \le 1$, $b > 0$."""
+    parameters $(a, b)$, and the radius $r$ with the reconstruction (one object per $(n,$ reconstruct$)$,
+    so a warm integrate call does not rebuild the names). Domain: $\gamma \in S^{n-1}$, $|a| \le 1$, $b > 0$."""
     from chaplygin_nd.runtime import expressions as rx
 
     pairs = rx.pairs(n)
@@ -79,6 +82,7 @@ def full(n: int, reconstruct: bool = False) -> System:
                   build)
 
 
+@cache
 def reduced() -> System:
     r"""eq:red-system on $r = (A, B, E, G, F_1, x, \delta)$ ($n = 4$); parameters $(a, b)$."""
     def build(v, p, ops):
@@ -87,6 +91,7 @@ def reduced() -> System:
     return System("reduced 7D", ("A", "B", "E", "G", "F1", "x", "delta"), ("a", "b"), build)
 
 
+@cache
 def sphere3d() -> System:
     r"""eq:motion3D, $(\dot M, \dot\gamma) = (M\times\Omega, \gamma\times\Omega)$ with the derived
     $\Omega = L_\gamma^{-1}M$ of eq:mom3D; parameters $(I_1, I_2, I_3, b)$."""

@@ -14,9 +14,10 @@ Compiled integrators are cached on disk (:mod:`runtime.jit_cache`); the solution
 reports the compile or load time in ``compile_seconds`` apart from the run time ``seconds``.
 
 Compact mode (heyoka's loop-based code generation) compiles several times faster and runs slower;
-``compact=None`` chooses it for ``real128`` and ``real`` (where compiling the unrolled code is slow
-and the arithmetic dominates) and for systems with more than 20 variables (e.g. with the
-reconstruction), and not otherwise (measured: ``bench/bench_heyoka.py``).
+``compact=None`` chooses it (:func:`default_compact`). Measured with the O(n^2) field (tol 1e-12,
+2 shared cores): unrolled compiles in 2.1 / 3.6 / 5.8 / 9.6 / 18 s at n = 3 / 4 / 5 / 6 / 8 against
+0.7–1.1 s compact, and steps about 2x faster; so unrolled pays only on long runs or when it is
+already cached — a choice the planner's cost model makes (:mod:`simulate.cost`) and passes here.
 """
 
 from __future__ import annotations
@@ -32,7 +33,7 @@ from chaplygin_nd.simulate.integrators import heyoka_systems
 from chaplygin_nd.simulate.integrators.base import Solution
 
 __all__ = ["available", "integrate", "order_for", "bits_for_digits", "compiled_integrator",
-           "default_tol"]
+           "default_tol", "default_compact", "cache_key"]
 
 
 def available() -> bool:
@@ -88,25 +89,45 @@ class _Numbers:
         return np.array(flat).reshape(values.shape)
 
 
+def default_compact(system, kind: str) -> bool:
+    """Compact mode unless told otherwise (see the module docstring); ``system`` and ``kind`` are
+    accepted for a future rule."""
+    return True
+
+
+def cache_key(system, precision, tol: float, compact: bool, batch: int) -> dict:
+    """What identifies a compiled integrator in :mod:`runtime.jit_cache` (known without importing
+    heyoka or building the graph: the planner asks the cache state with it)."""
+    from importlib.metadata import version
+
+    kind, bits = _kind(precision)
+    return {"object": "taylor_adaptive", "system": system.name, "parameters": list(system.parameters),
+            "tol": repr(float(tol)), "precision": f"{kind}:{bits}", "compact": bool(compact),
+            "batch": int(batch), "heyoka": version("heyoka")}
+
+
 def compiled_integrator(system, precision="double", tol=None, compact=None, batch: int = 1,
                         cache: bool = True):
     r"""``(integrator, seconds, how)``: a heyoka Taylor integrator of ``system``
     (:class:`heyoka_systems.System`) at ``precision``, tolerance ``tol`` (default: epsilon),
     ``batch`` trajectories per step (double only), from the disk cache when possible
     (``how`` = "cold compile" / "warm load" / "in memory"; ``seconds`` of that)."""
-    import heyoka as hy
-
     kind, bits = _kind(precision)
     tol = default_tol(precision) if tol is None else float(tol)
     if compact is None:
-        compact = kind != "double" or system.dim > 20
+        compact = default_compact(system, kind)
     if batch > 1 and kind != "double":
         raise ValueError("batch mode needs double precision")
+    token = ("taylor_adaptive", system.name, system.parameters, kind, bits, tol, bool(compact),
+             int(batch), bool(cache))
+    hit = jit_cache.memory_hit(token)
+    if hit is not None:  # a warm call: one dictionary lookup, no graph, no hash
+        return hit, 0.0, "in memory"
+    import heyoka as hy
+
+    key = cache_key(system, precision, tol, compact, batch)
     ops = HeyokaArithmetic(hy, kind, bits)
     numbers = _Numbers(hy, kind, bits)
-    key = {"source": system.fingerprint(hy, ops), "system": system.name, "tol": repr(tol),
-           "precision": f"{kind}:{bits}", "compact": bool(compact), "batch": int(batch),
-           "heyoka": hy.__version__}
 
     def build():
         eqs = system.equations(hy, ops)
@@ -125,7 +146,16 @@ def compiled_integrator(system, precision="double", tol=None, compact=None, batc
         return hy.taylor_adaptive(eqs, state, pars=pars, tol=hy.real(tol, bits),
                                   compact_mode=compact, fp_type=hy.real, prec=bits)
 
-    return jit_cache.load_or_build(key, build, use_disk=cache)
+    return jit_cache.load_or_build(key, build, use_disk=cache,
+                                   source=lambda: system.fingerprint(hy, ops),
+                                   expect=_integrator_types(hy), token=token)
+
+
+def _integrator_types(hy) -> tuple[type, ...]:
+    """The classes a cached integrator may have (a loaded object of another type is rebuilt)."""
+    names = ("taylor_adaptive_dbl", "taylor_adaptive_f128", "taylor_adaptive_real",
+             "taylor_adaptive_batch_dbl")
+    return tuple(getattr(hy, k) for k in names if hasattr(hy, k))
 
 
 def integrate(field, y0: np.ndarray, t: np.ndarray, tol: float | None = None,
@@ -149,14 +179,20 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, tol: float | None = None,
     width = (hy.recommended_simd_size() if batch is True else int(batch or 1)) if kind == "double" else 1
     width = max(1, min(width, count)) if count > 1 else 1
     ta, compile_seconds, how = compiled_integrator(system, precision, tol, compact, width, cache)
+    restart = getattr(progress, "restart", None)
+    if restart is not None:
+        restart()  # a run budget measures the integration, not the compile or load before it
     numbers = _Numbers(hy, kind, bits)
     out = np.empty((len(t), count, system.dim))
     high = np.empty((len(t), count, system.dim), dtype=object) if kind != "double" else None
     steps = 0
-    watch = _watch(progress)
+    passes = -(-count // width)  # the members run in this many passes, one after the other
+    watch = _watch(progress, float(t[0]), float(t[-1]), passes) if progress is not None else None
     start = time.perf_counter()
     if width > 1:
         for s in range(0, count, width):
+            if watch is not None:
+                watch.done = s // width
             chunk = y0[s:s + width]
             used = chunk.shape[0]
             block = np.concatenate([chunk, np.repeat(chunk[-1:], width - used, 0)])  # pad
@@ -164,7 +200,8 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, tol: float | None = None,
             ta.pars[:] = np.repeat(np.asarray(values, float)[:, None], width, 1)
             ta.set_time(float(t[0]))
             _, states = ta.propagate_grid(np.repeat(t[:, None], width, 1), callback=watch)
-            watch.raise_error()
+            if watch is not None:
+                watch.raise_error()
             for lane, (outcome, _, _, n) in enumerate(ta.propagate_res):
                 _check(hy, outcome, system, ta.time[lane])
                 steps = max(steps, n)
@@ -174,11 +211,14 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, tol: float | None = None,
     else:
         grid = numbers.array(t)
         for e in range(count):
+            if watch is not None:
+                watch.done = e
             ta.state[:] = numbers.array(y0[e])
             ta.pars[:] = numbers.array(values)
             ta.time = numbers.scalar(float(t[0]))
             outcome, _, _, n, _, states = ta.propagate_grid(grid, callback=watch)
-            watch.raise_error()
+            if watch is not None:
+                watch.raise_error()
             _check(hy, outcome, system, ta.time)
             steps += n
             if kind == "double":
@@ -200,19 +240,23 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, tol: float | None = None,
                     compile_seconds=compile_seconds)
 
 
-def _watch(progress):
+def _watch(progress, t0: float, t_end: float, passes: int):
     """A step callback for ``propagate_grid`` that reports the time reached to ``progress`` (which
-    may stop a run: non-finite time, a projected cost past the limit). heyoka cannot carry a Python
-    exception through its loop, so the callback stops the integration and :meth:`raise_error`
-    re-raises the exception afterwards. A closure, not an object: heyoka may copy the callback."""
+    may stop a run: non-finite time, a projected cost past the limit). With the ensemble run in
+    ``passes`` passes (``callback.done`` of them finished) the time reported is that of the whole
+    work done, $t_0 + (\text{done} + (t - t_0)/(t_1 - t_0))(t_1 - t_0)/\text{passes}$, so a projection
+    from it covers every pass. heyoka cannot carry a Python exception through its loop, so the
+    callback stops the integration and :meth:`raise_error` re-raises the exception afterwards. A
+    closure, not an object: heyoka may copy the callback."""
     error: list[BaseException] = []
+    span = t_end - t0
 
     def callback(ta) -> bool:
-        if progress is None:
-            return True
         try:
-            reached = np.min(np.asarray(ta.time, dtype=float))
-            progress(float(reached))
+            reached = float(np.min(np.asarray(ta.time, dtype=float)))
+            if passes > 1 and span > 0 and math.isfinite(reached):
+                reached = t0 + (callback.done + (reached - t0) / span) * span / passes
+            progress(reached)
         except Exception as exc:  # noqa: BLE001 - re-raised by raise_error
             error.append(exc)
             return False
@@ -223,6 +267,7 @@ def _watch(progress):
             raise error[0]
 
     callback.raise_error = raise_error
+    callback.done = 0
     return callback
 
 

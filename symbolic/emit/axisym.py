@@ -35,6 +35,7 @@ from chaplygin_nd.symbolic.axisym_inverse import ansatz_terms, inverse_coefficie
 from chaplygin_nd.symbolic.axisymmetric import Delta, L_matrix_axisym, a, b, x
 from chaplygin_nd.symbolic.codegen import Argument, Kernel
 from chaplygin_nd.symbolic.model import motion
+from chaplygin_nd.symbolic.structured_field import PAIRS, VECTORS, g, s, structured_weights
 from chaplygin_nd.symbolic.vertical import chi, chi_coefficient, inertia_tilde, zeta_coefficient
 
 __all__ = ["kernels", "stable_Delta", "DELTA_SYMBOL", "coefficient_kernels", "component_kernels",
@@ -96,6 +97,10 @@ def coefficient_kernels() -> list[Kernel]:
     cs = [_with_stable_Delta(c) for c in inverse_coefficients()]
     kappa = _with_stable_Delta(zeta_coefficient())
     kappa_t = sp.factor(chi_coefficient())
+    S_, G_ = Argument("s", (s,), True), Argument("gg", (g,), True)
+    w, u = structured_weights()
+    weights = [_with_stable_Delta(e) for e in w + u]
+    layout = ", ".join(f"{VECTORS[i]}^{VECTORS[j]}" for i, j in PAIRS)
     return [
         Kernel("Delta", ("eq:Delta", "K:Delta"),
                "Delta(x) = (2+a)(2+b) - a b x^2 (eq:Delta), evaluated as 2(2+a+b) + ab(1-x)(1+x)\n"
@@ -110,6 +115,12 @@ def coefficient_kernels() -> list[Kernel]:
                "(kappa, kappa_t): zeta = kappa M0 - L^{-1} M0 (Th:Re, derived in symbolic.vertical) and\n"
                "    chi = kappa_t Itilde(Omega0) - Omega0 (eq:solManakov). Any n >= 3, x = gamma0_n; on V.",
                (X, A_, B_), sp.Matrix([kappa, kappa_t]), (2,)),
+        Kernel("structured_field_weights", ("S4:structured-field", "eq:motion-general", "P:inversion", "K:Delta"),
+               "Weights of the O(n^2) full field (S4:structured-field, derived in symbolic.structured_field):\n"
+               "    dM/dt = sum w_ij V_i^V_j, dgamma/dt = sum u_i V_i, V = (M^2 gamma, M^2 E, M gamma, M E, gamma, E);\n"
+               f"    out[:{len(PAIRS)}] = w over the pairs ({layout}),\n"
+               f"    out[{len(PAIRS)}:] = u. x = gamma_n, s = (M gamma)_n, gg = <gamma, gamma>; any n >= 3; Delta, 2+a+b != 0.",
+               (X, S_, G_, A_, B_), sp.Matrix(weights), (len(weights),)),
     ]
 
 
