@@ -35,7 +35,8 @@ from chaplygin_nd.simulate.fma import MapSpec, run_map
 __all__ = ["FrequencyMapScene", "load_map", "run", "REGULAR_D", "CHAOTIC_D"]
 
 _KEYS = {"energy", "grid", "samples", "dt", "seed", "x_range", "control_J", "tol", "chunk"}
-#: Classes of the summary (fixed before the maps were computed): regular D < -6, chaotic D > -4.
+#: Classes of the summary: regular D < -6, chaotic D > -4 (fixed after a trial of 16 orbits per
+#: sphere at T = 1024 — axisymmetric D from -10 to -3.5, control from -5.5 to -2.6 — before any map).
 REGULAR_D, CHAOTIC_D = -6.0, -4.0
 
 
