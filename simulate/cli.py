@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 from chaplygin_nd.simulate import tori_scene
 from chaplygin_nd.simulate.dispatch import KernelMissing
+from chaplygin_nd.simulate.fma_scene import FrequencyMapScene
 from chaplygin_nd.simulate.outdir import OutputError, claim
 from chaplygin_nd.simulate.outputs import collect, max_drift, write
 from chaplygin_nd.simulate.planner import plan
@@ -66,6 +67,11 @@ def main(argv: list[str] | None = None) -> int:
                     help="run even when the predicted time or memory is past the limit")
     ap.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
     ap.add_argument("--list", action="store_true", help="list the built-in scenes and exit")
+    ap.add_argument("--workers", type=int, default=None, metavar="N",
+                    help="frequency-map scenes: worker processes (default: the CPU count)")
+    ap.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                    help="frequency-map scenes: run on this Dask scheduler ('local' starts a "
+                    "local cluster of --workers processes; needs the extra 'cluster')")
     args = ap.parse_args(argv)
     if args.list:
         for name, title in builtin_scenes().items():
@@ -79,6 +85,8 @@ def main(argv: list[str] | None = None) -> int:
         scene = find(args.scene, force=args.force)
         out = out or Path("out") / scene.name
         folder = claim(out, scene.name)
+        if isinstance(scene, FrequencyMapScene):  # a frequency map (simulate/fma_scene.py)
+            return _frequency_map(scene, folder, out, args, start)
         # inf/nan are not warned about but checked: every field and output, naming it and the time
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             p = plan(scene)
@@ -107,6 +115,23 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     print(text)
     return 1 if check is not None and not check.passed else 0
+
+
+def _frequency_map(scene, folder, out, args, start) -> int:
+    """Run a frequency-map scene into ``folder`` (claimed) and print its summary."""
+    from chaplygin_nd.simulate import fma_scene
+
+    if args.workers is not None and args.workers < 1:
+        raise SceneError("--workers", "--workers", f"{args.workers}", "give N >= 1")
+    where = f"Dask scheduler {args.scheduler}" if args.scheduler else \
+        f"{args.workers or 'all'} worker process(es)"
+    print(f"plan    frequency map: 2 x {scene.spec.size}^2 orbits of the full field "
+          f"(heyoka batch), T = {2 * scene.spec.samples * scene.spec.dt:g}; {where}", flush=True)
+    files, text = fma_scene.run(scene, workers=args.workers, scheduler=args.scheduler)
+    text += f"\nwall    {time.perf_counter() - start:.1f} s in all\nwritten {out}"
+    folder.write(files)
+    print(text)
+    return 0
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -7,26 +7,26 @@ eq:motion-general with the generated $L_\gamma^{-1}$, or the general-$\mathbb{J}
 sampling and the DOP853 tolerance. :func:`orbits` returns the samples, from the cache when the
 cache key matches, else by integrating (and then writing the cache atomically).
 
-Cache key: SHA-256 of the experiment (JSON), of every file of ``generated/`` and of the source
-of the modules that turn it into numbers (this one, :mod:`simulate.field`, :mod:`simulate.control`,
-:mod:`simulate.families`, the DOP853 wrapper). A changed kernel, scene or setting therefore
-recomputes; nothing is read that this code cannot reproduce. Location: the ``evidence/`` subfolder of the
+Cache (:mod:`simulate.result_cache`): an entry is found by the SHA-256 of the experiment (JSON)
+and of the library versions, and trusted only if the source of every project module that was
+loaded when it was computed (recorded in the entry, :func:`simulate.result_cache.code_manifest`)
+is unchanged: an edited field (:mod:`simulate.so`), kernel, integrator or analysis recomputes.
+Entries are ``.npz`` read without pickle; a corrupt entry is recomputed, an unusable or shared
+folder is reported and the run goes on uncached. Location: the ``evidence/`` subfolder of the
 project's cache folder (:mod:`chaplygin_nd.cache`).
 """
 
 from __future__ import annotations
 
-import fcntl
 import hashlib
 import json
-import os
-import tempfile
 import time
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 import numpy as np
 from chaplygin_nd.simulate import families, so
+from chaplygin_nd.simulate import result_cache as rc
 from chaplygin_nd.simulate.control import general_inertia_kernels
 from chaplygin_nd.simulate.dispatch import active
 from chaplygin_nd.simulate.field import FullField, ReducedField
@@ -37,9 +37,6 @@ from chaplygin_nd import cache as project_cache
 
 __all__ = ["Experiment", "Orbits", "orbits", "cache_dir", "level_set_points", "signals"]
 
-ROOT = Path(__file__).resolve().parent.parent
-_SOURCES = ("simulate/evidence.py", "simulate/field.py", "simulate/control.py",
-            "simulate/families.py", "simulate/integrators/dop853.py", "simulate/run.py")
 
 
 @dataclass(frozen=True)
@@ -65,16 +62,23 @@ class Experiment:
     level_shifts: tuple[float, ...] = ()
 
     def key(self) -> str:
-        h = hashlib.sha256(json.dumps(asdict(self), sort_keys=True).encode())
-        for path in sorted((ROOT / "generated").glob("*.py")) + [ROOT / s for s in _SOURCES]:
-            h.update(path.name.encode())
-            h.update(path.read_bytes())
-        return h.hexdigest()[:20]
+        """The settings key: SHA-256 of the experiment and the library versions (the code is
+        checked apart, against the manifest stored in the entry)."""
+        text = json.dumps({"experiment": asdict(self), "versions": rc.environment(heyoka=True)},
+                          sort_keys=True)
+        return hashlib.sha256(text.encode()).hexdigest()[:20]
+
+    def shape(self) -> tuple[int, int, int]:
+        """``(samples + 1, orbits, state dimension)`` of the sampled orbits."""
+        count = len(self.members) + (len(self.level_shifts) if self.model == "reduced" else 0)
+        dim = 7 if self.model == "reduced" else so.so_dim(self.n) + self.n
+        return self.samples + 1, count, dim
 
 
 @dataclass
 class Orbits:
-    """Samples ``y`` of shape ``(samples + 1, count, dim)`` at ``t``, with the integration cost."""
+    """Samples ``y`` of shape ``(samples + 1, count, dim)`` at ``t``, with the integration cost;
+    ``info["manifest"]``: the code that computed them (:func:`simulate.result_cache.code_manifest`)."""
 
     experiment: Experiment
     t: np.ndarray
@@ -86,7 +90,8 @@ class Orbits:
 
 
 def cache_dir() -> Path:
-    """The ``evidence/`` subfolder of the project's cache folder (:mod:`chaplygin_nd.cache`)."""
+    """The ``evidence/`` subfolder of the project's cache folder (:mod:`chaplygin_nd.cache`); not
+    created here (:func:`simulate.result_cache.private_folder` creates and checks it)."""
     return project_cache.cache_dir("evidence")
 
 
@@ -150,37 +155,53 @@ def initial_states(exp: Experiment):
 
 
 def orbits(exp: Experiment, use_cache: bool = True) -> Orbits:
-    """The sampled orbits of ``exp``, from the cache if its key matches, else integrated with
-    DOP853 (one stacked system for the ensemble) and cached."""
-    path = cache_dir() / f"{exp.name}-{exp.key()}.npz"
-    if not use_cache:
-        return _integrate(exp, None)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with open(path.with_suffix(".lock"), "w") as lock:  # one process integrates, the others wait
-        fcntl.flock(lock, fcntl.LOCK_EX)
+    """The sampled orbits of ``exp``: from the cache if an entry with its settings key was
+    computed by the code loaded now, else integrated with DOP853 (one stacked system for the
+    ensemble) and cached (:mod:`simulate.result_cache`)."""
+    folder = rc.private_folder("evidence") if use_cache else None
+    if folder is None:
+        return _integrate(exp)
+    path = folder / f"{exp.name}-{exp.key()}.npz"
+    with rc.locked(path):  # one process integrates, the others wait
         if path.exists():
-            with np.load(path) as d:
-                return Orbits(exp, d["t"], d["y"], float(d["seconds"]), int(d["steps"]),
-                              cached=True)
-        return _integrate(exp, path)
+            found = _load(path, exp)
+            if found is not None:
+                return found
+        orb = _integrate(exp)
+        rc.write_atomic(path, lambda tmp: np.savez(
+            tmp, t=orb.t, y=orb.y, seconds=orb.seconds, steps=orb.steps,
+            manifest=json.dumps(orb.info["manifest"], sort_keys=True)))
+        return orb
 
 
-def _integrate(exp: Experiment, path: Path | None) -> Orbits:
+def _load(path: Path, exp: Experiment) -> Orbits | None:
+    """The cached orbits at ``path`` if they parse, have the experiment's shape and were computed
+    by the code loaded now; None otherwise (after one warning if the entry is corrupt)."""
+    try:
+        with open(path, "rb") as fh, np.load(fh, allow_pickle=False) as d:
+            t, y = d["t"], d["y"]
+            seconds, steps = float(d["seconds"]), int(d["steps"])
+            manifest = json.loads(str(d["manifest"]))
+        expected_t = np.arange(exp.samples + 1) * exp.dt
+        if (y.dtype != np.float64 or y.shape != exp.shape() or not np.array_equal(t, expected_t)
+                or not np.all(np.isfinite(y))):
+            raise ValueError(f"arrays of the wrong shape or type ({y.shape}, {y.dtype})")
+    except Exception as exc:  # noqa: BLE001 - any unreadable entry is recomputed, never trusted
+        rc.warn_once(f"evidence cache entry {path} is corrupt ({type(exc).__name__}: {exc}); "
+                     "recomputing it")
+        return None
+    if not rc.code_unchanged(manifest):
+        return None  # computed by other code: a miss
+    return Orbits(exp, t, y, seconds, steps, cached=True, info={"manifest": manifest})
+
+
+def _integrate(exp: Experiment) -> Orbits:
     f, y0 = initial_states(exp)
     t = np.arange(exp.samples + 1) * exp.dt
     start = time.perf_counter()
     sol = dop853.integrate(f, y0, t, rtol=exp.rtol, atol=exp.rtol)
     seconds = time.perf_counter() - start
-    if path is not None:
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=".npz", dir=path.parent)
-        os.close(fd)
-        try:
-            np.savez(tmp, t=t, y=sol.y, seconds=seconds, steps=sol.steps)
-            os.replace(tmp, path)
-        finally:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
-    return Orbits(exp, t, sol.y, seconds, sol.steps)
+    return Orbits(exp, t, sol.y, seconds, sol.steps, info={"manifest": rc.code_manifest()})
 
 
 def signals(orb: Orbits, member: int) -> list[np.ndarray]:

@@ -19,14 +19,12 @@ resolution $2\pi/T$); we use members 1 and 3 and say so. Each orbit is sampled e
 
 from __future__ import annotations
 
-import hashlib
 import json
-import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
-from chaplygin_nd.simulate import evidence, naff
+from chaplygin_nd.simulate import naff
+from chaplygin_nd.simulate import result_cache as rc
 from chaplygin_nd.simulate.dispatch import active
 from chaplygin_nd.simulate.evidence import Experiment, Orbits, orbits, signals
 
@@ -83,25 +81,46 @@ def vertical_experiment(n: int, a: float, t_end: float | None = None, dt: float 
 
 def spectra(exp: Experiment, orb: Orbits | None = None) -> list[naff.Spectrum]:
     """:func:`simulate.naff.analyse` of every orbit of ``exp`` (integrated or from the cache). The
-    analysis is cached too, keyed by the orbits' key and the source of the analysis code."""
-    h = hashlib.sha256(exp.key().encode())
-    for mod in (naff, evidence):
-        h.update(Path(mod.__file__).read_bytes())
-    h.update(Path(__file__).read_bytes())
-    path = evidence.cache_dir() / f"{exp.name}-spectra-{h.hexdigest()[:20]}.json"
-    if orb is None and path.exists():
-        data = json.loads(path.read_text())
-        return [naff.Spectrum([tuple(x) for x in d["lines"]], d["frequencies"], d["diffusion"],
-                              d["tolerance"])
-                for d in data]
+    analysis is cached too (JSON), under the orbits' settings key, and trusted only if the code
+    that computed it and its orbits is unchanged (:mod:`simulate.result_cache`)."""
+    folder = rc.private_folder("evidence")
+    path = folder / f"{exp.name}-spectra-{exp.key()}.json" if folder is not None else None
+    if orb is None and path is not None and path.exists():
+        found = _load_spectra(path, exp)
+        if found is not None:
+            return found
     orb = orb or orbits(exp)
     result = [naff.analyse(signals(orb, m), exp.dt) for m in range(orb.y.shape[1])]
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", dir=path.parent)
-    with os.fdopen(fd, "w") as fh:
-        json.dump([s.to_dict() for s in result], fh)
-    os.replace(tmp, path)
+    if path is not None:
+        manifest = {**orb.info.get("manifest", {}), **rc.code_manifest()}
+        text = json.dumps({"manifest": manifest, "spectra": [s.to_dict() for s in result]})
+        rc.write_atomic(path, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
     return result
+
+
+def _spectrum(d: dict) -> naff.Spectrum:
+    """A :class:`simulate.naff.Spectrum` from its JSON form; raises on a wrong shape or type."""
+    lines = [(float(w), float(a)) for w, a in d["lines"]]
+    freqs = [float(f) for f in d["frequencies"]]
+    if not isinstance(d["diffusion"], (int, float)) or not isinstance(d["tolerance"], (int, float)):
+        raise TypeError("diffusion and tolerance must be numbers")
+    return naff.Spectrum(lines, freqs, float(d["diffusion"]), float(d["tolerance"]))
+
+
+def _load_spectra(path: Path, exp: Experiment) -> list[naff.Spectrum] | None:
+    """The cached spectra at ``path`` if they parse, count one per orbit of ``exp`` and were
+    computed by the code loaded now; None otherwise (after one warning if corrupt)."""
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+        specs = [_spectrum(d) for d in data["spectra"]]
+        manifest = data["manifest"]
+        if len(specs) != exp.shape()[1]:
+            raise ValueError(f"{len(specs)} spectra for {exp.shape()[1]} orbits")
+    except Exception as exc:  # noqa: BLE001 - any unreadable entry is recomputed, never trusted
+        rc.warn_once(f"evidence cache entry {path} is corrupt ({type(exc).__name__}: {exc}); "
+                     "recomputing it")
+        return None
+    return specs if rc.code_unchanged(manifest) else None
 
 
 def separates(regular: list[float], control: list[float]) -> bool:

@@ -188,6 +188,9 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
         raw = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         fail("TOML", f"not valid TOML ({exc})", "correct the syntax at the position given")
+    if "fma" in raw:  # a frequency map (issue 16): its own keys, validated by simulate/fma_scene.py
+        from chaplygin_nd.simulate.fma_scene import load_map
+        return load_map(raw, source, fail)
     _unknown(raw, _TOP, "", fail)
     for table in ("ball", "initial", "times", "outputs", "accuracy"):
         if table in raw and not isinstance(raw[table], dict):

@@ -1,0 +1,268 @@
+r"""Frequency maps (Laskar's frequency-map analysis) of the 4D sphere and of a control: the picture
+of integrability (issue 16).
+
+A 2D grid of initial conditions on one energy level set $H = h$ (S2.2:energy) of the $n = 4$
+sphere: $\gamma_0 = (\sqrt{1 - x_0^2}, 0, 0, x_0)$ and $M_0 \propto \cos\varphi\,P + \sin\varphi\,Q$
+($P, Q$ two seeded skew matrices), scaled so that $H(M_0, \gamma_0) = h$; the axes are $x_0$ and
+$\varphi \in [0, \pi)$. Each orbit is integrated on the full field eq:motion-general in
+$(M, \gamma)$ (heyoka, batch mode), sampled on a uniform grid, and the fundamental frequency of the
+SO(3)-invariant observables $x + iG/(a + b + 2)$ and $E + i\delta$ (the reduced invariants of
+Section 5, the signals of :func:`simulate.evidence.signals`) is measured on the first and the
+second half of the orbit (:func:`simulate.naff.fundamental_frequencies`). The colour is the
+frequency diffusion $D = \log_{10}\max|\omega^{(1)} - \omega^{(2)}|$ over the two observables
+(of $|\omega|$: a real oscillation has lines $\pm\omega$ of nearly equal amplitude, and which of
+the two is the strongest may differ between the halves).
+
+Why the full field for both maps and not the reduced 7D one: the control (a generic mass tensor,
+:mod:`simulate.control`) has no SO(3) symmetry and so no reduced system; integrating both on the
+same 9D phase space with the same observables, integrator and tolerance makes the two maps differ
+only in $\mathbb{J}$. The axisymmetric map uses the derived field (P:inversion, generated builders,
+:func:`simulate.integrators.heyoka_systems.full`); the control solves $L_\gamma(\Omega) = M$ from the
+definition (eq:M-O, eq:Inertia) by Gaussian elimination inside the compiled field
+(:func:`control_system`; tested against the NumPy linear solve of :mod:`simulate.control`).
+
+Work is cut into chunks of ``chunk`` orbits, each integrated by one compiled batch integrator
+(per process: compiled once, then from memory) and analysed vectorised. Chunks run in this
+process (``workers = 1``), in worker processes, or on a Dask cluster (``scheduler``: an address,
+or ``"local"`` for a :class:`distributed.LocalCluster`); the result does not depend on which.
+"""
+
+from __future__ import annotations
+
+import os
+import threading
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import asdict, dataclass
+
+import numpy as np
+from chaplygin_nd.simulate import naff, so
+from chaplygin_nd.simulate.control import general_inertia_kernels
+from chaplygin_nd.simulate.integrators import heyoka_systems
+from chaplygin_nd.simulate.run import reduced_invariants
+
+__all__ = ["MapSpec", "control_system", "control_omega", "initial_conditions", "run_map",
+           "diffusion_of_chunk"]
+
+_LOCK = threading.Lock()  # one compiled integrator per process: chunks of one process take turns
+
+
+@dataclass(frozen=True)
+class MapSpec:
+    r"""One frequency map: the sphere ($a, b$; ``J`` a diagonal mass tensor for the control, empty
+    for the axisymmetric sphere $\mathbb{J} = \mathrm{diag}(1, 1, 1, 1 + a)$), the energy ``h``,
+    the grid ``size`` $\times$ ``size`` over $x_0 \in$ ``x_range``, $\varphi \in [0, \pi)$, the seed
+    of $P, Q$, the sampling (``samples`` per half, step ``dt``), the Taylor tolerance ``tol`` and
+    the chunk size."""
+
+    a: float
+    b: float
+    h: float
+    size: int
+    samples: int
+    dt: float
+    seed: int = 1
+    J: tuple[float, ...] = ()
+    x_range: tuple[float, float] = (-0.9, 0.9)
+    tol: float = 1e-12
+    chunk: int = 64
+
+    @property
+    def mass_tensor(self) -> tuple[float, ...]:
+        """The diagonal of $\\mathbb{J}$ (the axisymmetric one when ``J`` is empty)."""
+        return tuple(self.J) if self.J else (1.0, 1.0, 1.0, 1.0 + self.a)
+
+
+# -- the control's field, assembled from the definition (any scalar arithmetic) ----------------
+
+def _pairs(n):
+    return [(i, j) for i in range(n) for j in range(i + 1, n)]
+
+
+def _add(u, v):
+    if isinstance(u, int) and u == 0:
+        return v
+    if isinstance(v, int) and v == 0:
+        return u
+    return u + v
+
+
+def _mul(u, v):
+    if (isinstance(u, int) and u == 0) or (isinstance(v, int) and v == 0):
+        return 0
+    return u * v
+
+
+def _skew(m, n):
+    M = [[0] * n for _ in range(n)]
+    for v, (i, j) in zip(m, _pairs(n)):
+        M[i][j], M[j][i] = v, _mul(-1, v)
+    return M
+
+
+def _matvec(A, x):
+    out = []
+    for row in A:
+        acc = 0
+        for a_, x_ in zip(row, x):
+            acc = _add(acc, _mul(a_, x_))
+        out.append(acc)
+    return out
+
+
+def _L_column(i, j, gamma, J, b, n):
+    r"""$\mathrm{vec}\,L_\gamma(E_i\wedge E_j)$ (eq:M-O, eq:Inertia) for diagonal $\mathbb{J}$."""
+    L = [[0] * n for _ in range(n)]
+    L[i][j] = _add(J[i], J[j])
+    L[j][i] = _mul(-1, L[i][j])
+    Eg = [0] * n                                    # (E_i ^ E_j) gamma = gamma_j E_i - gamma_i E_j
+    Eg[i], Eg[j] = gamma[j], _mul(-1, gamma[i])
+    return [_add(L[p][q], _mul(b, _add(_mul(Eg[p], gamma[q]), _mul(-1, _mul(Eg[q], gamma[p])))))
+            for p, q in _pairs(n)]
+
+
+def control_omega(m, gamma, J, b):
+    r"""$\mathrm{vec}\,\Omega$ with $L_\gamma(\Omega) = M$ for the diagonal mass tensor ``J``
+    (eq:M-O): the matrix of $L_\gamma$ in the basis $E_i\wedge E_j$ assembled from the definition,
+    solved by Gaussian elimination without pivoting (valid: $L_\gamma$ is positive definite for
+    $J_i > 0$, $b > 0$). Any scalar arithmetic (floats, heyoka expressions)."""
+    n = len(gamma)
+    cols = [_L_column(i, j, gamma, J, b, n) for i, j in _pairs(n)]
+    N = len(cols)
+    A = [[cols[c][r] for c in range(N)] + [m[r]] for r in range(N)]   # augmented, row-major
+    for k in range(N):
+        for r in range(k + 1, N):
+            if isinstance(A[r][k], int) and A[r][k] == 0:
+                continue
+            f = A[r][k] / A[k][k]
+            A[r] = [A[r][c] if c <= k else _add(A[r][c], _mul(-1, _mul(f, A[k][c])))
+                    for c in range(N + 1)]
+    x = [0] * N
+    for k in reversed(range(N)):
+        acc = A[k][N]
+        for c in range(k + 1, N):
+            acc = _add(acc, _mul(-1, _mul(A[k][c], x[c])))
+        x[k] = acc / A[k][k]
+    return x
+
+
+def control_system(n: int = 4) -> heyoka_systems.System:
+    r"""eq:motion-general, $\dot M = [M, \Omega]$, $\dot\gamma = -\Omega\gamma$, for a diagonal mass
+    tensor $\mathbb{J}$ given as runtime parameters $(J_1..J_n, b)$, $\Omega$ from
+    :func:`control_omega`; the state of :class:`simulate.field.FullField`."""
+    pairs = _pairs(n)
+    names = tuple([f"M{i + 1}_{j + 1}" for i, j in pairs] + [f"gamma{i + 1}" for i in range(n)])
+
+    def build(v, p, ops):
+        N = len(pairs)
+        m, gamma = v[:N], v[N:]
+        w = control_omega(m, gamma, p[:n], p[n], )
+        M, Om = _skew(m, n), _skew(w, n)
+        out = []
+        for i, j in pairs:
+            acc = 0
+            for k in range(n):
+                acc = _add(acc, _add(_mul(M[i][k], Om[k][j]), _mul(-1, _mul(Om[i][k], M[k][j]))))
+            out.append(acc)
+        out += [_mul(-1, g) for g in _matvec(Om, gamma)]
+        return out
+
+    return heyoka_systems.System(f"general-J control n={n}", names,
+                                 tuple(f"J{i + 1}" for i in range(n)) + ("b",), build)
+
+
+# -- the grid -----------------------------------------------------------------------------------
+
+def initial_conditions(spec: MapSpec) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    r"""``(y0, x0, phi)``: states ``(size*size, 10)`` (vec M, gamma) on $H = h$ for the sphere of
+    ``spec`` (row-major over ($\varphi$, $x_0$)), and the axes."""
+    n = 4
+    rng = np.random.default_rng(spec.seed)
+    P, Q = (so.unvec(rng.standard_normal(so.so_dim(n)), n) for _ in range(2))
+    x0 = np.linspace(*spec.x_range, spec.size)
+    phi = np.arange(spec.size) * np.pi / spec.size
+    X, F = np.meshgrid(x0, phi)
+    gamma = np.stack([np.sqrt(1 - X**2), 0 * X, 0 * X, X], -1).reshape(-1, n)
+    M = (np.cos(F)[..., None, None] * P + np.sin(F)[..., None, None] * Q).reshape(-1, n, n)
+    Omega = general_inertia_kernels(spec.mass_tensor, spec.b).angular_velocity(M, gamma, spec.a, spec.b)
+    H = 0.5 * np.einsum("...i,...i->...", so.vec(M), so.vec(Omega))     # S2.2:energy
+    M = M * np.sqrt(spec.h / H)[:, None, None]
+    return np.concatenate([so.vec(M), gamma], -1), x0, phi
+
+
+def _system(spec: MapSpec):
+    if spec.J:
+        return control_system(4), list(spec.J) + [spec.b]
+    return heyoka_systems.full(4), [spec.a, spec.b]
+
+
+def diffusion_of_chunk(spec: MapSpec, y0: np.ndarray) -> np.ndarray:
+    r"""$D = \log_{10}\max|\omega^{(1)} - \omega^{(2)}|$ (see the module docstring) of each orbit of
+    ``y0`` ``(count, 10)``: one batch integration (compiled once per process), then NAFF vectorised
+    over the orbits. Non-finite or failed orbits give nan."""
+    from chaplygin_nd.simulate.integrators import heyoka_taylor
+
+    system, pars = _system(spec)
+    t = np.arange(2 * spec.samples) * spec.dt
+    with _LOCK:
+        sol = heyoka_taylor.integrate(system, y0, t, tol=spec.tol, pars=pars, batch=True)
+    y = np.moveaxis(sol.y, 1, 0)                                  # (count, samples, dim)
+    r = reduced_invariants(so.unvec(y[..., :6], 4), y[..., 6:])
+    nu = spec.a + spec.b + 2
+    half = spec.samples
+    worst = np.zeros(len(y0))
+    for z in (r[..., 5] + 1j * r[..., 3] / nu, r[..., 2] + 1j * r[..., 6]):
+        w1 = naff.fundamental_frequencies(z[:, :half], spec.dt)
+        w2 = naff.fundamental_frequencies(z[:, half:], spec.dt)
+        worst = np.maximum(worst, np.abs(np.abs(w1) - np.abs(w2)))
+    with np.errstate(divide="ignore"):
+        return np.log10(worst)
+
+
+def _task(args):
+    spec_dict, y0 = args
+    return diffusion_of_chunk(MapSpec(**spec_dict), y0)
+
+
+def run_map(spec: MapSpec, workers: int | None = None, scheduler: str | None = None) -> np.ndarray:
+    r"""The frequency map of ``spec``: $D$ ``(size, size)`` (rows $\varphi$, columns $x_0$). Chunks
+    run here (``workers = 1``), in ``workers`` processes (default: the CPU count), or on a Dask
+    cluster (``scheduler``: its address, or ``"local"`` for a local cluster of ``workers``
+    single-threaded processes). Requires heyoka (extra ``fast``) and, for a cluster, Dask
+    (extra ``cluster``)."""
+    from chaplygin_nd.simulate.integrators import heyoka_taylor
+    from chaplygin_nd.simulate.stops import RunStopped
+
+    if not heyoka_taylor.available():
+        raise RunStopped("frequency maps need heyoka: pip install 'chaplygin-nd[fast]'")
+    y0, _, _ = initial_conditions(spec)
+    chunks = [(asdict(spec), y0[s:s + spec.chunk]) for s in range(0, len(y0), spec.chunk)]
+    if scheduler is not None:
+        parts = _on_dask(chunks, scheduler, workers)
+    elif (workers or os.cpu_count() or 1) == 1:
+        parts = [_task(c) for c in chunks]
+    else:
+        import multiprocessing as mp
+
+        with ProcessPoolExecutor(max_workers=min(workers or os.cpu_count() or 1, len(chunks)),
+                                 mp_context=mp.get_context("spawn")) as pool:
+            parts = list(pool.map(_task, chunks))
+    return np.concatenate(parts).reshape(spec.size, spec.size)
+
+
+def _on_dask(chunks, scheduler: str, workers: int | None):
+    from chaplygin_nd.simulate.stops import RunStopped
+
+    try:
+        from distributed import Client, LocalCluster
+    except ImportError:
+        raise RunStopped("--scheduler needs Dask: pip install 'chaplygin-nd[cluster]'") from None
+    if scheduler == "local":
+        with LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
+                          processes=True, dashboard_address=None) as cluster, Client(cluster) as client:
+            return client.gather(client.map(_task, chunks, pure=False))
+    try:
+        client = Client(scheduler, timeout="20s")
+    except (OSError, TimeoutError, ValueError) as exc:
+        raise RunStopped(f"cannot reach the Dask scheduler {scheduler!r} ({exc})") from None
+    with client:
+        return client.gather(client.map(_task, chunks, pure=False))

@@ -1,0 +1,210 @@
+r"""A disk cache of computed results (orbits, spectra) that knows the code that computed them.
+
+An entry is found by a *settings key* (the experiment's settings and the versions of Python,
+NumPy, SciPy, PyNAFF and heyoka) and trusted only if the *code* that computed it is unchanged:
+after the computation, :func:`code_manifest` records the SHA-256 of the source file of every
+module of the project (``chaplygin_nd.*``) loaded in the process — a superset of what the
+computation imported, so an edit anywhere in the code it ran (the field of
+:mod:`simulate.so`, a generated kernel, the integrator, the analysis) invalidates the entry. On a
+lookup, :func:`code_unchanged` hashes the current source of each recorded module again (the
+module in ``sys.modules``, else where the import system would find it); a module that changed,
+or that can no longer be found, makes the lookup a miss, and the recomputed entry replaces it.
+
+A cache is an optimisation, never a failure and never a way in (issue 19, item 5):
+
+* entries are ``.npz`` read with ``allow_pickle=False`` and JSON: nothing is unpickled;
+* an entry that does not parse or has the wrong shape is reported once (a
+  :class:`ResultCacheWarning` naming the file and ``$CHAPLYGIN_ND_CACHE``) and recomputed;
+* a folder that cannot be created or written (read-only, the variable naming a file) is reported
+  once and the run goes on uncached;
+* a folder (the cache root or its subfolder) that is writable by group or others, or not owned by
+  this user, is refused as ssh refuses such key folders: reported once, the run goes on uncached.
+  The folders this module creates are private (mode 0700).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import importlib.metadata
+import importlib.util
+import json
+import os
+import stat
+import sys
+import tempfile
+import warnings
+from collections.abc import Iterator
+from pathlib import Path
+
+from chaplygin_nd import cache as project_cache
+
+__all__ = ["ResultCacheWarning", "private_folder", "code_manifest", "code_unchanged",
+           "environment", "write_atomic", "warn_once", "locked"]
+
+PROJECT = "chaplygin_nd"
+_WARNED: set[str] = set()
+_HASHES: dict[tuple[str, int, int], str] = {}
+
+
+class ResultCacheWarning(UserWarning):
+    """A cache folder or entry was unusable; the run goes on (recomputing, or uncached)."""
+
+
+def warn_once(message: str) -> None:
+    """Warn ``message`` (a :class:`ResultCacheWarning`) once per process, naming the variable
+    that moves the cache."""
+    if message in _WARNED:
+        return
+    _WARNED.add(message)
+    warnings.warn(f"{message} (the cache folder is set by ${project_cache.ENV}; "
+                  "deleting it is always safe)", ResultCacheWarning, stacklevel=3)
+
+
+def _unsafe(path: Path) -> str | None:
+    """Why ``path`` (an existing folder) must not be trusted, or None (the ssh rule: owned by
+    this user, not writable by group or others)."""
+    st = path.stat()
+    if hasattr(os, "getuid") and st.st_uid != os.getuid():
+        return f"{path} is owned by another user (uid {st.st_uid})"
+    if st.st_mode & (stat.S_IWGRP | stat.S_IWOTH):
+        return (f"{path} is writable by group or others (mode {stat.filemode(st.st_mode)}); "
+                f"`chmod go-w {path}` makes it private")
+    return None
+
+
+def private_folder(kind: str) -> Path | None:
+    """The subfolder ``kind`` of the project's cache folder, created private (0700) if needed;
+    None (after one warning) when it cannot be created or written or is not private."""
+    root = project_cache.cache_root()
+    sub = project_cache.cache_dir(kind)
+    try:
+        for folder in (root, sub):
+            if folder.exists() and not folder.is_dir():
+                warn_once(f"the cache folder {folder} is not a folder; running uncached")
+                return None
+            folder.mkdir(mode=0o700, parents=True, exist_ok=True)
+            problem = _unsafe(folder)
+            if problem:
+                warn_once(f"the cache folder {problem}: refused, running uncached")
+                return None
+        if not os.access(sub, os.W_OK | os.X_OK):
+            warn_once(f"the cache folder {sub} is not writable; running uncached")
+            return None
+    except OSError as exc:
+        warn_once(f"the cache folder {sub} cannot be used ({exc.strerror or exc}); running uncached")
+        return None
+    return sub
+
+
+def _source_hash(path: str) -> str | None:
+    try:
+        st = os.stat(path)
+    except OSError:
+        return None
+    key = (path, st.st_mtime_ns, st.st_size)
+    if key not in _HASHES:
+        try:
+            _HASHES[key] = hashlib.sha256(Path(path).read_bytes()).hexdigest()
+        except OSError:
+            return None
+    return _HASHES[key]
+
+
+def _source_file(name: str) -> str | None:
+    mod = sys.modules.get(name)
+    origin = getattr(mod, "__file__", None) if mod is not None else None
+    if origin is None:
+        try:
+            spec = importlib.util.find_spec(name)
+        except (ImportError, ValueError):
+            return None
+        origin = spec.origin if spec is not None else None
+    if origin is None or not origin.endswith(".py"):
+        return None
+    return origin
+
+
+def code_manifest() -> dict[str, str]:
+    """``{module: SHA-256 of its source}`` for every loaded module of the project (call it after
+    the computation: every module the computation imported is loaded then)."""
+    out = {}
+    for name in sorted(list(sys.modules)):
+        if name != PROJECT and not name.startswith(PROJECT + "."):
+            continue
+        path = _source_file(name)
+        digest = _source_hash(path) if path else None
+        if digest is not None:
+            out[name] = digest
+    return out
+
+
+def code_unchanged(manifest) -> bool:
+    """True when every module of ``manifest`` (from :func:`code_manifest`) is found and its
+    source has the recorded hash. A manifest that is not a non-empty ``{str: str}`` is False."""
+    if not isinstance(manifest, dict) or not manifest:
+        return False
+    for name, digest in manifest.items():
+        if not isinstance(name, str) or not isinstance(digest, str):
+            return False
+        if not (name == PROJECT or name.startswith(PROJECT + ".")):
+            return False
+        path = _source_file(name)
+        if path is None or _source_hash(path) != digest:
+            return False
+    return True
+
+
+def environment(heyoka: bool = False) -> dict[str, str]:
+    """The versions a cached number depends on: Python, NumPy, SciPy, PyNAFF (and heyoka)."""
+    out = {"python": sys.version.split()[0]}
+    for dist in ("numpy", "scipy", "PyNAFF") + (("heyoka",) if heyoka else ()):
+        try:
+            out[dist] = importlib.metadata.version(dist)
+        except importlib.metadata.PackageNotFoundError:
+            out[dist] = "absent"
+    return out
+
+
+def write_atomic(path: Path, write) -> bool:
+    """``write(tmp_path)`` into a temporary file beside ``path``, then move it into place; False
+    (after one warning) if the folder refuses the write. Never raises :class:`OSError`."""
+    tmp = None
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=path.suffix, dir=path.parent)
+        os.close(fd)
+        write(tmp)
+        os.replace(tmp, path)
+        tmp = None
+        return True
+    except OSError as exc:
+        warn_once(f"writing the cache entry {path} failed ({exc.strerror or exc}); running uncached")
+        return False
+    finally:
+        if tmp is not None:
+            with contextlib.suppress(OSError):
+                os.unlink(tmp)
+
+
+@contextlib.contextmanager
+def locked(path: Path) -> Iterator[None]:
+    """Hold an exclusive lock on ``path.lock`` (one process computes an entry, the others wait);
+    without a lock (no ``fcntl``, or the lock file cannot be opened) the block still runs."""
+    try:
+        import fcntl
+
+        fh = open(path.with_suffix(".lock"), "a")  # noqa: SIM115 - closed below
+    except (ImportError, OSError):
+        yield
+        return
+    try:
+        with contextlib.suppress(OSError):
+            fcntl.flock(fh, fcntl.LOCK_EX)
+        yield
+    finally:
+        fh.close()
+
+
+def dumps(obj) -> str:
+    """Canonical JSON (sorted keys) of a settings dict, for keys."""
+    return json.dumps(obj, sort_keys=True)
