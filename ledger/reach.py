@@ -21,7 +21,9 @@ change, and the test suite uses it only to choose which rows to re-run live.
 The same recorder watches the *derivations*: the public functions of ``symbolic/`` outside
 ``printed/`` and the code generator (:func:`derivation_functions`, keyed ``"reduced.horizontal_blocks"``,
 ``"emit.axisym.stable_Delta"``). A function cached with ``functools.cache``/``lru_cache`` is seen
-twice over: a miss runs its trampoline, a hit moves its ``cache_info()`` counters. The derivations
+twice over: a miss runs its trampoline, a hit moves its ``cache_info()`` counters; a hit is also
+credited with the watched functions the cached one called when it was computed (:data:`CALLEES`,
+per process), so a row's record does not depend on which row filled the cache first. The derivations
 whose result is emitted into ``generated/`` are found the same way, by building every kernel under
 the recorder (:func:`emitted_derivations`); ``make verify`` fails when one of them is reached by no
 row (:func:`unreached_emitted`) — a formula the simulator uses that no row compares with anything.
@@ -69,7 +71,9 @@ def _key(module: str) -> str:
 
 def derivation_functions() -> dict[str, FunctionType]:
     """``{"module.name": function}`` for every public function of ``symbolic/`` that derives:
-    outside ``printed/`` and :data:`NOT_DERIVATIONS`; a cached function by its ``__wrapped__``."""
+    outside ``printed/`` and :data:`NOT_DERIVATIONS`, and not an emitter's kernel-list builder
+    (a function returning ``list[Kernel]`` assembles, it derives nothing); a cached function by
+    its ``__wrapped__``."""
     import pkgutil
 
     import chaplygin_nd.symbolic as symbolic
@@ -84,7 +88,8 @@ def derivation_functions() -> dict[str, FunctionType]:
         for attr, obj in sorted(vars(mod).items()):
             fn = getattr(obj, "__wrapped__", obj)
             if (not attr.startswith("_") and isinstance(fn, FunctionType)
-                    and fn.__module__ == mod.__name__ and not fn.__code__.co_freevars):
+                    and fn.__module__ == mod.__name__ and not fn.__code__.co_freevars
+                    and fn.__annotations__.get("return") != "list[Kernel]"):
                 out[f"{key}.{attr}"] = fn
     return out
 
@@ -115,8 +120,15 @@ def _clone(fn: FunctionType) -> FunctionType:
     return copy
 
 
-def _trampoline(key: str, fn: FunctionType):
-    source = f"def {fn.__name__}(*args, **kwargs):\n    return {_HOOK}({key!r})(*args, **kwargs)\n"
+#: Per process: the watched functions a cached function called when it was computed (a miss),
+#: so that a later cache hit is credited with them too (the row depends on them all the same).
+CALLEES: dict[str, set[str]] = {}
+
+
+def _trampoline(key: str, fn: FunctionType, cached: bool = False):
+    call = (f"{_HOOK}({key!r}, args, kwargs)" if cached
+            else f"{_HOOK}({key!r}, None, None)(*args, **kwargs)")
+    source = f"def {fn.__name__}(*args, **kwargs):\n    return {call}\n"
     namespace: dict = {}
     exec(compile(source, f"<reach {key}>", "exec"), namespace)  # noqa: S102 - fixed template
     return namespace[fn.__name__].__code__
@@ -145,18 +157,30 @@ class Recorder:
         clones = {key: _clone(fn) for key, fn in self.functions.items()}
         self._counts = {key: _calls(w) for key, w in self._caches.items()}
 
-        def hook(key: str):
+        open_misses: list[set[str]] = []   # callees of the cached functions being computed
+
+        def hook(key: str, args, kwargs):
             self.calls.add(key)
-            return clones[key]
+            for callees in open_misses:
+                callees.add(key)
+            if args is None:
+                return clones[key]
+            open_misses.append(set())
+            try:
+                return clones[key](*args, **kwargs)
+            finally:
+                CALLEES.setdefault(key, set()).update(open_misses.pop())
 
         for key, fn in self.functions.items():
             fn.__globals__[_HOOK] = hook
             self._saved[key] = fn.__code__
-            fn.__code__ = _trampoline(key, fn)
+            fn.__code__ = _trampoline(key, fn, cached=key in self._caches)
         return self
 
     def __exit__(self, *exc) -> None:
-        self.calls |= {k for k, w in self._caches.items() if _calls(w) != self._counts[k]}
+        hits = {k for k, w in self._caches.items() if _calls(w) != self._counts[k]}
+        for key in hits:
+            self.calls |= {key} | CALLEES.get(key, set())
         for key, code in self._saved.items():
             fn = self.functions[key]
             fn.__code__ = code
@@ -170,19 +194,24 @@ def unreached(printed_by_row: dict[str, list[str]]) -> list[str]:
     return sorted(set(printed_functions()) - seen)
 
 
+def clear_derivation_caches() -> None:
+    """Empty the ``functools`` caches of the derivations (the next calls are misses)."""
+    for wrapper in _caches(derivation_functions()).values():
+        wrapper.cache_clear()
+
+
 def emitted_derivations() -> list[str]:
     """The derivations called while every kernel of ``generated/`` is built (the emitters listed
-    in :data:`symbolic.codegen.MODULES`), minus the emitters' own kernel-list builders (functions
-    returning ``list[Kernel]``: they assemble, they derive nothing)."""
+    in :data:`symbolic.codegen.MODULES`)."""
     from chaplygin_nd.symbolic.codegen import MODULES
 
     functions = derivation_functions()
+    clear_derivation_caches()  # computed afresh: every callee is seen
     with Recorder(functions) as rec:
         for _stem, spec in MODULES:
             module, name = spec.split(":")
             getattr(importlib.import_module(module), name)()
-    return sorted(k for k in rec.calls
-                  if functions[k].__annotations__.get("return") != "list[Kernel]")
+    return sorted(rec.calls)
 
 
 def unreached_emitted(derived_by_row: dict[str, list[str]],
