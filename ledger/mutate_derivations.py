@@ -6,10 +6,11 @@ targets:
 
 * ``derivations`` — the public functions of ``symbolic/`` that derive
   (:func:`ledger.reach.derivation_functions`). A mutant is run against the ledger rows that reach
-  the function (the ``derived`` map of ``ledger/reach.json``, cheapest first, up to
-  :data:`ROW_TIME_CAP` seconds of rows), exactly as ``make mutate`` does for printed functions:
-  ``killed`` when a row's verdict, counterexample or parts change (or it raises or runs past its
-  budget), ``equivalent`` when nothing changed and the mutant returns exactly the original value at
+  the function (the ``derived`` map of ``ledger/reach.json``, cheapest first, all of them until
+  one changes), as ``make mutate`` does for printed functions: ``killed`` when a row's verdict,
+  counterexample or parts change (or it raises or runs past its budget); for a derivation emitted
+  into ``generated/``, also when the regenerated kernels differ (``make verify``'s stale check
+  fails); ``equivalent`` when nothing changed and the mutant returns exactly the original value at
   every call of the cheapest row, else ``survived``.
 * ``runtime`` — the public functions of ``runtime/``. Their checks are tests, not rows: a mutant
   is run against the test files that import the runtime (:data:`RUNTIME_TESTS`) with
@@ -43,8 +44,6 @@ from chaplygin_nd.ledger.catalog import ROOT
 from chaplygin_nd.ledger.reach import derivation_functions, load_derived, write_json_atomic
 
 OUT_PATH = ROOT / "mutation-derivations.json"
-#: Rows tried per derivation mutant: cheapest first, until their summed unmutated time passes this.
-ROW_TIME_CAP = 40.0
 #: The tests that check the runtime (the files that import it), run with ``pytest -x``.
 RUNTIME_TESTS = ("tests/test_runtime_batches.py", "tests/test_kernels_axisym.py",
                  "tests/test_heyoka.py")
@@ -75,6 +74,7 @@ class Task:
     target: str
     mutant: mu.Mutant
     rows: tuple  # derivations: ((row, signature, seconds), ...); runtime: ()
+    emitted: frozenset = frozenset()  # the emitted derivations (their kernels are compared too)
 
 
 def sample(target: str, size: int | None, seed: int = SEED) -> list[mu.Mutant]:
@@ -114,7 +114,7 @@ def evaluate(task: Task) -> dict:
     fn = functions(task.target)[task.mutant.function]
     original = fn.__code__
     m = task.mutant
-    record = {"target": task.target, "function": m.function,
+    record = {"target": task.target, "function": m.function, "index": m.index,
               "mutation": f"{m.operator}: {m.description}", "row": None, "outcome": "",
               "reason": ""}
     start = time.perf_counter()
@@ -150,6 +150,20 @@ def evaluate(task: Task) -> dict:
                 record.update(outcome="killed", row=claim_id,
                               reason=note or mu._difference(base, got))
                 return record
+        if task.mutant.function in task.emitted:
+            fn.__code__ = code
+            try:
+                from chaplygin_nd.symbolic.codegen import stale_report
+
+                stale = stale_report()
+            finally:
+                fn.__code__ = original
+                clear_caches()
+            if stale:
+                record.update(outcome="killed", row="generated/",
+                              reason="no row changed, but the regenerated kernels differ: make "
+                                     "verify's stale check of generated/ fails")
+                return record
         claim_id, _base, seconds = task.rows[0]
         equal, calls, _kind = mu._equivalence(fn, code, claim_id,
                                               max(mu.MIN_BUDGET, mu.BUDGET_FACTOR * seconds))
@@ -175,7 +189,7 @@ def plan(target: str, selection: list[mu.Mutant], jobs: int) -> list[Task]:
     their unmutated signatures (one baseline run of just those rows)."""
     if target == "runtime":
         return [Task(target, m, ()) for m in selection]
-    derived, _ = load_derived()
+    derived, emitted = load_derived()
     _, seconds = mu_load_seconds()
     by_function: dict[str, list[str]] = {}
     for row, fs in derived.items():
@@ -183,17 +197,12 @@ def plan(target: str, selection: list[mu.Mutant], jobs: int) -> list[Task]:
             by_function.setdefault(f, []).append(row)
     chosen: dict[str, list[str]] = {}
     for m in selection:
-        rows, total = [], 0.0
-        for r in sorted(by_function.get(m.function, []), key=lambda r: (seconds.get(r, 99), r)):
-            if rows and total + seconds.get(r, 99) > ROW_TIME_CAP:
-                break
-            rows.append(r)
-            total += seconds.get(r, 99)
-        chosen[m.function] = rows
+        chosen[m.function] = sorted(by_function.get(m.function, []),
+                                    key=lambda r: (seconds.get(r, 99), r))
     needed = sorted({r for rows in chosen.values() for r in rows})
     base = mu.baseline(needed, jobs=jobs) if needed else {}
-    return [Task(target, m, tuple((r, base[r][0], base[r][1]) for r in chosen[m.function]))
-            for m in selection]
+    return [Task(target, m, tuple((r, base[r][0], base[r][1]) for r in chosen[m.function]),
+                 frozenset(emitted)) for m in selection]
 
 
 def mu_load_seconds():
@@ -226,6 +235,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seed", type=int, default=SEED)
     parser.add_argument("--function", action="append", default=[],
                         help="only these functions (e.g. reduced.horizontal_blocks)")
+    parser.add_argument("--rerun", type=Path, default=None,
+                        help="re-run only the survivors and errors recorded in this JSON file")
     parser.add_argument("--jobs", "-j", type=int, default=2)
     parser.add_argument("--out", type=Path, default=OUT_PATH)
     args = parser.parse_args(argv)
@@ -235,6 +246,13 @@ def main(argv: list[str] | None = None) -> int:
     for target in args.target or ["derivations", "runtime"]:
         selection = [m for m in sample(target, None if args.function else args.sample, args.seed)
                      if not args.function or m.function in args.function]
+        if args.rerun:
+            import json
+
+            again = {(r["function"], r["index"]) for r in json.loads(args.rerun.read_text())[
+                "mutants"] if r["outcome"] in ("survived", "error") and r["target"] == target}
+            selection = [m for m in sample(target, None, args.seed)
+                         if (m.function, m.index) in again]
         tasks = plan(target, selection, args.jobs)
         print(f"{target}: {len(tasks)} mutants to run", flush=True)
         t0 = time.perf_counter()
