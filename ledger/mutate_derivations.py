@@ -249,10 +249,10 @@ def main(argv: list[str] | None = None) -> int:
         if args.rerun:
             import json
 
-            again = {(r["function"], r["index"]) for r in json.loads(args.rerun.read_text())[
+            again = {(r["function"], r["mutation"]) for r in json.loads(args.rerun.read_text())[
                 "mutants"] if r["outcome"] in ("survived", "error") and r["target"] == target}
             selection = [m for m in sample(target, None, args.seed)
-                         if (m.function, m.index) in again]
+                         if (m.function, f"{m.operator}: {m.description}") in again]
         tasks = plan(target, selection, args.jobs)
         print(f"{target}: {len(tasks)} mutants to run", flush=True)
         t0 = time.perf_counter()

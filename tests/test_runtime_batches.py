@@ -68,21 +68,70 @@ def test_vertical_solution_on_a_batch_against_mpmath(n, shape):
         assert err <= 8 * n * EPS * scale, (idx, err / (EPS * scale))
 
 
-def _mp_angular_velocity(M, gamma, a, b):
-    """Omega = L_gamma^{-1} M by an mpmath LU solve of eq:M-O (J = Id + a E_n E_n^T) at 50 digits,
-    in the basis E_p ^ E_r (p < r); returns the upper entries of Omega."""
+def _mp_L(gamma, a, b):
+    """The matrix of L_gamma (eq:M-O, J = Id + a E_n E_n^T) at 50 digits in the basis E_p ^ E_r
+    (p < r), assembled from the definition; and the pairs (p, r)."""
     n = len(gamma)
     pairs = [(i, j) for i in range(n) for j in range(i + 1, n)]
-    J = [1] * (n - 1) + [1 + a]
+    J = [1] * (n - 1) + [1 + mpmath.mpf(float(a))]
     g = [mpmath.mpf(float(c)) for c in gamma]
     cols = []
     for p, r in pairs:
         Og = [0] * n
         Og[p], Og[r] = g[r], -g[p]   # (E_p ^ E_r) gamma
         cols.append([(J[i] + J[j]) * (1 if (i, j) == (p, r) else 0)
-                     + b * (Og[i] * g[j] - g[i] * Og[j]) for i, j in pairs])
-    L = mpmath.matrix([[cols[c][k] for c in range(len(pairs))] for k in range(len(pairs))])
+                     + mpmath.mpf(float(b)) * (Og[i] * g[j] - g[i] * Og[j]) for i, j in pairs])
+    return mpmath.matrix([[cols[c][k] for c in range(len(pairs))] for k in range(len(pairs))]), pairs
+
+
+def _mp_angular_velocity(M, gamma, a, b):
+    """Omega = L_gamma^{-1} M by an mpmath LU solve (upper entries of Omega)."""
+    L, pairs = _mp_L(gamma, a, b)
     return list(mpmath.lu_solve(L, mpmath.matrix([mpmath.mpf(float(M[i, j])) for i, j in pairs])))
+
+
+@pytest.mark.parametrize("n", [3, 4, 5])
+def test_L_gamma_on_a_batch_against_mpmath(n):
+    """runtime.axisym.L_gamma (the forward map Omega -> M of eq:M-O) on a batch with a, b varying
+    along it: each entry equals the matrix of L_gamma from the definition applied at 50 digits,
+    within 8 eps (1 + |a| + |b|) |Omega|."""
+    mpmath.mp.dps = 50
+    rng = np.random.default_rng([n, 7])
+    A = rng.standard_normal((4, n, n))
+    Omega = A - np.swapaxes(A, -1, -2)
+    gamma = rng.standard_normal((4, n))
+    gamma /= np.linalg.norm(gamma, axis=-1, keepdims=True)
+    a, b = rng.uniform(-1, 1, 4), rng.uniform(0.1, 3, 4)
+    M = axisym.L_gamma(Omega, gamma, a, b)
+    i, j = np.triu_indices(n, 1)
+    for k in range(4):
+        L, pairs = _mp_L(gamma[k], a[k], b[k])
+        ref = L * mpmath.matrix([mpmath.mpf(float(Omega[k][p, r])) for p, r in pairs])
+        err = max(float(abs(mpmath.mpf(float(v)) - r)) for v, r in zip(M[k][i, j], ref))
+        scale = (1 + abs(a[k]) + b[k]) * float(np.linalg.norm(Omega[k]))
+        assert err <= 8 * EPS * scale, (k, err / (EPS * scale))
+        assert np.array_equal(M[k], -M[k].T)
+
+
+@pytest.mark.parametrize("n", [3, 4, 5])
+def test_chi_on_a_batch_against_the_derived_expression(n):
+    """runtime.axisym.chi (eq:solManakov) on a batch with a varying along it: each entry equals the
+    derived chi of symbolic.vertical evaluated exactly at the float inputs (as rationals), within
+    8 eps (1 + |chi|)."""
+    import sympy as sp
+    from chaplygin_nd.symbolic.vertical import chi as chi_exact
+
+    rng = np.random.default_rng([n, 8])
+    A = rng.standard_normal((3, n, n))
+    Omega0 = A - np.swapaxes(A, -1, -2)
+    a, b = rng.uniform(-1, 1, 3), 1.25
+    got = axisym.chi(Omega0, a, b)
+    assert got.shape == (3, n, n)
+    for k in range(3):
+        W = sp.Matrix(n, n, [sp.Rational(float(v)) for v in Omega0[k].ravel()])
+        ref = np.array(chi_exact(W, sp.Rational(float(a[k])), sp.Rational(b)).evalf(30).tolist(),
+                       dtype=float)
+        assert np.max(np.abs(got[k] - ref)) <= 8 * EPS * (1 + np.max(np.abs(ref))), k
 
 
 @pytest.mark.parametrize("n", [3, 4, 6])
