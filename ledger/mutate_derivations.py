@@ -14,8 +14,9 @@ targets:
   every call of the cheapest row, else ``survived``.
 * ``runtime`` — the public functions of ``runtime/``. Their checks are tests, not rows: a mutant
   is run against the test files that import the runtime (:data:`RUNTIME_TESTS`) with
-  ``pytest -x``; ``killed`` when a test fails, else ``survived`` (to be killed by a new test or
-  shown equivalent by hand; the run says which).
+  ``pytest -x``; ``killed`` when a test fails; ``equivalent`` when every test passes and the
+  mutant's outputs are bit-for-bit the original's at every call the tests make (e.g. the operands
+  of an IEEE multiplication swapped); else ``survived``.
 
 Every function cached with ``functools`` anywhere in the package is cleared before and after each
 mutant (a cached unmutated value would hide the mutant; a cached mutated one would leak into the
@@ -109,6 +110,54 @@ def _run_tests(files) -> tuple[bool, str]:
     return code == 0, (lines[0] if lines else f"pytest exit {code}")[:200]
 
 
+def _bitwise_equal(x, y) -> bool:
+    import numpy as np
+
+    if isinstance(x, (tuple, list)) and isinstance(y, (tuple, list)):
+        return len(x) == len(y) and all(_bitwise_equal(u, v) for u, v in zip(x, y))
+    try:
+        xa, ya = np.asarray(x), np.asarray(y)
+    except Exception:  # noqa: BLE001 - not array-like: compare as objects
+        return x is y or x == y
+    if xa.dtype == object or ya.dtype == object:
+        return str(x) == str(y)  # e.g. heyoka expressions: the same expression text
+    return xa.shape == ya.shape and xa.dtype == ya.dtype and np.array_equal(xa, ya, equal_nan=True)
+
+
+def _runtime_equivalence(fn, mutant_code) -> tuple[bool, int]:
+    """Run the runtime tests once with both versions computed at every call of ``fn``: (all
+    outputs bit-for-bit equal, number of calls). The original's output is what the tests see."""
+    orig = FunctionType(fn.__code__, fn.__globals__, fn.__name__, fn.__defaults__)
+    orig.__kwdefaults__ = fn.__kwdefaults__
+    mut = FunctionType(mutant_code, fn.__globals__, fn.__name__, fn.__defaults__)
+    mut.__kwdefaults__ = fn.__kwdefaults__
+    state = {"calls": 0, "same": True}
+
+    def hook(*args, **kwargs):
+        want = orig(*args, **kwargs)
+        state["calls"] += 1
+        try:
+            got = mut(*args, **kwargs)
+            state["same"] = state["same"] and _bitwise_equal(want, got)
+        except Exception:  # noqa: BLE001 - raises where the original does not
+            state["same"] = False
+        return want
+
+    name = "__mutate_runtime_hook__"
+    src = f"def {fn.__name__}(*args, **kwargs):\n    return {name}(*args, **kwargs)\n"
+    ns: dict = {}
+    exec(compile(src, "<runtime compare>", "exec"), ns)  # noqa: S102 - fixed template
+    original = fn.__code__
+    fn.__globals__[name] = hook
+    fn.__code__ = ns[fn.__name__].__code__
+    try:
+        _run_tests(RUNTIME_TESTS)
+    finally:
+        fn.__code__ = original
+        fn.__globals__.pop(name, None)
+    return state["same"] and state["calls"] > 0, state["calls"]
+
+
 def evaluate(task: Task) -> dict:
     """Decide one mutant in this process: apply it, run its rows (or tests), restore."""
     fn = functions(task.target)[task.mutant.function]
@@ -131,8 +180,15 @@ def evaluate(task: Task) -> dict:
                 passed, note = _run_tests(RUNTIME_TESTS)
             finally:
                 fn.__code__ = original
-            record.update(outcome="survived" if passed else "killed", row="tests",
-                          reason="every runtime test passed" if passed else note)
+            if not passed:
+                record.update(outcome="killed", row="tests", reason=note)
+                return record
+            same, calls = _runtime_equivalence(fn, code)
+            record.update(row="tests", **(
+                {"outcome": "equivalent", "reason": f"every runtime test passed and the mutant's "
+                 f"outputs are bit-for-bit the original's at all {calls} calls the tests make"}
+                if same else {"outcome": "survived", "reason": f"every runtime test passed; "
+                              f"outputs differ or no call was made ({calls} calls)"}))
             return record
         if not task.rows:
             record.update(outcome="survived", reason="no ledger row reaches this derivation")
