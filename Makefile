@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 CLI := $(VENV)/bin/chaplygin
 STAMP := $(VENV)/.installed
 
-.PHONY: setup verify test generate bench mutate clean
+.PHONY: setup verify test generate bench mutate mutate-derivations clean
 
 setup: $(STAMP)
 
@@ -31,6 +31,12 @@ test: setup
 ## rows that reach it); writes mutation.json and ledger/reach.json; fails on a surviving mutant.
 mutate: setup
 	$(CLI) mutate
+
+## mutate-derivations: the same one-token mutants applied to the derivations of symbolic/ (run
+## against the rows that reach them) and to runtime/ (run against its tests); writes
+## mutation-derivations.json. `make mutate-derivations MUTATE_ARGS="--sample 150"` draws a seeded sample.
+mutate-derivations: setup
+	$(PY) -m chaplygin_nd.ledger.mutate_derivations $(MUTATE_ARGS)
 
 ## generate: rewrite generated/ from the derived (proved) expressions.
 generate: setup

@@ -70,10 +70,13 @@ def main(argv: list[str] | None = None) -> int:
     problems += [f"{i}: a finding without a kind (formula/proof/scope/reading): an error of the "
                  "ledger" for i in report.missing_kind(results)]
     if not args.ids:  # every printed formula must be checked by some row (DESIGN rule 1)
-        from chaplygin_nd.ledger.reach import unreached
+        from chaplygin_nd.ledger.reach import unreached, unreached_emitted
 
         missing = unreached({r.row.id: list(r.printed) for r in results})
         problems += [f"printed function {f} is reached by no ledger row" for f in missing]
+        # every derivation emitted into generated/ must be checked by some row (issue 17)
+        problems += [f"derivation {f} is emitted into generated/ but reached by no ledger row"
+                     for f in unreached_emitted({r.row.id: list(r.derived) for r in results})]
     unknown = unknown_registrations()
     problems += [f"{i}: registered by a proof but not a ledger row" for i in unknown]
     generated = "not checked"

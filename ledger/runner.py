@@ -29,6 +29,8 @@ class Result:
     error: str = ""
     #: the public functions of symbolic/printed/ this row called (ledger.reach.Recorder)
     printed: tuple[str, ...] = ()
+    #: the derivations of symbolic/ this row called (ledger.reach.derivation_functions)
+    derived: tuple[str, ...] = ()
 
     @property
     def status(self) -> str:
@@ -38,16 +40,16 @@ class Result:
         d = {"id": self.row.id, "section": self.row.section, "claim": self.row.claim,
              "seconds": round(self.seconds, 3), "proof_module": self.module,
              "uses": list(self.uses), "error": self.error or None,
-             "printed": list(self.printed)}
+             "printed": list(self.printed), "derived": list(self.derived)}
         d.update(self.verdict.to_dict())
         d["verdict"] = self.status
         return d
 
 
 def _run_one(claim_id: str, seed: int = points.DEFAULT_SEED
-             ) -> tuple[Verdict, float, str, tuple[str, ...]]:
+             ) -> tuple[Verdict, float, str, tuple[str, ...], tuple[str, ...]]:
     """Decide one row with ``seed`` as the seed of its seeded checks (in this process);
-    also the printed functions it called (:mod:`ledger.reach`)."""
+    also the printed functions and the derivations it called (:mod:`ledger.reach`)."""
     spec = registry()[claim_id]
     previous = points.set_ledger_seed(seed)
     start = time.perf_counter()
@@ -62,11 +64,11 @@ def _run_one(claim_id: str, seed: int = points.DEFAULT_SEED
         if tally or verdict.verdict in ("holds", "corrected", "fails"):
             # which engines decided the row's zero tests (symbolic.exact): said in its method
             verdict = replace(verdict, method=f"{verdict.method}; {engine_note(tally)}")
-        return verdict, time.perf_counter() - start, "", tuple(sorted(recorder.calls))
+        return verdict, time.perf_counter() - start, "", recorder.printed(), recorder.derived()
     except Exception:  # a proof that raises is an error row, never a silent pass
         return (Verdict("fails", "raised an exception", notes="see error"),
                 time.perf_counter() - start, traceback.format_exc(limit=8),
-                tuple(sorted(recorder.calls)))
+                recorder.printed(), recorder.derived())
     finally:
         points.set_ledger_seed(previous)
 
@@ -116,9 +118,10 @@ def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFA
             if row.id in specs:
                 claim_id = next(pending)
                 assert claim_id == row.id
-                verdict, seconds, error, printed = next(iterator)
+                verdict, seconds, error, printed, derived = next(iterator)
                 spec = specs[row.id]
-                result = Result(row, verdict, seconds, spec.module, spec.uses, error, printed)
+                result = Result(row, verdict, seconds, spec.module, spec.uses, error, printed,
+                                derived)
             else:
                 reason = pending_reason(row)
                 # No proof and no section owner: an open row WITHOUT a reason (fails the run).

@@ -35,9 +35,13 @@ SECTION = "Kernels — stable rewrites"
 def k_delta() -> Verdict:
     from chaplygin_nd.symbolic.axisymmetric import Delta, a, b, x
     from chaplygin_nd.symbolic.emit.axisym import stable_Delta
+    from chaplygin_nd.symbolic.emit.fourd import stable_D
 
     check = rational_identity(stable_Delta(x, a, b) - Delta(x, a, b))
-    return Verdict.all_of([("stable form = derived Delta", check)], method=check.method)
+    common = rational_identity(stable_D() - 2 * (2 + a + b) * Delta(x, a, b))  # same a, b, x
+    return Verdict.all_of([("stable form = derived Delta", check),
+                           ("D = 2(2+a+b) Delta of the 4D and reduced kernels", common)],
+                          method=check.method)
 
 
 @claim("K:rodrigues", uses=("Th:Re",), adds=(SECTION, "exp(ẑ) = I + sinc θ ẑ + ½ sinc²(θ/2) ẑ², the form of the vertical-solution kernel"))

@@ -14,6 +14,10 @@ $\Omega_0 = L_\gamma^{-1}M_0$, modulo $\lVert\gamma\rVert^2 = 1$):
 * $B = \mu A$ with the printed $\mu$ (as an identity on $\mathcal{V}$ after clearing $x_0$), and the
   printed scalar factor of line 671: $\mu A\gamma_0 - B\gamma_0 = (\text{factor})\,\hat\Omega_0E_3$
   identically in $\mu$;
+* the proportionality step (two matrices of $\mathfrak{so}(3)$ with the same null vector $v \ne 0$
+  are proportional) as an ideal membership: $v_k(a\times c)_i \in \langle a\times v, c\times v\rangle$
+  (Gröbner normal form $0$, quotients checked), and both matrices of the proof annihilate $E_3$;
+  the case split ($x_0 = 0$; $\hat\Omega_0E_3 = 0$; both non-zero) is exhaustive by construction;
 * the case $\hat\Omega_0E_3 = 0$ — a finding about the proof (row P:n3special:case-OmegaE3):
   on $\mathcal{V}$ it forces $\Omega_0 \parallel E_3$ and ($\Omega_0 = 0$ or $\gamma_0 = \pm E_3$),
   and for $\gamma_0 = \pm E_3$, $\Omega_0 = \omega E_3$ (a point of $\mathcal{V}$: spin about the
@@ -31,7 +35,7 @@ from chaplygin_nd.proofs.s4_common import SAMPLERS, a, b, combine, generic_verti
 from chaplygin_nd.symbolic.algebra import hat, unhat, wedge
 from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
 from chaplygin_nd.symbolic.axisymmetric import E_n, L_gamma_axisym
-from chaplygin_nd.symbolic.exact import rational_identity
+from chaplygin_nd.symbolic.exact import Check, rational_identity
 from chaplygin_nd.symbolic.printed import section4 as printed
 from chaplygin_nd.symbolic.vertical import zeta, zeta_3d
 
@@ -88,12 +92,50 @@ def p_n3special() -> Verdict:
         Verdict.decide(factor).as_part("the scalar factor of line 671"),
         Verdict.decide(x0_zero, method=x0_zero.method + " (generic point of V with x_0 = 0)")
         .as_part("case x_0 = 0: both expressions vanish"),
-        Verdict.by_argument("the proof's case split (x_0 = 0; hat(Omega_0) E_3 = 0; otherwise) "
-                            "covers V, and two matrices of so(3) with the same null vector are "
-                            "proportional (the step that introduces mu)")
-        .as_part("case split and proportionality"),
+        Verdict.decide(combine([null_vector_premises(), proportionality()])).as_part(
+            "proportionality: matrices of so(3) with the same null vector are proportional"),
     ], n_values=(3,), notes="The proof's case Omega_0 E_3 = 0 is mis-stated; see row "
-                            "P:n3special:case-OmegaE3.")
+                            "P:n3special:case-OmegaE3. The case split (x_0 = 0; x_0 != 0 with "
+                            "hat(Omega_0) E_3 = 0; both non-zero) is exhaustive by construction.")
+
+
+def null_vector_premises():
+    r"""Both matrices of the proof, $A = \hat\Omega_0 - (\hat\Omega_0E_3)\wedge E_3$ and
+    $B = (\hat\Omega_0E_3)\wedge(\gamma_0 - x_0E_3)$, annihilate $E_3$: exact on $\mathcal{V}$."""
+    E3 = E_n(3)
+
+    def residual(n):
+        M0, g, W0 = _on_V()
+        A = W0 - wedge(W0 * E3, E3)
+        B = wedge(W0 * E3, g - g[2] * E3)
+        return (A * E3).col_join(B * E3)
+    return sym_checks(residual, (3,), label="n3-null")
+
+
+def proportionality():
+    r"""The step that introduces $\mu$, computed. For $\hat a v = a\times v$: if $a\times v = 0$,
+    $c\times v = 0$ and $v \ne 0$ then $a\times c = 0$, because every $v_k(a\times c)_i$ lies in the
+    ideal $\langle a\times v, c\times v\rangle$ of $\mathbb{Q}[a, c, v]$: its normal form modulo a
+    Gröbner basis (grevlex) is $0$, and the quotients are checked as the polynomial identity
+    $v_k(a\times c)_i = \sum_j q_jG_j$. Then $\lVert a\rVert^2c - \langle a, c\rangle a =
+    -a\times(a\times c) = 0$, so $c = \mu a$ with $\mu = \langle a, c\rangle/\lVert a\rVert^2$ when
+    $a \ne 0$ (and $B = \mu A$ with the printed $\mu$ is the part proved above)."""
+    av, cv, v = (sp.Matrix(sp.symbols(f"{s}1:4", real=True)) for s in ("a", "c", "v"))
+    gens = list(av.cross(v)) + list(cv.cross(v))
+    X = (*av, *cv, *v)
+    basis = sp.groebner(gens, *X, order="grevlex")
+    residuals = []
+    for i in range(3):
+        for k in range(3):
+            f = sp.expand(v[k] * av.cross(cv)[i])
+            quotients, remainder = basis.reduce(f)
+            residuals += [remainder, f - sum(q * g for q, g in zip(quotients, basis.exprs))]
+    residuals += list(av.dot(av) * cv - av.dot(cv) * av + av.cross(av.cross(cv)))
+    check = rational_identity(residuals, label="n3-ideal")
+    return Check(check.ok, "v_k (a x c)_i in <a x v, c x v>: normal form 0 modulo a Groebner basis "
+                           "(grevlex) and the quotient identity, exact; |a|^2 c - <a,c> a = "
+                           "-a x (a x c) (" + check.method + ")", check.counterexample,
+                 check.seconds)
 
 
 @claim("P:n3special:case-OmegaE3", uses=("P:n3special", "eq:V-velocity"),

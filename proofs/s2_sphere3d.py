@@ -68,6 +68,23 @@ def _lie_derivative(f: sp.Expr, Mdot: sp.Matrix, gdot: sp.Matrix) -> sp.Expr:
     return sum(sp.diff(f, M[i]) * Mdot[i] + sp.diff(f, gamma[i]) * gdot[i] for i in range(3))
 
 
+def velocity_field_residual() -> sp.Matrix:
+    r"""The derived field in $(\Omega, \gamma)$ (:func:`symbolic.sphere3d.velocity_field_3d`, emitted
+    as the 3D equations of motion in velocity form) against eq:motion3D itself: with
+    $M = \mathbb{I}\Omega + b\gamma\times(\Omega\times\gamma)$ (eq:mom3D), the field's
+    $\dot\Omega = N/\det L_\gamma$ and $\dot\gamma$ must satisfy
+    $\det L_\gamma\,\tfrac{d}{dt}M = L_\gamma N + \det L_\gamma\,(\partial_\gamma M)\dot\gamma
+    = \det L_\gamma\,M\times\Omega$ and $\dot\gamma = \gamma\times\Omega$ — a polynomial identity
+    in $(\Omega, \gamma, I, b)$ for every $\gamma$. $L_\gamma = \partial M/\partial\Omega$ is taken from
+    the definition here, not from :mod:`symbolic.sphere3d`."""
+    numerator, det_L, gdot = velocity_field_3d(Omega, gamma, inertia, b)
+    M_of_Omega = mom3d(Omega, gamma, inertia, b)
+    Mdot_def, gdot_def = motion3d(M_of_Omega, gamma, Omega)
+    dMdt = (M_of_Omega.jacobian(Omega) * numerator
+            + det_L * M_of_Omega.jacobian(gamma) * gdot)
+    return (dMdt - det_L * Mdot_def).col_join(gdot - gdot_def)
+
+
 @claim("eq:motion3D")
 def motion3d_definition() -> Verdict:
     # Consistency: through the hat map, eq:motion3D is eq:motion-general at n = 3.
@@ -79,6 +96,9 @@ def motion3d_definition() -> Verdict:
              _identity(hat(Mdot) - commutator(hat(M), hat(Omega)), sphere=False)),
             ("gamma x Omega = -hat(Omega) gamma",
              _identity(gdot + hat(Omega) * gamma, sphere=False)),
+            ("the derived field in (Omega, gamma): L_gamma Omega_dot = M x Omega - "
+             "(d_gamma M) gamma_dot, gamma_dot = gamma x Omega (exact, every gamma)",
+             _identity(velocity_field_residual(), sphere=False, label="field3d")),
         ])
 
 

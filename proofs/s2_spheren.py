@@ -242,10 +242,28 @@ def _charpoly_point(n, p):
     return QQ.to_sympy(det) * (B.inv() * Bdot).to_Matrix().trace()
 
 
+def _emitted_coefficients(n: int):
+    r"""The coefficients of $p$ the kernels evaluate (:func:`symbolic.emit.axisym.p_coefficients`,
+    entry $(i, j)$ at $\lambda^i\sigma^j$) minus those of the printed $p$, exactly."""
+    from chaplygin_nd.symbolic.emit.axisym import M_symbols, gamma_symbols, p_coefficients
+
+    sigma, lam = sp.symbols("sigma lambda")
+    M, _ = M_symbols(n)
+    shown = sp.Poly(printed.characteristic_polynomial(M, sp.Matrix(gamma_symbols(n)), sigma, lam),
+                    lam, sigma)
+    C = p_coefficients(n)
+    return rational_identity([C[i, j] - shown.coeff_monomial(lam**i * sigma**j)
+                              for i in range(n + 1) for j in range(2)]
+                             + [shown.as_expr() - sum(C[i, j] * lam**i * sigma**j for i in range(n + 1)
+                                                      for j in range(2))], label=f"p-coeffs{n}")
+
+
 @claim("eq:pol-first-integrals", uses=("eq:iso-spectral",))
 def polynomial_integrals() -> Verdict:
     checks = _both("d/dt p(lambda, sigma)", _charpoly_symbolic, _charpoly_point,
                    symbolic_n=(3, 4), point_n=points.all_n(3), count=3)
+    checks += [(f"the emitted coefficients of p are those of the printed p, n={n}",
+                _emitted_coefficients(n)) for n in (3, 4)]
     return Verdict.all_of(
         checks, n_values=_ns((3, 4)),
         method="the Lie derivative of det(M + sigma gg^T - lambda) along the flow, for any skew "

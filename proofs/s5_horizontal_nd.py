@@ -81,7 +81,11 @@ from chaplygin_nd.symbolic.axisymmetric import E_n, a, b, mass_tensor
 from chaplygin_nd.symbolic.exact import point_engines, rational_identity, zero_at_points
 from chaplygin_nd.symbolic.model import angular_velocity
 from chaplygin_nd.symbolic.printed import section5 as printed
-from chaplygin_nd.symbolic.reduced import horizontal_solution
+from chaplygin_nd.symbolic.reduced import (
+    horizontal_blocks,
+    horizontal_frequency_squared,
+    horizontal_solution,
+)
 
 SECTION = "Section 5 — n = 4"
 SYMBOLIC_N = (3, 4)
@@ -95,7 +99,8 @@ S = a + b + 2
 NAMES = ("x_dot = G/S (printed, line 922)", "G_dot = -omega^2 x (printed, line 922)",
          "omega^2: the two printed expressions agree (line 930)",
          "S(1-x^2) omega^2 = G^2 + 2SA/Delta", "d(omega^2)/dt = 0",
-         "eq:A-on-J first expression", "eq:A-on-J second expression")
+         "eq:A-on-J first expression", "eq:A-on-J second expression",
+         "A = the emitted block A(x, G, f2)", "B = ||M E_n||^2 = the emitted block B(x, G, f2)")
 
 
 def _scalar(m):
@@ -121,6 +126,8 @@ def residuals(M, gamma, Omega, Omega_dot_of, a_, b_) -> list:
         Odot = Omega_dot_of(Mdot - Ld)
         f2_dot, h_dot = 2 * killing(M, Mdot), (killing(Mdot, Omega) + killing(M, Odot)) / 2
     A = killing(M - wedge(M * E, E), M - wedge(M * E, E))
+    B = _scalar((M * E).T * (M * E))
+    A_blocks, B_blocks = horizontal_blocks(x, G, f2)  # what generated/reduced.py evaluates
     Gdot_p, xdot_p = printed.H_linear_system(G, x, h, f2, a_, b_)
     w2, w2_alt = printed.omega_squared(h, f2, G, x, a_, b_)
     A_first, A_second = printed.A_on_J(G, x, h, f2, a_, b_)
@@ -128,7 +135,8 @@ def residuals(M, gamma, Omega, Omega_dot_of, a_, b_) -> list:
     S_ = a_ + b_ + 2
     return [gdot[n - 1] - xdot_p, G_dot - Gdot_p, w2 - w2_alt,
             S_ * (1 - x**2) * w2 - (G**2 + 2 * S_ * A / Delta),
-            (f2_dot - 2 * b_ * h_dot) / (2 + a_), A - A_first, A - A_second]
+            (f2_dot - 2 * b_ * h_dot) / (2 + a_), A - A_first, A - A_second,
+            A - A_blocks, B - B_blocks]
 
 
 CONSERVATION = 4  # index of d(omega^2)/dt in NAMES
@@ -201,15 +209,15 @@ def _f2_conserved():
 
 
 def _closed_form():
-    t, x0, G0, nu, c, s = sp.symbols("t x0 G0 nu c s", real=True)
-    xs, Gs = horizontal_solution(t, x0, G0, nu)
-    cs = {sp.cos(nu * t): c, sp.sin(nu * t): s}
-    xs, Gs = xs.xreplace(cs), Gs.xreplace(cs)
+    """The corrected closed form with the derived frequency nu^2(h, f2) (both emitted) solves the
+    printed linear system x_dot = G/S, G_dot = -omega^2 x (omega^2 printed, in h and f2)."""
+    from chaplygin_nd.proofs.s5_horizontal_vertical import closed_form_residuals
 
-    def ddt(f):
-        return sp.diff(f, c) * (-nu * s) + sp.diff(f, s) * (nu * c)
-    return rational_identity([xs.subs({c: 1, s: 0}) - x0, Gs.subs({c: 1, s: 0}) - G0,
-                              ddt(xs) - Gs / S, ddt(Gs) + S * nu**2 * xs], label="HnD closed form")
+    t, x0, G0, nu, h, f2 = sp.symbols("t x0 G0 nu h f2", real=True)
+    omega2, _ = printed.omega_squared(h, f2, sp.Symbol("G"), sp.Symbol("x"), a, b)
+    return rational_identity(closed_form_residuals(
+        horizontal_solution, horizontal_frequency_squared(h, f2), omega2, t, x0, G0, nu),
+        label="HnD closed form")
 
 
 CONSERVATION_METHOD = (
@@ -243,6 +251,9 @@ def h_linear_nd() -> Verdict:
                                                 method=CONSERVATION_METHOD)),
         part("eq:A-on-J (both printed expressions) for every n",
              _checks(slice(5, 7), "AJ")),
+        part("the blocks A = (1-x^2) f2 - G^2, B = x^2 f2 + G^2 the kernels evaluate, for every n",
+             _checks(slice(7, 9), "blocks")),
         part("x = x0 cos nu t + G0 sin nu t/(S nu), G = G0 cos nu t - S x0 nu sin nu t, "
-             "nu^2 = omega^2/S, solves it", _closed_form()),
+             "nu^2 = (f2 - 2bh)/((2+a)S) = omega^2/S (the kernels' frequency), solves it",
+             _closed_form()),
     ], n_values=POINT_N, notes=REDUCTION)

@@ -28,7 +28,10 @@ $\nu^2 = \frac{f_2-2bh}{(2+a)(a+b+2)}$.
 **Uses** S5:HV4D, eq:red-system, S5:red-integrals. **Proves** exact rational identities in the
 graph coordinates (and on the slices $x = 0$); the printed solution is refuted at exact points of
 $\mathcal{H}$; the corrected one is proved with $c = \cos\nu t$, $s = \sin\nu t$,
-$\dot c = -\nu s$, $\dot s = \nu c$. $n = 4$.
+$\dot c = -\nu s$, $\dot s = \nu c$, with the derived $\nu^2(h, f_2)$ the kernels use
+(:func:`symbolic.reduced.horizontal_frequency_squared`, modulo $\nu^2 - \nu^2(h, f_2)$) against the
+printed $\omega^2(h, f_2)$; the kernels' $A(x, G; h)$ (:func:`symbolic.reduced.horizontal_level_A`)
+is compared with the first expression of eq:A-on-J. $n = 4$.
 """
 
 from __future__ import annotations
@@ -124,9 +127,14 @@ def _level():
 def a_on_j() -> Verdict:
     hh, ff = _level()
     first, second = printed.A_on_J(G, x, hh, ff, a, b)
+    level = reduced.horizontal_level_A(h)  # A(x, G; h), what generated/reduced.py evaluates
+    first_h, _ = printed.A_on_J(G, x, h, f2, a, b)
     return Verdict.all_of([("first (from H = h)", exact(first - A, "AJ 1")),
-                           ("second (from F2 = f2)", exact(second - A, "AJ 2"))], n_values=(4,),
-                          method="exact: with h = H and f2 = F2 evaluated on the graph of H/SO(3)")
+                           ("second (from F2 = f2)", exact(second - A, "AJ 2")),
+                           ("the emitted A(x, G; h) (solved from the derived H) = first",
+                            exact(level - first_h, "AJ emitted"))], n_values=(4,),
+                          method="exact: with h = H and f2 = F2 evaluated on the graph of H/SO(3); "
+                                 "the kernel's A(x, G; h) against the first printed expression")
 
 
 def _printed_solution_at(pt):
@@ -149,16 +157,40 @@ def _horizontal_point_G0(rng):
     return pt
 
 
-def _corrected_solution():
-    xs, Gs = reduced.horizontal_solution(t, x0, G0, nu)
-    cs = {sp.cos(nu * t): c, sp.sin(nu * t): s}
+def modulo_frequency(residuals, nu2, nu_=nu) -> list:
+    r"""Numerators of ``residuals`` (rational in $\nu$) reduced modulo $\nu^2 - \nu^2(h, f_2)$:
+    each is zero iff the residual vanishes at $\nu = \sqrt{\nu^2(h, f_2)}$ (the remainder is
+    linear in $\nu$, and $\nu$ is algebraic of degree 2 over the rational functions)."""
+    out = []
+    for r in residuals:
+        num = sp.expand(sp.fraction(sp.together(r))[0])
+        out.append(sp.rem(num, nu_**2 - nu2, nu_))
+    return out
+
+
+def closed_form_residuals(horizontal_solution, frequency_squared, omega2, t_, x0_, G0_, nu_):
+    r"""Residuals of the closed form $(x(t), G(t))$ (``horizontal_solution(t, x0, G0, nu)``) as a
+    solution of the printed linear system $\dot x = G/S$, $\dot G = -\omega^2x$ with $\omega^2$
+    ``omega2`` (the printed expression in $h, f_2$) and $\nu^2$ = ``frequency_squared`` (the
+    derived one the kernels use), with $c = \cos\nu t$, $s = \sin\nu t$, $\dot c = -\nu s$,
+    $\dot s = \nu c$; modulo $\nu^2 - \nu^2(h, f_2)$ (:func:`modulo_frequency`)."""
+    xs, Gs = horizontal_solution(t_, x0_, G0_, nu_)
+    cs = {sp.cos(nu_ * t_): c, sp.sin(nu_ * t_): s}
     xs, Gs = xs.xreplace(cs), Gs.xreplace(cs)
 
     def ddt(f):
-        return sp.diff(f, c) * (-nu * s) + sp.diff(f, s) * (nu * c)
-    w2 = S * nu**2    # omega^2 of the (proved) linear system = S nu^2
-    return exact(sp.Matrix([xs.subs({c: 1, s: 0}) - x0, Gs.subs({c: 1, s: 0}) - G0,
-                            ddt(xs) - Gs / S, ddt(Gs) + w2 * xs]), "Hlin corrected")
+        return sp.diff(f, c) * (-nu_ * s) + sp.diff(f, s) * (nu_ * c)
+    return modulo_frequency([xs.subs({c: 1, s: 0}) - x0_, Gs.subs({c: 1, s: 0}) - G0_,
+                             ddt(xs) - Gs / S, ddt(Gs) + omega2 * xs], frequency_squared, nu_)
+
+
+def _corrected_solution():
+    """The corrected closed form with the derived frequency (both emitted into generated/reduced.py)
+    solves the printed linear system (whose omega^2 is checked against the derived field)."""
+    omega2, _ = printed.omega_squared(h, f2, G, x, a, b)
+    return exact(sp.Matrix(closed_form_residuals(reduced.horizontal_solution,
+                                                 reduced.horizontal_frequency_squared(h, f2),
+                                                 omega2, t, x0, G0, nu)), "Hlin corrected")
 
 
 @claim("S5:H-linear", uses=("S5:H-SO3", "eq:A-on-J", "eq:red-system", "S5:red-integrals"))

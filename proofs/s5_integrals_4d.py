@@ -77,6 +77,12 @@ def s5_f123() -> Verdict:
     for name, f in (("F1", F1), ("F2", F2), ("F3", F3)):
         parts.append(Verdict.all_of([(f"{name} conserved", conserved(fourd.RING(f), name))],
                                     n_values=(4,)).as_part(f"{name} is a first integral"))
+    derived = fourd.integrals()  # what generated/fourd.py evaluates (fourd_integrals)
+    parts.append(Verdict.all_of([(f"derived {name} = printed {name}",
+                                  exact(derived[name] - f, f"F123 emitted {name}"))
+                                 for name, f in (("F1", F1), ("F2", F2), ("F3", F3))],
+                                n_values=(4,)).as_part("the emitted integrals are the printed ones "
+                                                       "(F3 with the sign of -[lambda sigma] p)"))
     return Verdict.of_parts(parts, n_values=(4,), method=(
         "exact: p(lambda, sigma) expanded (Berkowitz) and compared coefficient by coefficient; "
         "X(F_i) = 0 modulo |gamma|^2 = 1 for the derived 4D field"))

@@ -18,7 +18,7 @@ import sympy as sp
 
 __all__ = [
     "wedge", "hat", "unhat", "commutator", "killing", "so_basis", "so_dim", "vec", "unvec",
-    "skew_symbols", "vector_symbols", "is_skew", "column", "basis_vector",
+    "skew_symbols", "vector_symbols", "column", "basis_vector",
 ]
 
 
@@ -109,8 +109,3 @@ def skew_symbols(name: str, n: int) -> sp.Matrix:
 def vector_symbols(name: str, n: int) -> sp.Matrix:
     r"""A generic column vector of $\mathbb{R}^n$ with real symbols ``{name}1 .. {name}n``."""
     return column(sp.symbols(f"{name}1:{n + 1}", real=True))
-
-
-def is_skew(A: sp.Matrix) -> bool:
-    """True when ``A`` is square and ``A + A^T`` is the zero matrix (exactly)."""
-    return A.is_square and all(sp.expand(e) == 0 for e in (A + A.T))

@@ -37,7 +37,7 @@ __all__ = [
     "a", "b", "x", "s", "k", "u", "q", "eta", "xi", "RING", "GENS", "RV", "Delta", "D",
     "cross", "dot", "block", "unblock", "L_blocks", "motion_blocks", "inverse_coefficients",
     "inverse_apply", "xi_eta_numerators", "xi_eta", "field_numerators", "field",
-    "charpoly", "F1", "F2", "F3", "energy", "integrals", "measure_density",
+    "charpoly", "F1", "F2", "F3", "energy", "integrals",
     "sphere_normal_form", "velocity_form_numerators",
 ]
 
@@ -276,13 +276,6 @@ def integrals():
     derived): ``F1``, ``F2``, ``F3`` ($= -[\lambda\sigma]p$) and the energy ``H`` (rational, on $S^3$)."""
     return {"F1": F1().as_expr(), "F2": F2().as_expr(), "F3": F3().as_expr(),
             "H": energy().as_expr() / (2 * D.as_expr())}
-
-
-def measure_density():
-    r"""$1/\Delta(x)$: density of the invariant measure of the 4D field with respect to
-    $dk\,du\,d\sigma_{S^3}$ ($d\sigma$ the round measure; S5:measure4D, proved). In the chart
-    $(k, u, q)$ of $x > 0$ the density is $1/(\Delta(x)\,x)$."""
-    return 1 / Delta.as_expr()
 
 
 @cache

@@ -21,8 +21,8 @@ $\mathcal{R}$ is the reduced dynamics.
 **Reduced measure.** The pushforward of $\mu = \Delta^{-1}dk\,du\,d\sigma_{S^3}$ (S5:measure4D) to
 $\mathcal{R}$ has density $\Delta(x)^{-1}|\delta|^{-1}$ in the chart $(A, B, E, G, F_1, x)$ of each sheet
 $\pm\delta > 0$ (the Gram map pushes $dk\,du\,dq$ to $\propto(\det\Lambda)^{-1/2}$ times Lebesgue).
-:func:`measure_density_chart` gives it; :func:`measure_density_ambient` gives $\Delta^{-2}$, the
-density on $\mathbb{R}^7$ preserved by the normal-form field.
+Row S5:red-measure proves it, and that $\Delta^{-2}$ is the density on $\mathbb{R}^7$ preserved by the
+normal-form field (the kernel ``reduced_measure_density`` evaluates both).
 """
 
 from __future__ import annotations
@@ -35,9 +35,9 @@ from chaplygin_nd.symbolic import reduced_invariants as ri
 from chaplygin_nd.symbolic.reduced_invariants import F1, A, B, E, G, delta
 
 __all__ = [
-    "COORDS", "field_numerators", "field", "integrals", "measure_density_ambient",
-    "measure_density_chart", "horizontal_set", "vertical_set", "horizontal_level_A",
-    "horizontal_frequency_squared", "horizontal_solution", "steady_rotation",
+    "COORDS", "field_numerators", "field", "integrals", "horizontal_set", "vertical_set",
+    "horizontal_level_A", "horizontal_frequency_squared", "horizontal_solution",
+    "horizontal_blocks",
 ]
 
 a, b, x = fourd.a, fourd.b, fourd.x
@@ -85,21 +85,6 @@ def integrals():
     return {"F1": F1, "F2": A + B, "F3": F3.as_expr(), "H": H2D.as_expr() / (2 * D)}
 
 
-def measure_density_ambient():
-    r"""$\rho_7 = \Delta(x)^{-2}$: density on $\mathbb{R}^7$ with $\operatorname{div}(\rho_7 X) = 0$ for the
-    normal-form field $X$ (S5:red-measure). Induces $\Delta^{-1}|\delta|^{-1}$ on $\mathcal{R}$, not
-    $\Delta^{-2}|\delta|^{-1}$: $\Phi/\Delta$, $\Phi = \delta^2 - \det\Lambda$, is the integral to take the
-    Leray residue along."""
-    return Delta**-2
-
-
-def measure_density_chart():
-    r"""The invariant density on $\mathcal{R}$ in the chart $(A, B, E, G, F_1, x)$ of a sheet
-    $\pm\delta = \sqrt{\det\Lambda} > 0$: $\Delta(x)^{-1}\,|\delta|^{-1}$ (S5:red-measure, corrected;
-    the pushforward of $\mu$ of S5:measure4D). Returned with $\delta$ standing for $|\delta|$."""
-    return 1 / (Delta * delta)
-
-
 def horizontal_set():
     r"""$\mathcal{H}/SO(3)$ (S5:H-SO3, derived from $k = q\times u/x$ on $\mathcal{H}$, $x\neq0$):
     substitutions expressing $F_1, E, \delta, B$ through the coordinates $(A, G, x)$."""
@@ -145,10 +130,3 @@ def horizontal_blocks(x_, G_, f2):
     $A = f_2 - B = (1-x^2)f_2 - G^2$ (proved exactly in row S5:H-linear-nD, eq:A-on-J second form)."""
     B_ = x_**2 * f2 + G_**2
     return f2 - B_, B_
-
-
-def steady_rotation(Omega0, M0, gamma0, t):
-    r"""P:steady-rot closed form for $\eta_0\times\xi_0 = 0$ (then $\Omega \equiv \Omega_0$):
-    $M(t) = e^{-\Omega_0 t}M_0e^{\Omega_0 t}$, $\gamma(t) = e^{-\Omega_0 t}\gamma_0$ (SymPy matrices)."""
-    R = (-Omega0 * t).exp()
-    return R * M0 * R.T, R * gamma0

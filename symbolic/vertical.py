@@ -26,7 +26,7 @@ from chaplygin_nd.symbolic.axisymmetric import E_n, a, b, inertia_axisym, x
 
 __all__ = [
     "vertical_point", "zeta_coefficient", "zeta", "inertia_tilde", "chi_coefficient", "chi",
-    "inertia_matrix_3d", "euler_rhs_3d", "zeta_3d_coefficient", "zeta_3d", "V_velocity_residuals",
+    "inertia_matrix_3d", "euler_rhs_3d", "zeta_3d_coefficient", "zeta_3d",
 ]
 
 
@@ -35,14 +35,6 @@ def vertical_point(A: sp.Matrix, gamma: sp.Matrix) -> sp.Matrix:
     (eq:def-H-V) for $\gamma \in S^{n-1}$; every point of $\mathcal{V}$ arises (take $A = M$)."""
     P = sp.eye(gamma.rows) - gamma * gamma.T
     return P * A * P
-
-
-def V_velocity_residuals(Omega: sp.Matrix, gamma: sp.Matrix, a_=a, b_=b):
-    r"""The two expressions whose vanishing defines $\mathcal{V}$ in velocity form (eq:V-velocity):
-    $((2+b)\Omega\gamma + a x\Omega E_n,\ \langle\Omega\gamma, E_n\rangle)$, $x = \gamma_n$."""
-    e = E_n(gamma.rows)
-    xval = gamma[gamma.rows - 1]
-    return (2 + b_) * Omega * gamma + a_ * xval * Omega * e, (e.T * Omega * gamma)[0, 0]
 
 
 def _frame_vertical_point(n: int):
