@@ -58,6 +58,14 @@ class Setting:
     J: tuple[float, ...] = ()
     expected: int | None = None
     limit: int = 5
+    #: the expected count is 0 at a = 0 (V: equilibria, Th:Re-tori)
+    vertical: bool = False
+    #: the first ``invariant`` signals are SO(n-1)-invariant: also counted on their own
+    invariant: int = 0
+
+    def expected_at(self, a: float) -> int | None:
+        """The predicted count of an orbit with parameter ``a``."""
+        return 0 if (self.vertical and a == 0) else self.expected
 
     def longer(self, factor: float) -> Setting:
         """The same setting with ``factor`` times the orbit length."""
@@ -79,6 +87,9 @@ class OrbitResult:
     cls: str = ""
     megno_cls: str = ""
     relation: str = ""
+    invariant_count: int = -1
+    invariant_frequencies: list = None
+    invariant_diffusion: float = float("nan")
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -97,9 +108,9 @@ def observables(s: Setting, Y: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.n
     r"""Complex signals ``(lanes, signals, samples)`` from states ``Y`` ``(samples, lanes, dim)``.
     ``reduced``: $x + iG/(a+b+2)$, $E + i\delta$ (see :func:`simulate.evidence.signals`); ``four``
     ($n = 4$ on $P$): those two from $(k, u, q)$ and $q_1 + iq_2$, $k_1 + ik_2$, $u_1 + iu_2$;
-    ``general``: $\gamma_j + i\gamma_{j+1}$ ($j < n-1$), $M_{1j} + iM_{1,j+1}$; ``invariant`` (any $n$,
-    $SO(n-1)$-invariant: they see only the reduced motion): $x + i(M\gamma)_n$ and
-    $\|ME_n\|^2 + i\langle ME_n, M\gamma\rangle$."""
+    ``general``: $\gamma_j + i\gamma_{j+1}$ ($j < n-1$), $M_{1j} + iM_{1,j+1}$; ``invariant+general``:
+    first two $SO(n-1)$-invariant signals (they see only the reduced motion), $x + i(M\gamma)_n$ and
+    $\|ME_n\|^2 + i\langle ME_n, M\gamma\rangle$, then the ``general`` ones."""
     nu = (a + b + 2)[None, :]
     if s.observables == "reduced":
         r = Y
@@ -114,13 +125,14 @@ def observables(s: Setting, Y: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.n
             k, u = so.split4(M)
             z = [r[..., 5] + 1j * r[..., 3] / nu, r[..., 2] + 1j * r[..., 6],
                  g[..., 0] + 1j * g[..., 1], k[..., 0] + 1j * k[..., 1], u[..., 0] + 1j * u[..., 1]]
-        elif s.observables == "invariant":
-            Mg = np.einsum("...ij,...j->...i", M, g)
-            Me = M[..., :, n - 1]
-            z = [g[..., n - 1] + 1j * Mg[..., n - 1],
-                 np.sum(Me * Me, -1) + 1j * np.sum(Me * Mg, -1)]
         else:
-            z = [g[..., j] + 1j * g[..., j + 1] for j in range(n - 2)]
+            z = []
+            if s.observables == "invariant+general":
+                Mg = np.einsum("...ij,...j->...i", M, g)
+                Me = M[..., :, n - 1]
+                z = [g[..., n - 1] + 1j * Mg[..., n - 1],
+                     np.sum(Me * Me, -1) + 1j * np.sum(Me * Mg, -1)]
+            z += [g[..., j] + 1j * g[..., j + 1] for j in range(n - 2)]
             z += [M[..., 0, j] + 1j * M[..., 0, j + 1] for j in range(1, n - 1)]
     return np.moveaxis(np.array(z), (0, 1, 2), (1, 2, 0))
 
@@ -138,7 +150,10 @@ def _integrate(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int):
     for start in range(0, len(y0), BATCH):
         sl = slice(start, min(start + BATCH, len(y0)))
         used = sl.stop - sl.start
-        pad = lambda x: np.concatenate([x, np.repeat(x[-1:], BATCH - used, 0)])  # noqa: E731
+
+        def pad(x, used=used):
+            return np.concatenate([x, np.repeat(x[-1:], BATCH - used, 0)])
+
         state = np.concatenate([y0[sl], u0[sl], np.zeros((used, 2))], axis=1)
         factor = pad(ens.time_factor[sl])
         ta.state[:] = pad(state).T
@@ -208,32 +223,59 @@ def measure(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int,
             use_cache: bool = True) -> list[OrbitResult]:
     """Every orbit of ``ens`` (initial states ``y0`` ``(count, dim)``) through setting ``s``:
     MEGNO, Lyapunov estimate, NAFF count, diffusion, class. Cached (module docstring)."""
+    import fcntl
+
     from chaplygin_nd.simulate import evidence
 
     path = evidence.cache_dir() / f"drawn-{s.name}-{_key(s, ens, y0, seed)}.json"
-    if use_cache and path.exists():
-        return [OrbitResult(**d) for d in json.loads(path.read_text())]
-    Z, megno, lyap = _integrate(s, ens, y0, seed)
-    specs = []
-    for start in range(0, len(Z), 32):                       # bounded memory
-        specs += naff.analyse_batch(Z[start:start + 32], s.dt)
-    out = []
-    for k, spec in enumerate(specs):
-        if spec.count >= s.limit:
-            spec = naff.Spectrum(spec.lines, naff.independent_frequencies(
-                [w for w, _ in spec.lines], spec.tolerance * max(abs(w) for w, _ in spec.lines),
-                4, limit=s.limit + 1), spec.diffusion, spec.tolerance)
-        cls = classify(spec, s.expected)
-        out.append(OrbitResult(float(ens.a[k]), float(ens.b[k]), float(ens.scale[k]), spec.count,
-                               [float(f) for f in spec.frequencies], float(spec.diffusion),
-                               float(megno[k]), float(lyap[k]), cls, chaos.megno_class(megno[k]),
-                               _relation(spec) if cls == "resonant" else ""))
-    if use_cache:
-        path.parent.mkdir(parents=True, exist_ok=True)
+    if not use_cache:
+        return _measure(s, ens, y0, seed)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with open(path.with_suffix(".lock"), "w") as lock:   # one process computes, the others wait
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if path.exists():
+            return [OrbitResult(**d) for d in json.loads(path.read_text())]
+        out = _measure(s, ens, y0, seed)
         fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", dir=path.parent)
         with os.fdopen(fd, "w") as fh:
             json.dump([r.to_dict() for r in out], fh)
         os.replace(tmp, path)
+    return out
+
+
+def _limited(spec: naff.Spectrum, limit: int) -> naff.Spectrum:
+    """Recount with the integer-relation search allowed to reach ``limit + 1``."""
+    if spec.count < limit or not spec.lines:
+        return spec
+    scale = max(abs(w) for w, _ in spec.lines)
+    basis = naff.independent_frequencies([w for w, _ in spec.lines], spec.tolerance * scale, 4,
+                                         limit=limit + 1)
+    return naff.Spectrum(spec.lines, sorted(abs(f) for f in basis), spec.diffusion, spec.tolerance)
+
+
+def _measure(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int) -> list[OrbitResult]:
+    Z, megno, lyap = _integrate(s, ens, y0, seed)
+    specs, inv = [], []
+    for start in range(0, len(Z), 32):                       # bounded memory
+        whole, first, second = naff.lines_batch(Z[start:start + 32], s.dt)
+        for w, f, h in zip(whole, first, second):
+            specs.append(naff.spectrum_from_lines(w, f, h))
+            if s.invariant:   # the same lines, only those of the invariant signals
+                k = s.invariant
+                inv.append(naff.spectrum_from_lines(w[:k], f[:k], h[:k]))
+    out = []
+    for k, spec in enumerate(specs):
+        spec = _limited(spec, s.limit)
+        cls = classify(spec, s.expected_at(float(ens.a[k])))
+        r = OrbitResult(float(ens.a[k]), float(ens.b[k]), float(ens.scale[k]), spec.count,
+                        [float(f) for f in spec.frequencies], float(spec.diffusion),
+                        float(megno[k]), float(lyap[k]), cls, chaos.megno_class(megno[k]),
+                        _relation(spec) if cls == "resonant" else "")
+        if s.invariant:
+            r.invariant_count = inv[k].count
+            r.invariant_frequencies = [float(f) for f in inv[k].frequencies]
+            r.invariant_diffusion = float(inv[k].diffusion)
+        out.append(r)
     return out
 
 

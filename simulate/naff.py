@@ -183,20 +183,21 @@ def _projections(X: np.ndarray, nu: np.ndarray, dt: float, L: int, derivatives: 
     l_ = np.arange(L) * dt
     alpha = np.exp(-1j * nu[:, None] * p[None])     # (K, P)
     beta = np.exp(-1j * nu[:, None] * l_[None])     # (K, L)
-    Xb = np.einsum("kpl,kl->kp", X, beta)
-    phi = np.einsum("kp,kp->k", alpha, Xb)
     if not derivatives:
+        phi = np.einsum("kp,kp->k", alpha, np.einsum("kpl,kl->kp", X, beta))
         return phi, alpha, beta
-    Xbl = np.einsum("kpl,kl->kp", X, beta * l_[None])
-    Xbll = np.einsum("kpl,kl->kp", X, beta * (l_ ** 2)[None])
-    # t = p + l (in time units): sum t X e = sum_p alpha (p Xb + Xbl)
+    B = np.stack([beta, beta * l_[None], beta * (l_ ** 2)[None]], axis=-1)   # (K, L, 3)
+    XB = np.einsum("kpl,klj->kpj", X, B)                                     # (K, P, 3)
+    Xb, Xbl, Xbll = XB[..., 0], XB[..., 1], XB[..., 2]
+    # t = p + l (in time units): sum t X e = sum_p alpha (p Xb + Xbl), and so on
+    phi = np.einsum("kp,kp->k", alpha, Xb)
     d1 = np.einsum("kp,kp->k", alpha, p[None] * Xb + Xbl)
     d2 = np.einsum("kp,kp->k", alpha, (p ** 2)[None] * Xb + 2 * p[None] * Xbl + Xbll)
     return phi, -1j * d1, -d2
 
 
 def spectral_lines_batch(Z: np.ndarray, dt: float, terms: int = 12, constant: float = 1e-6,
-                         floor: float = 1e-9, newton: int = 6) -> list[tuple[np.ndarray, np.ndarray]]:
+                         floor: float = 1e-9, newton: int = 4) -> list[tuple[np.ndarray, np.ndarray]]:
     r"""NAFF lines of many signals at once (the orbits of an ensemble): ``Z`` of shape ``(K, N)``,
     each row sampled at $t_0 + j\,dt$. Same conventions as :func:`spectral_lines` (mean removed,
     a constant signal has no line, lines weaker than ``floor`` times the signal's variation
@@ -219,7 +220,9 @@ def spectral_lines_batch(Z: np.ndarray, dt: float, terms: int = 12, constant: fl
     live = (scale > constant * size) & (scale > 0)
     w = _hann2(N)
     P, L = _blocks(N)
-    pad = 1 << int(np.ceil(np.log2(N)))
+    from scipy.fft import next_fast_len
+
+    pad = next_fast_len(N)
     omega_grid = 2 * np.pi * np.fft.fftfreq(pad, d=dt)
     found_w = np.zeros((K, terms))
     found_a = np.zeros((K, terms))
@@ -277,34 +280,44 @@ def diffusion_from_lines(first, second, lines: int = 3, rel_amp: float = 0.05) -
     return worst
 
 
-def analyse_batch(signals: np.ndarray, dt: float, *, terms: int = 8, half_terms: int = 4,
-                  rel_amp: float = 0.05, tol: float = 1e-7, K: int = 4,
-                  precision_factor: float = 10.0) -> list[Spectrum]:
-    r""":func:`analyse` for an ensemble at once: ``signals`` of shape ``(orbits, signals, samples)``
-    (complex). The lines of every signal and of both halves come from one call each of
-    :func:`spectral_lines_batch`; the pooling, the diffusion rule and the integer-relation count
-    are those of :func:`analyse` (``terms`` lines per whole signal, ``half_terms`` per half: the
-    diffusion uses only the 3 strongest). Domain: ``samples`` $\ge 14$."""
+def lines_batch(signals: np.ndarray, dt: float, *, terms: int = 8, half_terms: int = 4):
+    """The NAFF lines of every signal (``terms``) and of both halves (``half_terms``) of an ensemble
+    ``(orbits, signals, samples)``: three lists indexed ``[orbit][signal]`` for
+    :func:`spectrum_from_lines`."""
     Z = np.asarray(signals, dtype=complex)
     n_orb, n_sig, N = Z.shape
     flat = Z.reshape(n_orb * n_sig, N)
     half = N // 2
-    whole = spectral_lines_batch(flat, dt, terms)
-    first = spectral_lines_batch(flat[:, :half], dt, half_terms)
-    second = spectral_lines_batch(flat[:, half:2 * half], dt, half_terms)
-    out = []
-    for o in range(n_orb):
-        sl = slice(o * n_sig, (o + 1) * n_sig)
-        pooled: list[tuple[float, float]] = []
-        for w, amp in whole[sl]:
-            if len(w) == 0:
-                continue
-            strong = amp >= rel_amp * amp.max()
-            pooled += [(float(x), float(y / amp.max())) for x, y in zip(w[strong], amp[strong])]
-        pooled.sort(key=lambda p: -p[1])
-        diffusion = diffusion_from_lines(first[sl], second[sl])
-        scale = max((abs(w) for w, _ in pooled), default=1.0)
-        rel = max(tol, precision_factor * diffusion) if np.isfinite(diffusion) else 1.0
-        basis = independent_frequencies([w for w, _ in pooled], rel * scale, K)
-        out.append(Spectrum(pooled, sorted(abs(f) for f in basis), diffusion, rel))
-    return out
+    parts = (spectral_lines_batch(flat, dt, terms),
+             spectral_lines_batch(flat[:, :half], dt, half_terms),
+             spectral_lines_batch(flat[:, half:2 * half], dt, half_terms))
+    return tuple([p[o * n_sig:(o + 1) * n_sig] for o in range(n_orb)] for p in parts)
+
+
+def spectrum_from_lines(whole, first, second, *, rel_amp: float = 0.05, tol: float = 1e-7,
+                        K: int = 4, precision_factor: float = 10.0) -> Spectrum:
+    """The :class:`Spectrum` of one orbit from the lines of its signals (any subset of them) —
+    pooling, diffusion and the integer-relation count exactly as :func:`analyse`."""
+    pooled: list[tuple[float, float]] = []
+    for w, amp in whole:
+        if len(w) == 0:
+            continue
+        strong = amp >= rel_amp * amp.max()
+        pooled += [(float(x), float(y / amp.max())) for x, y in zip(w[strong], amp[strong])]
+    pooled.sort(key=lambda p: -p[1])
+    diffusion = diffusion_from_lines(first, second)
+    scale = max((abs(w) for w, _ in pooled), default=1.0)
+    rel = max(tol, precision_factor * diffusion) if np.isfinite(diffusion) else 1.0
+    basis = independent_frequencies([w for w, _ in pooled], rel * scale, K)
+    return Spectrum(pooled, sorted(abs(f) for f in basis), diffusion, rel)
+
+
+def analyse_batch(signals: np.ndarray, dt: float, *, terms: int = 8, half_terms: int = 4,
+                  **count) -> list[Spectrum]:
+    r""":func:`analyse` for an ensemble at once: ``signals`` of shape ``(orbits, signals, samples)``
+    (complex). The lines of every signal and of both halves come from one call each of
+    :func:`spectral_lines_batch` (:func:`lines_batch`); the pooling, the diffusion rule and the
+    integer-relation count are those of :func:`analyse` (``terms`` lines per whole signal,
+    ``half_terms`` per half: the diffusion uses only the 3 strongest). Domain: ``samples`` $\ge 14$."""
+    whole, first, second = lines_batch(signals, dt, terms=terms, half_terms=half_terms)
+    return [spectrum_from_lines(w, f, s, **count) for w, f, s in zip(whole, first, second)]
