@@ -118,13 +118,18 @@ def n5_row(seed: int) -> dict:
     return {"symmetric": sym, "control": measure(ctl, cens, _full_state(cens), seed)}
 
 
+def vertical_setting(n: int) -> Setting:
+    r"""The setting of the $\mathcal V$ orbits in dimension $n$ (expected $\lfloor(n-1)/2\rfloor$ = rank
+    $SO(n-1)$, 0 at $a = 0$)."""
+    return Setting(f"vertical{n}", "full", n, VERTICAL_T[n], VERTICAL_DT, observables="general",
+                   expected=int((n - 1) // 2), vertical=True)
+
+
 def vertical_row(seed: int, per_n: int = 50) -> dict:
     """Th:Re-tori:frequencies: ``{n: run_with_rerun(...)}`` for $n = 4..7$."""
     out = {}
     for n in VERTICAL_T:
         ens = draws.draw(f"Th:Re-tori:frequencies n={n}", "vertical", n, per_n, seed,
                          a_values=VERTICAL_A)
-        setting = Setting(f"vertical{n}", "full", n, VERTICAL_T[n], VERTICAL_DT, observables="general",
-                          expected=int((n - 1) // 2), vertical=True)
-        out[n] = run_with_rerun(setting, ens, _full_state(ens), seed)
+        out[n] = run_with_rerun(vertical_setting(n), ens, _full_state(ens), seed)
     return out
