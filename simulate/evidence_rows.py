@@ -16,7 +16,8 @@ energy scales $0.5, 1, 2$):
 
 Orbits: $T = 4096$, $dt = 1/2$ at energy scale 1 (reduced and $P$), $T = 3000$, $dt = 5/4$ ($\mathcal V$,
 $n \le 6$; 6000 for $n = 7$); heyoka tolerance $10^{-10}$. The first ``RERUN`` = 8 unresolved orbits of
-an ensemble (in draw order) are integrated again with ``LONGER`` = 4 times $T$ and classified again.
+an ensemble (in draw order; for $\mathcal V$ the first 2 of each $n$) are integrated again with
+``LONGER`` = 4 times $T$ and classified again.
 """
 
 from __future__ import annotations
@@ -49,11 +50,11 @@ def _full_state(ens) -> np.ndarray:
     return np.concatenate([so.vec(ens.M0), ens.gamma0], axis=-1)
 
 
-def run_with_rerun(setting: Setting, ens, y0: np.ndarray, seed: int) -> dict:
+def run_with_rerun(setting: Setting, ens, y0: np.ndarray, seed: int, rerun: int = RERUN) -> dict:
     """``{"results": [...], "rerun_index": [...], "rerun": [...]}``: every orbit at ``T`` and the
-    first ``RERUN`` unresolved ones again at ``LONGER * T``."""
+    first ``rerun`` unresolved ones again at ``LONGER * T``."""
     results = measure(setting, ens, y0, seed)
-    index = [k for k, r in enumerate(results) if r.cls == "unresolved"][:RERUN]
+    index = [k for k, r in enumerate(results) if r.cls == "unresolved"][:rerun]
     rerun = measure(setting.longer(LONGER), subset(ens, index), y0[index], seed) if index else []
     return {"results": results, "rerun_index": index, "rerun": rerun}
 
@@ -131,5 +132,6 @@ def vertical_row(seed: int, per_n: int = 50) -> dict:
     for n in VERTICAL_T:
         ens = draws.draw(f"Th:Re-tori:frequencies n={n}", "vertical", n, per_n, seed,
                          a_values=VERTICAL_A)
-        out[n] = run_with_rerun(vertical_setting(n), ens, _full_state(ens), seed)
+        out[n] = run_with_rerun(vertical_setting(n), ens, _full_state(ens), seed,
+                                rerun=RERUN // len(VERTICAL_T))
     return out
