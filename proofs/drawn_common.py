@@ -11,7 +11,7 @@ Per orbit (simulate/drawn_evidence.py): frequency class ``predicted`` / ``resona
   contradict it, at least ``MEGNO_REGULAR_MIN`` = 90 % are MEGNO-regular, and at least
   ``PREDICTED_MIN`` = 20 % show exactly the predicted count (so the prediction is observed, not
   merely not refuted); unresolved orbits neither support nor contradict and are reported, with what
-  $4T$ does to the first 8 of them.
+  $4T$ does to the first 4 of them (1 per $n$ on $\mathcal V$).
 * the control **separates on MEGNO** iff at least ``CONTROL_CHAOTIC_MIN`` = 50 % of its orbits are
   MEGNO-chaotic while at most 2 % of the row's are; **on the frequencies** iff its median
   diffusion is at least ``SEPARATION`` = 100 times the row's median diffusion. The row needs both.
@@ -87,8 +87,18 @@ def describe(results, label: str) -> str:
 
 def resonances(results, limit: int = 3) -> str:
     """The integer relations named for the first ``limit`` resonant orbits."""
-    named = [r.relation for r in results if r.cls == "resonant" and r.relation][:limit]
-    return "; ".join(named) if named else "none named"
+    named = []
+    for r in results:
+        if r.cls != "resonant":
+            continue
+        if r.relation:
+            named.append(r.relation)
+        elif r.count == 1:
+            named.append(f"periodic: every line a multiple of w = {r.frequencies[0]:.10g}")
+        elif r.count == 0:
+            named.append("no line: an equilibrium")
+    named = list(dict.fromkeys(named))
+    return "; ".join(named[:limit]) if named else "none named"
 
 
 def record(results) -> list[dict]:

@@ -15,8 +15,8 @@ energy scales $0.5, 1, 2$):
   ``CHAOTIC_J[4]`` (:mod:`simulate.control`), the same analysis: the control of the three rows.
 
 Orbits: $T = 4096$, $dt = 1/2$ at energy scale 1 (reduced and $P$), $T = 3000$, $dt = 5/4$ ($\mathcal V$,
-$n \le 6$; 6000 for $n = 7$); heyoka tolerance $10^{-10}$. The first ``RERUN`` = 8 unresolved orbits of
-an ensemble (in draw order; for $\mathcal V$ the first 2 of each $n$) are integrated again with
+$n \le 6$; 6000 for $n = 7$); heyoka tolerance $10^{-10}$. The first ``RERUN`` = 4 unresolved orbits of
+an ensemble (in draw order; for $\mathcal V$ the first of each $n$) are integrated again with
 ``LONGER`` = 4 times $T$ and classified again.
 """
 
@@ -32,7 +32,7 @@ __all__ = ["LEVEL_SETS", "SHIFTS", "RERUN", "LONGER", "reduced_row", "full4_row"
 
 LEVEL_SETS = 50
 SHIFTS = (0.04, 0.08, 0.12)     # times the energy scale: distances across the flow on a level set
-RERUN, LONGER = 8, 4.0
+RERUN, LONGER = 4, 4.0
 VERTICAL_A = (-0.9, -0.5, 0.0, 0.5, 2.0)
 VERTICAL_T = {4: 3000.0, 5: 3000.0, 6: 3000.0, 7: 6000.0}
 VERTICAL_DT = 1.25
