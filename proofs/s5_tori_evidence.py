@@ -92,8 +92,8 @@ def _rotation_agreement(out) -> tuple[int, int, float]:
             continue
         tested += 1
         spread = (max(rho) - min(rho)) / abs(np.mean(rho))
-        worst = max(worst, spread)
-        agree += spread <= ROTATION_AGREE
+        worst = max(worst, float(spread))
+        agree += int(spread <= ROTATION_AGREE)
     return tested, agree, worst
 
 
