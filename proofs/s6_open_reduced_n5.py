@@ -1,0 +1,208 @@
+r"""Beyond the paper: its second open problem, measured for $n = 5$ (row S6:open-reduced-n5, issue 16).
+
+The paper ends: "Obtain the reduced equations on $P/\mathrm{SO}(n-1)$ for $n \ge 5$ and determine if they
+are integrable." We do not obtain the reduced equations; we measure the flow on $P$ and on
+$SO(4)$-invariant observables (which see exactly the reduced motion) for $n = 5$.
+
+**What integrability would predict (derived here, exactly, at a seeded rational point).**
+$P = \mathfrak{so}(5)\times S^4$ has dimension 14. (i) The $SO(4)$ action eq:action
+$h\cdot(M, \gamma) = (hMh^{-1}, h\gamma)$ has 6-dimensional orbits at the point (the 6 generator
+velocities $([X, M], X\gamma)$ have rank 6), so the isotropy is discrete and
+$\dim P/SO(4) = 14 - 6 = 8$. (ii) The integrals: $p(\lambda, \sigma) = \det(M + \sigma\gamma\gamma^T -
+\lambda)$ (eq:pol-first-integrals) has the non-constant coefficients $c_{\lambda^3}$, $c_{\lambda^1}$
+(those of $\det(M - \lambda)$: $\|M\|^2$ and the sum of the squared $4\times 4$ Pfaffians) and the
+$\sigma\lambda^2$, $\sigma\lambda^0$ coefficients; with the energy $H = \frac12\langle M, L_\gamma^{-1}M\rangle$
+that is 5 functions; their differentials restricted to $T P$ have rank 5 at the point and vanish on
+the group directions (exact zeros: they are invariant). So they descend to 5 independent integrals
+of the 8-dimensional reduced space, whose regular level sets have dimension 3; the invariant
+measure (P:Measure) descends too. Hence: **if the reduced system were integrable**, a quasi-periodic
+reduced orbit would show **at most 3** independent frequencies (a 3-torus filling the level set),
+**2** if a sixth integral exists (Euler–Jacobi on the 8-dimensional quotient needs $8 - 2 = 6$);
+on $P$ the reconstruction adds at most rank $SO(4) = 2$: **at most 5**, 4 with a sixth integral.
+Chaos (a positive Lyapunov exponent on a set of positive measure) would show that it is not.
+
+**Measured** on 100 drawn orbits of the axisymmetric $n = 5$ sphere (simulate/evidence_rows.py
+``n5_row``; $a \in \{-0.9, -0.5, 0.5, 2\}$, $b \in \{0.5, 2\}$, three energies): the count on the two
+$SO(4)$-invariant observables (reduced frequencies) and on $P$, the frequency diffusion, MEGNO.
+
+**Rule (fixed before the 100-orbit run; an 8-orbit timing pilot had been seen, NOTES-i16b.md).**
+Verdict ``evidence`` that no chaos is resolved and the counts respect the bounds of integrability
+iff: at most 2 % of the orbits are MEGNO-chaotic, at least 90 % MEGNO-regular, and at most 2 % of
+the orbits that are resolved (D < 1e-5) have more than 3 reduced or more than 5 frequencies on $P$;
+controls: the $n = 4$ sphere (integrable, proved; the 200 orbits of S5:reconstruction) must pass
+the same MEGNO test, and the non-symmetric $n = 5$ sphere (``CHAOTIC_J[5]``, 24 orbits) must have
+at least 50 % MEGNO-chaotic orbits and a median diffusion at least 100 times that of the symmetric
+$n = 5$ orbits. Otherwise ``open`` with the numbers. Never ``holds``: this is a measurement.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import sympy as sp
+from chaplygin_nd.ledger.registry import Verdict, claim
+from chaplygin_nd.proofs import drawn_common as dc
+from chaplygin_nd.simulate import evidence_rows as er
+from chaplygin_nd.simulate.control import CHAOTIC_J
+from chaplygin_nd.simulate.frequencies import REGULAR
+from chaplygin_nd.symbolic import algebra, model, points
+from chaplygin_nd.symbolic.points import ledger_seed
+
+SECTION = "Conclusions — open problems (beyond the paper)"
+N = 5
+
+
+def _point():
+    rng = points.generator(ledger_seed(), "S6:open-reduced-n5")
+    gamma = points.sphere_point(rng, N)
+    M = points.skew_matrix(rng, N)
+    a, b = points.rational(rng, -1, 1), points.rational(rng, 1, 3)
+    return M, gamma, a, b
+
+
+def _integral_gradients(M, gamma, a, b):
+    r"""Exact gradients in $(\mathrm{vec}\,M, \gamma) \in \mathbb{R}^{15}$ of the non-constant coefficients of
+    $p(\lambda, \sigma)$ and of $H$ at the point. Coefficients: directional derivatives by a
+    symbolic $\varepsilon$ (the coefficients are polynomials). $H$: $\partial_M H = \Omega$,
+    $\partial_{\gamma_k} H = -\frac12\omega^T(\partial L/\partial\gamma_k)\omega$ ($\omega = L^{-1}m$)."""
+    lam, sig, eps = sp.symbols("lambda sigma epsilon")
+    dim = algebra.so_dim(N)
+    m0 = list(algebra.vec(M))
+    g0 = list(gamma)
+    coeffs = None
+    rows = []
+    for k in range(dim + N):
+        m = [m0[i] + (eps if i == k else 0) for i in range(dim)]
+        g = [g0[i] + (eps if dim + i == k else 0) for i in range(N)]
+        Mk, gk = algebra.unvec(m, N), sp.Matrix(g)
+        p = sp.expand((Mk + sig * gk * gk.T - lam * sp.eye(N)).det(method="berkowitz"))
+        poly = sp.Poly(p, lam, sig, eps)
+        d = {}
+        for (i, j, e), c in poly.terms():
+            if e == 1:
+                d[(i, j)] = d.get((i, j), 0) + c
+        if coeffs is None:
+            base = sp.Poly(p.subs(eps, 0), lam, sig)
+            coeffs = sorted(mon for mon, c in base.terms() if mon not in ((N, 0), (N - 1, 1)))
+        rows.append([d.get(mon, 0) for mon in coeffs])
+    grads = sp.Matrix(rows).T                       # one row per coefficient
+    J = sp.diag(*([1] * (N - 1) + [1 + a]))
+    L = model.L_matrix(gamma, J, b)
+    omega = L.LUsolve(sp.Matrix(m0))
+    dH = list(omega) + [-sp.Rational(1, 2) * (omega.T * model.L_matrix_derivative(gamma, b, k) * omega)[0]
+                        for k in range(N)]
+    return coeffs, grads.col_join(sp.Matrix([dH]))
+
+
+def _generators(M, gamma):
+    r"""The velocities $(\mathrm{vec}[X, M], X\gamma)$ of the 6 generators $X = E_i\wedge E_j$,
+    $i < j < 5$, of $SO(4) = \{h : hE_5 = E_5\}$ (eq:SOnminus1, eq:action)."""
+    rows = []
+    for i in range(N - 1):
+        for j in range(i + 1, N - 1):
+            X = algebra.wedge(algebra.basis_vector(N, i), algebra.basis_vector(N, j))
+            rows.append(list(algebra.vec(algebra.commutator(X, M))) + list(X * gamma))
+    return sp.Matrix(rows)
+
+
+def reduced_dimension_check() -> dict:
+    """The exact part (module docstring (i), (ii)): ranks by SymPy's ``Matrix.rank`` and again by
+    ``DomainMatrix.rank`` over QQ (two implementations); the invariance as exact zeros."""
+    from sympy.polys.matrices import DomainMatrix
+
+    M, gamma, a, b = _point()
+    coeffs, G = _integral_gradients(M, gamma, a, b)
+    X = _generators(M, gamma)
+    dim = algebra.so_dim(N)
+    proj = sp.diag(sp.eye(dim), sp.eye(N) - gamma * gamma.T)   # onto T P (the sphere's tangent)
+    GT = G * proj
+
+    def ranks(A):
+        return A.rank(), DomainMatrix.from_Matrix(A).convert_to(sp.QQ).rank()
+
+    invariance = G * X.T
+    return {"orbit_rank": ranks(X), "integral_rank": ranks(GT),
+            "invariant": all(v == 0 for v in invariance), "integrals": len(coeffs) + 1,
+            "coefficients": [f"lambda^{i} sigma^{j}" for i, j in coeffs],
+            "point": f"a = {a}, b = {b}, gamma = {list(gamma)}"}
+
+
+def _over(r, reduced_bound, full_bound) -> bool:
+    return r.diffusion < REGULAR and (r.count > full_bound or (
+        r.invariant_diffusion < REGULAR and r.invariant_count > reduced_bound))
+
+
+@claim("S6:open-reduced-n5", uses=("eq:pol-first-integrals", "P:Measure", "eq:action",
+                                    "S5:EJ-tori", "S5:reconstruction"),
+       adds=(SECTION, "the paper's second open problem (is the reduced system on P/SO(n-1) "
+                      "integrable for n >= 5?), measured for n = 5: frequency count, diffusion "
+                      "and MEGNO on 100 drawn orbits, with the integrable n = 4 sphere and a "
+                      "non-symmetric n = 5 sphere as controls"))
+def s6_open_reduced_n5() -> Verdict:
+    exact = reduced_dimension_check()
+    orbit = exact["orbit_rank"][0]
+    quotient = 14 - orbit
+    level = quotient - exact["integral_rank"][0]
+    derived = (exact["orbit_rank"] == (6, 6) and exact["integral_rank"] == (5, 5)
+               and exact["invariant"])
+    reduced_bound, full_bound = level, level + 2
+    out = er.n5_row(ledger_seed())
+    res, rerun, ctl5 = out["symmetric"]["results"], out["symmetric"]["rerun"], out["control"]
+    ctl4 = er.full4_row(ledger_seed())["results"]
+    chaotic = lambda r: r.megno_cls == "chaotic"  # noqa: E731
+    regular = lambda r: r.megno_cls == "regular"  # noqa: E731
+    over = dc.fraction(res, lambda r: _over(r, reduced_bound, full_bound))
+    no_chaos = (dc.fraction(res, chaotic) <= dc.CONTRADICTING_MAX
+                and dc.fraction(res, regular) >= dc.MEGNO_REGULAR_MIN)
+    ctl4_ok = (dc.fraction(ctl4, chaotic) <= dc.CONTRADICTING_MAX
+               and dc.fraction(ctl4, regular) >= dc.MEGNO_REGULAR_MIN)
+    d_sym = float(np.median([r.diffusion for r in res]))
+    d_ctl = float(np.median([r.diffusion for r in ctl5]))
+    ctl5_ok = dc.fraction(ctl5, chaotic) >= dc.CONTROL_CHAOTIC_MIN and d_ctl >= dc.SEPARATION * d_sym
+    inv: dict = {}
+    for r in res:
+        if r.invariant_diffusion < REGULAR:
+            inv[r.invariant_count] = inv.get(r.invariant_count, 0) + 1
+    inv_rerun: dict = {}
+    for r in rerun:
+        inv_rerun[r.invariant_count] = inv_rerun.get(r.invariant_count, 0) + 1
+    prediction = (f"derived (exact, SymPy Matrix.rank and DomainMatrix.rank over QQ, at {exact['point']}): "
+                  f"SO(4)-orbits of dimension {orbit}, so dim P/SO(4) = 14 - {orbit} = {quotient}; "
+                  f"{exact['integrals']} invariant integrals ({', '.join(exact['coefficients'])} of "
+                  f"p(lambda, sigma), and H) of rank {exact['integral_rank'][0]} on TP, so regular "
+                  f"reduced level sets of dimension {level}; if the reduced system were integrable: "
+                  f"at most {reduced_bound} reduced frequencies ({reduced_bound - 1} with a sixth "
+                  f"integral, Euler-Jacobi), at most {full_bound} on P ({full_bound - 1})")
+    measured = (f"{prediction}. Measured: SO(4)-invariant observables resolved (D < 1e-5) on "
+                f"{sum(inv.values())} of {len(res)} orbits: "
+                + ", ".join(f"{c} frequencies on {k}" for c, k in sorted(inv.items()))
+                + "; " + dc.describe(res, "on P") + f"; the first {len(rerun)} unresolved again at "
+                f"{er.LONGER:g} T: {dc.tally(rerun) or 'none'}, counts on P "
+                + str(sorted(r.count for r in rerun)) + ", invariant counts "
+                + str(dict(sorted(inv_rerun.items()))))
+    control = (dc.describe(ctl4, "n = 4 axisymmetric (integrable, proved)") + f": no chaos: {ctl4_ok}; "
+               + dc.describe(ctl5, f"n = 5, J = diag{CHAOTIC_J[5]}") + f": chaotic and diffusing: {ctl5_ok}")
+    return Verdict.numerical(
+        derived and no_chaos and over <= dc.CONTRADICTING_MAX,
+        measured=measured, initial_conditions=len(res),
+        tolerance=("heyoka Taylor tol 1e-10, batch 4, T = 4096 at energy scale 1, dt = 0.5; NAFF "
+                   "vectorised; |coefficients| <= 4; D < 1e-5 regular; MEGNO regular <= 2.5, "
+                   "chaotic >= 4"),
+        contradiction=("of integrability: more than 2 % MEGNO-chaotic orbits, fewer than 90 % "
+                       f"MEGNO-regular, or more than 2 % resolved orbits with more than {reduced_bound} "
+                       f"reduced or {full_bound} frequencies on P (rule of the module docstring, fixed "
+                       "before the run)"),
+        control=control, control_separates=ctl4_ok and ctl5_ok,
+        method=("exact ranks at a seeded rational point (SymPy) + numerical: eq:motion-general n = 5 "
+                "(expression builders), MEGNO, NAFF on drawn orbits"),
+        n_values=(5,),
+        notes=("what the measurement says about the open problem: "
+               + ("no chaos was resolved on any drawn orbit and the reduced observables show "
+                  f"{max(inv, key=inv.get) if inv else '?'} independent frequencies on most resolved "
+                  "orbits: consistent with an integrable reduced system (the count suggests invariant "
+                  "2-tori inside the 3-dimensional level sets, as a sixth integral would give); a "
+                  "measurement, not a proof" if no_chaos else
+                  "chaos or undecided MEGNO on a fraction of the drawn orbits; see the numbers")
+               + "; n = 6 was not measured (cost)"),
+        data={"orbits": dc.record(res), "rerun": dc.record(rerun), "control5": dc.record(ctl5),
+              "invariant_counts": inv, "exact": {k: (list(v) if isinstance(v, tuple) else v)
+                                                 for k, v in exact.items()}})

@@ -1,0 +1,137 @@
+r"""The drawn experiments behind the evidence rows (issue 16): which ensembles, which settings,
+the re-run of unresolved orbits at a longer $T$, and the rules, all fixed before the runs.
+
+Ensembles (:mod:`simulate.draws`, the ledger's seed; $(a, b)$ over $\{-0.9, -0.5, 0.5, 2\}\times\{0.5, 2\}$,
+energy scales $0.5, 1, 2$):
+
+* ``reduced``  — S5:EJ-tori: ``LEVEL_SETS`` = 50 generic $n = 4$ points, each with ``len(SHIFTS)`` = 3
+  more orbits on its level set of $(F_1, F_2, F_3, H)$ (:func:`simulate.evidence.level_set_points`):
+  200 orbits of eq:red-system, expected 2 frequencies;
+* ``full4``    — S5:reconstruction: 200 generic $n = 4$ orbits of eq:motion-general, expected 3 on $P$
+  (2 reduced + rank $SO(3)$), and 2 from the $SO(3)$-invariant observables alone;
+* ``vertical`` — Th:Re-tori:frequencies: 50 points of $\mathcal V$ for each $n = 4..7$ with
+  $a \in \{-0.9, -0.5, 0, 0.5, 2\}$; expected $\lfloor(n-1)/2\rfloor$, 0 at $a = 0$;
+* ``control4`` — 100 generic $n = 4$ orbits of the general-$\mathbb{J}$ sphere, $\mathbb{J}$ =
+  ``CHAOTIC_J[4]`` (:mod:`simulate.control`), the same analysis: the control of the three rows.
+
+Orbits: $T = 4096$, $dt = 1/2$ at energy scale 1 (reduced and $P$), $T = 3000$, $dt = 5/4$ ($\mathcal V$,
+$n \le 6$; 6000 for $n = 7$); heyoka tolerance $10^{-10}$. The first ``RERUN`` = 4 unresolved orbits of
+an ensemble (in draw order; for $\mathcal V$ the first of each $n$) are integrated again with
+``LONGER`` = 4 times $T$ and classified again.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from chaplygin_nd.simulate import draws, so
+from chaplygin_nd.simulate.control import CHAOTIC_J
+from chaplygin_nd.simulate.drawn_evidence import Setting, measure, subset
+
+__all__ = ["LEVEL_SETS", "SHIFTS", "RERUN", "LONGER", "reduced_row", "full4_row", "vertical_row",
+           "control4_row", "run_with_rerun", "SETTINGS"]
+
+LEVEL_SETS = 50
+SHIFTS = (0.04, 0.08, 0.12)     # times the energy scale: distances across the flow on a level set
+RERUN, LONGER = 4, 4.0
+VERTICAL_A = (-0.9, -0.5, 0.0, 0.5, 2.0)
+VERTICAL_T = {4: 3000.0, 5: 3000.0, 6: 3000.0, 7: 6000.0}
+VERTICAL_DT = 1.25
+
+SETTINGS = {
+    "reduced": Setting("reduced", "reduced", 4, 4096.0, 0.5, observables="reduced", expected=2),
+    "full4": Setting("full4", "full", 4, 4096.0, 0.5, observables="four", expected=3,
+                     invariant=2),
+    "control4": Setting("control4", "control", 4, 4096.0, 0.5, observables="four",
+                        J=CHAOTIC_J[4], expected=3),
+}
+
+
+def _full_state(ens) -> np.ndarray:
+    return np.concatenate([so.vec(ens.M0), ens.gamma0], axis=-1)
+
+
+def run_with_rerun(setting: Setting, ens, y0: np.ndarray, seed: int, rerun: int = RERUN) -> dict:
+    """``{"results": [...], "rerun_index": [...], "rerun": [...]}``: every orbit at ``T`` and the
+    first ``rerun`` unresolved ones again at ``LONGER * T``."""
+    results = measure(setting, ens, y0, seed)
+    index = [k for k, r in enumerate(results) if r.cls == "unresolved"][:rerun]
+    rerun = measure(setting.longer(LONGER), subset(ens, index), y0[index], seed) if index else []
+    return {"results": results, "rerun_index": index, "rerun": rerun}
+
+
+def reduced_row(seed: int) -> dict:
+    """The S5:EJ-tori ensemble (module docstring); also ``groups``: the orbit indices of each level
+    set and ``failed``: level-set points Newton did not reach (reported, not replaced)."""
+    from chaplygin_nd.simulate.evidence import level_set_points
+    from chaplygin_nd.simulate.run import reduced_invariants
+
+    base = draws.draw("S5:EJ-tori", "generic", 4, LEVEL_SETS, seed)
+    r0 = reduced_invariants(base.M0, base.gamma0)
+    rows, pick, groups, failed = [], [], [], 0
+    for k in range(base.count):
+        group = [len(rows)]
+        rows.append(r0[k])
+        pick.append(k)
+        for shift in SHIFTS:
+            try:
+                rows.append(level_set_points(r0[k], (shift * base.scale[k],), base.a[k], base.b[k])[0])
+            except RuntimeError:
+                failed += 1
+                continue
+            group.append(len(rows) - 1)
+            pick.append(k)
+        groups.append(group)
+    ens = subset(base, pick)
+    out = run_with_rerun(SETTINGS["reduced"], ens, np.array(rows), seed)
+    out.update(groups=groups, failed=failed)
+    return out
+
+
+def full4_row(seed: int) -> dict:
+    """The S5:reconstruction ensemble on $P$ (each orbit also counted on its two $SO(3)$-invariant
+    observables alone: ``invariant_count``)."""
+    ens = draws.draw("S5:reconstruction", "generic", 4, 200, seed)
+    return run_with_rerun(SETTINGS["full4"], ens, _full_state(ens), seed)
+
+
+def control4_row(seed: int) -> dict:
+    """The chaotic control: 100 generic $n = 4$ orbits of the general-$\\mathbb{J}$ sphere, at $T$ only
+    (its unresolved orbits are not re-run: for the control they are the expected outcome)."""
+    ens = draws.draw("control4", "generic", 4, 100, seed)
+    return {"results": measure(SETTINGS["control4"], ens, _full_state(ens), seed), "rerun": [],
+            "rerun_index": []}
+
+
+N5_COUNT, N5_CONTROL = 100, 24
+N5_SETTING = Setting("full5", "full", 5, 4096.0, 0.5, observables="invariant+general",
+                     invariant=2, limit=6)
+
+
+def n5_row(seed: int) -> dict:
+    r"""The open problem for $n = 5$: ``N5_COUNT`` generic orbits of the axisymmetric sphere and
+    ``N5_CONTROL`` of the general-$\mathbb{J}$ sphere ``CHAOTIC_J[5]``, the same analysis (the $SO(4)$-
+    invariant observables counted apart); the $n = 4$ control is :func:`full4_row`."""
+    ens = draws.draw("S6:open-reduced-n5", "generic", 5, N5_COUNT, seed)
+    sym = run_with_rerun(N5_SETTING, ens, _full_state(ens), seed)
+    cens = draws.draw("S6:open-reduced-n5 control", "generic", 5, N5_CONTROL, seed)
+    ctl = Setting("control5", "control", 5, 4096.0, 0.5, observables="invariant+general",
+                  invariant=2, limit=6, J=CHAOTIC_J[5])
+    return {"symmetric": sym, "control": measure(ctl, cens, _full_state(cens), seed)}
+
+
+def vertical_setting(n: int) -> Setting:
+    r"""The setting of the $\mathcal V$ orbits in dimension $n$ (expected $\lfloor(n-1)/2\rfloor$ = rank
+    $SO(n-1)$, 0 at $a = 0$)."""
+    return Setting(f"vertical{n}", "full", n, VERTICAL_T[n], VERTICAL_DT, observables="general",
+                   expected=int((n - 1) // 2), vertical=True)
+
+
+def vertical_row(seed: int, per_n: int = 50) -> dict:
+    """Th:Re-tori:frequencies: ``{n: run_with_rerun(...)}`` for $n = 4..7$."""
+    out = {}
+    for n in VERTICAL_T:
+        ens = draws.draw(f"Th:Re-tori:frequencies n={n}", "vertical", n, per_n, seed,
+                         a_values=VERTICAL_A)
+        out[n] = run_with_rerun(vertical_setting(n), ens, _full_state(ens), seed,
+                                rerun=RERUN // len(VERTICAL_T))
+    return out
