@@ -21,9 +21,10 @@ distance $r$ from the family leaves it at a rate $\sim r\|\Omega\|$, an error no
 accounts for). The plan line says which residual was tested against which bound.
 
 Integrator of the reduced and full models (``accuracy.method = "auto"``): heyoka's Taylor method
-(:mod:`simulate.integrators.heyoka_taylor`) when heyoka is importable, else DOP853; the plan line
-says which ("heyoka Taylor, order p, tol ..."). A scene may ask for ``heyoka``, ``dop853``, ``lie``
-or ``reference`` explicitly.
+(:mod:`simulate.integrators.heyoka_taylor`) when heyoka is importable, else DOP853, else the mpmath
+Taylor method — the first whose calibrated settings honour ``accuracy.target``
+(:mod:`simulate.accuracy`; none honours it: the run is refused); the plan line says which and
+with what. A scene may ask for ``heyoka``, ``dop853``, ``lie`` or ``reference`` explicitly.
 
 The reconstruction ($g$, contact path) is added only when ``orientation`` or ``contact_path`` is
 asked for; the closed forms 1–2 reconstruct in closed form (:mod:`simulate.closed_forms`), the
@@ -36,9 +37,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from chaplygin_nd.simulate import families
+from chaplygin_nd.simulate import accuracy, families
 from chaplygin_nd.simulate.dispatch import Kernels, active
-from chaplygin_nd.simulate.integrators import heyoka_taylor
 from chaplygin_nd.simulate.scene import Scene
 from chaplygin_nd.simulate.stops import check_finite
 
@@ -74,6 +74,7 @@ class Plan:
     skipped: list[str] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)  # about the scene's parameters (simulate.ball)
     detail: str = ""  # what the integrator runs with (plan line)
+    accuracy: accuracy.Settings | None = None  # the calibrated settings (simulate.accuracy)
 
     def describe(self) -> str:
         """One paragraph: model, why, and what was ruled out."""
@@ -91,30 +92,32 @@ def _method(scene: Scene, model: str) -> str:
     if model in ("constant-Omega", "vertical", "horizontal-4D", "horizontal"):
         return "closed form"
     if scene.method == "auto":
-        return "heyoka" if heyoka_taylor.available() else "dop853"
+        return "auto"
     if model == "reduced-7D" and scene.method not in ("dop853", "heyoka"):
         return "dop853"  # the Lie-group and Taylor methods act on (M, gamma) only
     return scene.method
 
 
+def settings(scene: Scene, method: str, model: str = "full") -> accuracy.Settings | None:
+    """The calibrated settings of ``method`` for ``scene`` (:mod:`simulate.accuracy`); ``auto``
+    picks the first method that honours the target. ``None`` for a closed form."""
+    span = float(scene.t[-1] - scene.t[0])
+    if method == "closed form":
+        return None
+    if method == "auto":
+        return accuracy.automatic(scene.target, span, scene.dps, reduced=model == "reduced-7D")
+    return accuracy.choose(method, scene.target, span, step=scene.step, dps=scene.dps)
+
+
 def heyoka_tolerance(target: float) -> float:
-    """heyoka's tolerance for an accuracy target: target/100, at least 2^-52 (the bench measures
-    global errors up to ~50 tol on generic n = 4 to T = 100)."""
-    return max(target / 100, 2.0 ** -52)
+    """heyoka's tolerance for an accuracy target (calibrated, :mod:`simulate.accuracy`)."""
+    return accuracy.choose("heyoka", target, 1.0).value
 
 
-def method_detail(scene: Scene, method: str) -> str:
+def method_detail(scene: Scene, method: str, model: str = "full") -> str:
     """What the integrator ``method`` runs with for this scene (for the plan line)."""
-    if method == "heyoka":
-        tol = heyoka_tolerance(scene.target)
-        return f"heyoka Taylor, order {heyoka_taylor.order_for(tol)}, tol {tol:g}"
-    if method == "reference":
-        return f"{scene.dps} digits"
-    if method == "lie":
-        return f"step h <= {scene.step:g}; accuracy.target is not used"
-    if method == "dop853":
-        return f"DOP853, rtol = target/100 = {max(scene.target / 100, 2.3e-14):g}"
-    return method
+    s = settings(scene, method, model)
+    return method if s is None else s.describe()
 
 
 def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False) -> Plan:
@@ -133,17 +136,17 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
     skipped: list[str] = []
 
     def make(model, reason):
-        method = _method(scene, model)
+        chosen = settings(scene, _method(scene, model), model)
+        method = chosen.method if chosen else "closed form"
         return Plan(model, reason, reconstruct, method, Omega0, skipped, list(scene.notes),
-                    detail=method_detail(scene, method))
+                    detail=chosen.describe() if chosen else method, accuracy=chosen)
 
     if force_full:
         return make("full", "forced (cross-check)")
     if scene.method != "auto":
         skipped.append(f"closed forms and reduced models: accuracy.method = {scene.method!r} "
                        "asks for an integrator of the full system")
-        return make("full", f"integrator {scene.method} requested "
-                    f"({method_detail(scene, scene.method)})")
+        return make("full", f"integrator {scene.method} requested")
     is_vertical, v_text = _residual_test(
         "max |M0 gamma0|/|M0|",
         [families.claim_residual("vertical", M, g) for M, g in zip(scene.M0, scene.gamma0)], tol)
