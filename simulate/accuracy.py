@@ -6,18 +6,22 @@ solution (max over samples, initial conditions and components) — the measure t
 
 .. math:: K = \frac{\max|y - y_\text{ref}| / \max|y_\text{ref}|}{\text{setting}}
 
-was measured by ``chaplygin bench calibration`` (:mod:`bench.bench_calibration`, written to
+(over the settings above the method's floor) and the worst error $E$ at the floor (rounding:
+the error no setting removes) were measured by ``chaplygin bench calibration`` (:mod:`bench.bench_calibration`, written to
 ``bench/out/calibration.json``/``.md``) on every built-in scene that integrates and on a seeded
 set of generic initial conditions (n = 3, 4, 5; prolate, oblate and flat bodies; scales 1 and 5),
 against heyoka in ``real128`` at tolerance $10^{-28}$. A run uses
 
-* DOP853 and RK45 (SciPy): ``rtol = atol = target / (K SAFETY)``, at least $100\varepsilon$
-  (SciPy's floor); below that floor the method *cannot* honour the target;
-* heyoka (double): ``tol = target / (K SAFETY)``, at least $2^{-52}$; ``real128``: at least $2^{-112}$;
+* DOP853 and RK45 (SciPy), heyoka: the error model is $K\,\text{setting} + E$, so
+  ``rtol = atol`` (SciPy) or ``tol`` (heyoka) $= (\text{target}/\text{SAFETY} - E)/K$, at least
+  the floor: $100\varepsilon$ (SciPy), $2^{-52}$ (heyoka double), $2^{-112}$ (``real128``, with
+  heyoka's $K$ and $E$ scaled by $2^{-60}$); when that is below the floor the method *cannot*
+  honour the target;
 * RKMK4 (``lie``): a fixed step whose error is modelled as $C h^4 (t_\text{end} - t_0)$ (order 4,
   error growing linearly in time on the tori); the step is ``min(accuracy.step, (target /
   (C SAFETY span))^{1/4})``, so a target is always honoured (the cost may then be refused);
-* the mpmath Taylor method (``reference``): ``dps = max(accuracy.dps, digits(target) + 6)``.
+* the mpmath Taylor method (``reference``): ``dps = max(accuracy.dps, digits(target) + 6)`` when
+  the scene names it, ``digits(target) + 6`` when ``auto`` chose it.
 
 :func:`choose` returns the :class:`Settings` of a method for a scene; for ``method = "auto"``
 the planner tries heyoka, then DOP853, then the mpmath Taylor method, and takes the first that
@@ -35,15 +39,17 @@ from dataclasses import dataclass
 import numpy as np
 from chaplygin_nd.simulate.stops import RunStopped
 
-__all__ = ["SAFETY", "MEASURED", "FLOORS", "Settings", "Unattainable", "choose", "heyoka_usable",
+__all__ = ["SAFETY", "MEASURED", "ROUNDING", "FLOORS", "Settings", "Unattainable", "choose", "heyoka_usable",
            "estimated_error"]
 
 #: Factor between the measured worst ratio and the ratio a run assumes.
 SAFETY = 4.0
-#: Worst measured error/setting ratio per method (bench/out/calibration.json, "worst" column;
-#: for ``lie`` the constant C of C h^4 span). Rounded up.
-MEASURED = {"dop853": 400.0, "rk45": 400.0, "heyoka": 40.0, "real128": 40.0, "lie": 1.0,
-            "reference": 100.0}
+#: Worst measured error/setting ratio K per method above its floor (bench/out/calibration.json;
+#: for ``lie`` the constant C of C h^4 span), rounded up.
+MEASURED = {"dop853": 650.0, "rk45": 650.0, "heyoka": 12.0, "real128": 12.0, "lie": 0.02}
+#: Worst measured error E at the floor setting (rounding), rounded up; real128: heyoka's x 2^-60.
+ROUNDING = {"dop853": 3.5e-12, "rk45": 3.5e-12, "heyoka": 1.4e-13, "real128": 1.4e-13 * 2.0 ** -60,
+            "lie": 0.0}
 #: Smallest setting each method accepts.
 FLOORS = {"dop853": 100 * float(np.finfo(float).eps), "rk45": 100 * float(np.finfo(float).eps),
           "heyoka": 2.0 ** -52, "real128": 2.0 ** -112}
@@ -97,10 +103,11 @@ def _ratio(method: str, precision: str = "double") -> float:
 
 
 def _tolerance_method(method: str, target: float, precision: str = "double") -> Settings:
-    floor = FLOORS["real128" if precision == "real128" else method]
-    k = _ratio(method, precision)
-    value = max(target / k, floor)
-    return Settings(method, value, max(target, value * k), value * k <= target * (1 + 1e-12),
+    key = "real128" if precision == "real128" else method
+    floor, k, e = FLOORS[key], MEASURED[key], ROUNDING[key]
+    value = max((target / SAFETY - e) / k, floor)
+    promise = SAFETY * estimated_error(method, value, precision=precision)
+    return Settings(method, value, max(target, promise), promise <= target * (1 + 1e-9),
                     precision)
 
 
@@ -111,7 +118,8 @@ def estimated_error(method: str, value: float, span: float = 1.0,
         return MEASURED["lie"] * value ** 4 * span
     if method == "reference":
         return 10.0 ** (-int(value) + 2)
-    return MEASURED["real128" if precision == "real128" else method] * value
+    key = "real128" if precision == "real128" else method
+    return MEASURED[key] * value + ROUNDING[key]
 
 
 def choose(method: str, target: float, span: float, step: float = 0.01, dps: int = 30,
@@ -138,7 +146,7 @@ def automatic(target: float, span: float, dps: int, reduced: bool) -> Settings:
     tried = []
     for method in (["heyoka"] if heyoka_usable() else []) + ["dop853"] + \
             ([] if reduced else ["reference"]):
-        s = choose(method, target, span, dps=dps)
+        s = choose(method, target, span, dps=15)  # auto: the digits the target needs, no more
         if s.honoured:
             return s
         tried.append(f"{s.method} reaches about {s.promised:.2g}")
