@@ -96,7 +96,9 @@ def main(argv: list[str] | None = None) -> int:
                 check = None
                 if args.cross_check:
                     from chaplygin_nd.simulate.crosscheck import cross_check
-                    check = cross_check(scene, p, arrays, force=args.force)
+                    state = ({k: traj.data[k] for k in ("M", "gamma") if k in traj.data}
+                             if tori_scene.wants(scene) else None)
+                    check = cross_check(scene, p, arrays, force=args.force, state=state)
                 extra, extra_lines = (tori_scene.files(scene, traj) if tori_scene.wants(scene)
                                       else ({}, []))
             text = "\n".join([summary(scene, p, traj, arrays, time.perf_counter() - start, check,

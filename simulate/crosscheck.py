@@ -102,13 +102,18 @@ class CrossCheck:
 
 
 def cross_check(scene, main_plan, arrays: dict[str, np.ndarray], progress: bool = True,
-                force: bool = False) -> CrossCheck:
-    """Compare ``arrays`` (the outputs of ``main_plan`` on ``scene``) with the reference run."""
+                force: bool = False, state: dict[str, np.ndarray] | None = None) -> CrossCheck:
+    """Compare ``arrays`` (the outputs of ``main_plan`` on ``scene``) with the reference run;
+    ``state`` (``M``, ``gamma`` of the run) is compared too when given — for the outputs
+    ``frequencies``/``poincare``, which are not arrays of the trajectory."""
     ref = reference_settings(scene, main_plan)
     p = plan(dataclasses.replace(scene, method="dop853"), force_full=True)
     p = dataclasses.replace(p, method=ref.method, accuracy=ref, detail=ref.describe())
     traj = execute(scene, p, progress=progress, force=force)
     other = collect(scene, traj)
+    if state is not None:  # frequencies/poincare: the trajectory they are computed from
+        other.update({k: traj.data[k] for k in ("M", "gamma")})
+        arrays = {**arrays, **state}
     bound_rel = promised(scene, main_plan)
     ref_rel = ref.promised
     rows = []
