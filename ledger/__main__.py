@@ -128,8 +128,9 @@ def _main(argv: list[str] | None) -> int:
         say("not a source checkout: VERIFICATION.md, verification.json and the graph not written "
             "(give --report-dir DIR)")
     elif targets:
-        info = dataclasses.replace(info, generated=generated, problems=tuple(problems))
         md, js, svg = targets
+        info = dataclasses.replace(info, generated=generated, problems=tuple(problems),
+                                   graph=svg.relative_to(md.parent).as_posix())
         try:
             text = graph.svg_text(results)
             changed = not svg.exists() or svg.read_text(encoding="utf-8") != text

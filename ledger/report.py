@@ -61,6 +61,8 @@ class RunInfo:
     commit: str | None = None
     started: str = ""
     generation: str = ""
+    #: the claim graph, relative to the reports (``docs/claim-graph.svg`` in a checkout)
+    graph: str = GRAPH_PATH
 
     def names(self) -> str:
         """``seed S, commit C, started T, generation G`` — the run, in one line."""
@@ -119,7 +121,7 @@ def json_text(results: Sequence[Result], info: RunInfo, markdown_sha256: str | N
             "summary": dict(totals(results)),
             "kinds": dict(Counter(r.verdict.kind for r in results if r.verdict.kind)),
             "argued": [{"id": i, "part": name} for i, name in argued(results)],
-            "claim_graph": GRAPH_PATH,
+            "claim_graph": info.graph,
             "rows": [r.to_dict() for r in results],
             "environment": {"python": platform.python_version(), "sympy": sympy.__version__}}
     return json.dumps(data, indent=2, ensure_ascii=False) + "\n"
@@ -239,7 +241,7 @@ def markdown_text(results: Sequence[Result], info: RunInfo) -> str:
             + "; ".join(f"**{k}** — {KIND_TEXT[k]}" for k in KINDS)
             + f". Errata are {' and '.join(ERRATA_KINDS)}; the other kinds are remarks.", "",
             f"The claim graph (what each row uses, coloured by verdict and kind): "
-            f"[{GRAPH_PATH}]({GRAPH_PATH}).", "", f"![claim graph]({GRAPH_PATH})", ""]
+            f"[{info.graph}]({info.graph}).", "", f"![claim graph]({info.graph})", ""]
     out += _errata_table(results) + _remarks_table(results)
     out += ["## All rows", "", "| id | verdict | kind | seconds | n | method | proof |",
             "|---|---|---|---|---|---|---|"]

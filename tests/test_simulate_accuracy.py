@@ -1,8 +1,9 @@
 """Targets are kept or refused (simulate/accuracy.py), and the cross-check can judge every built-in
 scene on both installs: with heyoka and without it (CHAPLYGIN_ND_WITHOUT_HEYOKA=1, the base install).
 
-The two longest scenes (long4d, tori4d: minutes) are cross-checked by the bench
-(``chaplygin bench calibration`` measures the constants; their cross-checks: NOTES-i19.md)."""
+The longest cross-checks (long4d, tori4d; and on the base install the scenes whose reference is the
+mpmath Taylor method on an ensemble or in n = 5, 6) run in ``chaplygin bench calibration``, which
+also measures the constants (bench/out/calibration.md)."""
 
 from __future__ import annotations
 
@@ -18,21 +19,20 @@ from chaplygin_nd.simulate.planner import plan
 from chaplygin_nd.simulate.run import execute
 from chaplygin_nd.simulate.scene import builtin_scenes, find, loads
 
+#: minutes: cross-checked by ``chaplygin bench calibration`` (bench/out/calibration.md)
 LONGEST = {"long4d", "tori4d"}
-INSTALLS = ["base"] + (["fast"] if heyoka_taylor.available() else [])
-#: quick on both installs; the others integrate with the mpmath Taylor method somewhere: slow
-QUICK = {"steady4d", "vertical5d", "spherical6d", "horizontal4d", "horizontal6d"}
+#: on the base install their reference is the mpmath Taylor method on an ensemble or in n = 5, 6
+#: (1-4 minutes each under load): also in the bench only
+LONG_ON_BASE = {"horizontal6d", "ensemble3d", "vertical5d", "spherical6d"}
+CASES = [pytest.param(name, install, marks=pytest.mark.slow if install == "base" else ())
+         for name in sorted(set(builtin_scenes()) - LONGEST)
+         for install in ["base"] + (["fast"] if heyoka_taylor.available() else [])
+         if not (install == "base" and name in LONG_ON_BASE)]
 
 
-@pytest.fixture(params=INSTALLS)
-def install(request, monkeypatch):
-    monkeypatch.setenv(accuracy.WITHOUT_HEYOKA, "1" if request.param == "base" else "0")
-    return request.param
-
-
-@pytest.mark.parametrize("name", [pytest.param(n, marks=() if n in QUICK else pytest.mark.slow)
-                                  for n in sorted(set(builtin_scenes()) - LONGEST)])
-def test_every_builtin_scene_passes_its_own_cross_check(name, install):
+@pytest.mark.parametrize("name,install", CASES)
+def test_every_builtin_scene_passes_its_own_cross_check(name, install, monkeypatch):
+    monkeypatch.setenv(accuracy.WITHOUT_HEYOKA, "1" if install == "base" else "0")
     scene = find(name)
     p = plan(scene)
     if p.accuracy is not None:
