@@ -39,14 +39,15 @@ r"""Scenes: TOML files that name a sphere, an initial condition, times, outputs 
     want = ["M", "gamma", "x", "integrals"]
 
     [accuracy]
-    target = 1e-10        # wanted error; DOP853 runs at rtol = atol = target/100 (the bench
-                          # measures global errors of about 8 rtol to T = 100), heyoka at
-                          # tol = target/100
-    method = "auto"       # auto (heyoka if installed, else dop853) | heyoka | dop853 | lie | reference
-    dps = 30              # digits of the reference method
-    step = 0.01           # step of the Lie-group method (which ignores target)
+    target = 1e-10        # wanted error of every output, relative to its largest value; each
+                          # method's settings come from a calibration (simulate/accuracy.py)
+    method = "auto"       # auto (heyoka if installed, else DOP853, else the mpmath Taylor method:
+                          # the first that honours target) | heyoka | dop853 | lie | reference
+    dps = 30              # digits of the reference method (at least what target needs)
+    step = 0.01           # largest step of the Lie-group method (smaller when target asks)
 
-:func:`load` validates everything before anything runs and raises one :class:`SceneError`
+:func:`load` reads only a regular file of at most 1 MiB (not a device or FIFO) and
+validates everything before anything runs and raises one :class:`SceneError`
 naming the field and the fix; that includes a memory or drawing cost past the limits of
 :mod:`simulate.budget` (lifted by ``force``, the command line's ``--force``), and a cost worth
 mentioning is said on stderr. :func:`find` also accepts the name of a built-in scene.
