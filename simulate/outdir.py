@@ -155,6 +155,8 @@ class _Lock:
             os.close(self.fd)  # closing drops the flock; the small file stays for the next run
             self.fd = None
 
+    __del__ = release
+
 
 class OutputFolder:
     """A folder :func:`claim` found safe to write to; ``owned`` are the names it may replace."""
@@ -193,7 +195,13 @@ class OutputFolder:
 
     def write(self, files: dict[str, Callable[[Path], None]]) -> Path:
         """Write every ``name -> writer(path)`` of ``files`` (rules in the module docstring);
-        returns the folder."""
+        returns the folder. The lock is released when the write ends (written or not)."""
+        try:
+            return self._write(files)
+        finally:
+            self.release()
+
+    def _write(self, files: dict[str, Callable[[Path], None]]) -> Path:
         for name in files:
             if not name or "/" in name or name in (".", "..", MANIFEST):
                 raise ValueError(f"not a plain output file name: {name!r}")
