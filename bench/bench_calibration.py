@@ -74,7 +74,7 @@ def builtin_cases(quick: bool):
 def _run(scene, method, settings):
     auto = dataclasses.replace(scene, method="auto" if method != "lie" else "lie")
     p = plan(auto)
-    if p.model not in ("full", "reduced-7D"):
+    if p.model not in ("full", "reduced-7D") or scene.method == "lie":  # RKMK4: the full system
         p = plan(auto, force_full=True)
     p = dataclasses.replace(p, method=settings.method, accuracy=settings)
     start = time.perf_counter()
@@ -130,8 +130,9 @@ def main(out: Path, quick: bool = False) -> int:
     out.mkdir(parents=True, exist_ok=True)
     write_rows(out / "calibration.json", rows)
     lines = ["# Calibration: accuracy.target -> settings", "",
-             f"Reference: {ref_settings.describe()}. Ratio = error/setting (RKMK4: error/(h^4 T)); "
-             f"a run uses setting = target / (worst x {accuracy.SAFETY:g}).", "",
+             f"Reference: {ref_settings.describe()}. Ratio = error/setting (RKMK4: error/(h^4 T)). "
+             f"A run uses setting = (target/{accuracy.SAFETY:g} - E)/K (RKMK4: h = "
+             f"(target/({accuracy.SAFETY:g} C T))^(1/4)), K and E from simulate/accuracy.py.", "",
              "| method | cases | worst K (above the floor) | K in accuracy.py | worst E (at the floor) "
              "| E in accuracy.py | |", "|---|---|---|---|---|---|---|"]
     ok_all = True
