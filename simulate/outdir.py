@@ -151,7 +151,7 @@ class _Lock:
         os.write(self.fd, f"{os.getpid()} {real}\n".encode())
 
     def release(self) -> None:
-        if self.fd is not None:
+        if getattr(self, "fd", None) is not None:
             os.close(self.fd)  # closing drops the flock; the small file stays for the next run
             self.fd = None
 
