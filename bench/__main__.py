@@ -1,7 +1,7 @@
 """``chaplygin bench [-h] [--quick] [--list] [NAME ...]`` from the repository root: run the
 benchmarks (every ``bench/bench_*.py`` that defines ``main``, or only those named), writing figures,
 Markdown and JSON rows into ``bench/out/``. Exit status 0 when every benchmark ran (a target that
-is NOT MET is reported in its output, not an error), 2 on a usage error."""
+is NOT MET is reported in its output, not an error), 2 on a usage error, 130 when interrupted."""
 
 from __future__ import annotations
 
@@ -16,6 +16,7 @@ import time
 from pathlib import Path
 
 from chaplygin_nd.cli import version_line
+from chaplygin_nd.console import fail, interruptible
 
 OUT = Path(__file__).resolve().parent / "out"
 #: Run when no name is given (``make bench``). ``heyoka`` (bench_heyoka.py) repeats the heyoka
@@ -53,6 +54,16 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Run the benchmarks; Ctrl-C or SIGTERM ends with one line ``interrupted``, exit 130 (every
+    file a benchmark wrote is whole: bench.report.write_atomic)."""
+    with interruptible():
+        try:
+            return _main(argv)
+        except KeyboardInterrupt:
+            return fail("interrupted", 130)
+
+
+def _main(argv: list[str] | None) -> int:
     parser = _parser()
     args = parser.parse_args(argv)
     known = modules()

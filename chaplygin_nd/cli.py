@@ -83,7 +83,12 @@ def main(argv: list[str] | None = None) -> int:
         print("chaplygin verify: takes no ids (use `chaplygin prove ID ...`)", file=sys.stderr)
         return 2
     module, front, _ = COMMANDS[name]
-    return int(importlib.import_module(module).main(front + rest) or 0)
+    try:  # Ctrl-C while the subcommand's module is imported: one line too (issue 19)
+        run = importlib.import_module(module).main
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return 130
+    return int(run(front + rest) or 0)
 
 
 def _is_option_value(args: list[str], value: str) -> bool:

@@ -1,37 +1,67 @@
 """``chaplygin verify`` / ``chaplygin prove ID ...`` (``python -m chaplygin_nd.ledger``) — decide ledger rows and print one line per row.
 
 With no ids it runs the whole ledger and writes ``VERIFICATION.md``, ``verification.json`` (at the
-repository root) and the claim graph ``docs/claim-graph.svg`` (only in a source checkout: an installed
-package does not write into site-packages). ``--seed N`` is the seed of every
+repository root) and the claim graph ``docs/claim-graph.svg`` — or, with ``--report-dir DIR``, all
+three into ``DIR`` (for an installed package or a read-only checkout; an installed package writes
+nothing without it). The two reports are one result (:func:`ledger.report.write_pair`) and name the
+run (seed, commit, time, generation id). Ids are checked before any proof is imported (blanks
+stripped, "did you mean" for near misses). Ctrl-C or SIGTERM: one line ``interrupted``, exit 130; a
+closed stdout (``| head -1``) does not stop the run. ``--seed N`` is the seed of every
 seeded check (recorded in both reports). Exit status 1 when a row fails, a proof raises, an open row
 gives no reason, a finding has no kind, a proof registers an id that is not a ledger row, or
-(``--check-generated``) ``generated/`` is stale — then the report says STALE at its top.
+(``--check-generated``) ``generated/`` is stale — then the report says STALE at its top; 2 on a
+usage error or a report that cannot be written (one line naming the path).
 """
 
 from __future__ import annotations
 
 import argparse
-import signal
+import dataclasses
+import os
 import sys
 import time
+import uuid
+from datetime import UTC, datetime
+from pathlib import Path
 
 from chaplygin_nd.ledger import graph, report
-from chaplygin_nd.ledger.catalog import ROOT, is_checkout
+from chaplygin_nd.ledger.catalog import ROOT, is_checkout, resolve
 from chaplygin_nd.ledger.runner import run, select, unknown_registrations
 from chaplygin_nd.symbolic.points import DEFAULT_SEED
 
-from chaplygin_nd.cli import version_line
+from chaplygin_nd.cli import commit, version_line
+from chaplygin_nd.console import fail, interruptible, say
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with one-line errors naming the option as given (``--seed: not a ...``)."""
+
+    def error(self, message):
+        fail(f"{self.prog}: {message.removeprefix('argument ')}")
+        sys.exit(2)
 
 
 def _seed(text: str) -> int:
-    value = int(text)
+    try:
+        value = int(text.strip())
+    except ValueError:
+        value = -1
     if value < 0:
-        raise argparse.ArgumentTypeError("the seed is a non-negative integer")
+        raise argparse.ArgumentTypeError(f"not a non-negative integer: {text!r}")
     return value
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="chaplygin verify", description=__doc__.splitlines()[0])
+    """Run ``chaplygin verify`` / ``chaplygin prove``; the exit status (module docstring)."""
+    with interruptible():
+        try:
+            return _main(argv)
+        except KeyboardInterrupt:
+            return fail("interrupted", 130)
+
+
+def _main(argv: list[str] | None) -> int:
+    parser = _Parser(prog="chaplygin verify", description=__doc__.splitlines()[0])
     parser.add_argument("ids", nargs="*", help="ledger ids to run (default: all)")
     parser.add_argument("--version", action="version", version=version_line())
     parser.add_argument("--jobs", "-j", type=int, default=None,
@@ -40,25 +70,32 @@ def main(argv: list[str] | None = None) -> int:
                         help="also regenerate generated/ into a temporary folder and fail on a difference")
     parser.add_argument("--seed", type=_seed, default=DEFAULT_SEED,
                         help=f"seed of every seeded exact check (default {DEFAULT_SEED})")
+    parser.add_argument("--report-dir", metavar="DIR",
+                        help="write VERIFICATION.md, verification.json and claim-graph.svg into DIR "
+                             "(default: the checkout's root and docs/; an installed package writes "
+                             "them only when DIR is given)")
     parser.add_argument("--list", action="store_true", help="list the ledger ids and exit")
     args = parser.parse_args(argv)
-    signal.signal(signal.SIGPIPE, signal.SIG_DFL)  # `chaplygin verify | head` exits quietly
 
     try:
-        rows = select(args.ids)
+        ids = resolve(args.ids) if args.ids else []  # before any proof is imported
+        rows = select(ids)
     except KeyError as err:
-        print(f"error: {err.args[0]}", file=sys.stderr)
-        return 2
+        return fail(err.args[0])
     if args.list:
         for row in rows:
-            print(f"{row.id:<24} {row.section}")
+            say(f"{row.id:<24} {row.section}")
         return 0
+    targets = _report_paths(args.report_dir, whole=not ids)
+    if isinstance(targets, int):
+        return targets
 
     start = time.perf_counter()
-    print(f"seed {args.seed}", flush=True)
-    print(f"{'id':<24} {'verdict':<20} {'seconds':>8}  method [n]", flush=True)
-    results = run(rows, jobs=args.jobs, seed=args.seed,
-                  on_result=lambda r: print(report.line(r), flush=True))
+    info = report.RunInfo(args.seed, commit=commit(), generation=uuid.uuid4().hex[:12],
+                          started=datetime.now(UTC).strftime("%Y-%m-%dT%H:%M:%SZ"))
+    say(f"seed {args.seed}")
+    say(f"{'id':<24} {'verdict':<20} {'seconds':>8}  method [n]")
+    results = run(rows, jobs=args.jobs, seed=args.seed, on_result=lambda r: say(report.line(r)))
     problems = []
     for r in results:
         if r.error:
@@ -88,20 +125,51 @@ def main(argv: list[str] | None = None) -> int:
         if stale:
             problems.append(stale)
         else:
-            print("generated/ is up to date with symbolic/ (regenerated and compared byte for byte)")
-    print(report.summary(results) + f"; wall {time.perf_counter() - start:.1f} s")
-    if not args.ids and not is_checkout():
-        print("not a source checkout: VERIFICATION.md, verification.json and the graph not written")
-    elif not args.ids:
-        info = report.RunInfo(args.seed, generated, tuple(problems))
-        report.write_markdown(results, ROOT / "VERIFICATION.md", info)
-        report.write_json(results, ROOT / "verification.json", info)
-        changed = graph.write(results, ROOT / report.GRAPH_PATH)
-        print(f"wrote VERIFICATION.md, verification.json and {report.GRAPH_PATH}"
-              + (f" ({report.GRAPH_PATH} changed: commit it)" if changed else ""))
+            say("generated/ is up to date with symbolic/ (regenerated and compared byte for byte)")
+    say(report.summary(results) + f"; wall {time.perf_counter() - start:.1f} s")
+    if targets is None:
+        say("not a source checkout: VERIFICATION.md, verification.json and the graph not written "
+            "(give --report-dir DIR)")
+    elif targets:
+        md, js, svg = targets
+        info = dataclasses.replace(info, generated=generated, problems=tuple(problems),
+                                   graph=svg.relative_to(md.parent).as_posix())
+        try:
+            text = graph.svg_text(results)
+            changed = not svg.exists() or svg.read_text(encoding="utf-8") != text
+            report.write_pair(results, md, js, info)
+            if changed:
+                report.write_files({svg: text})
+        except OSError as exc:
+            return fail(f"writing the report {exc.filename}: {exc.strerror or exc} "
+                        "(give --report-dir DIR for a writable folder)")
+        say(f"wrote {md}, {js} and {svg} (run {info.names()})"
+            + (f" ({svg.name} changed: commit it)" if changed and args.report_dir is None else ""))
     for p in problems:
-        print(f"PROBLEM: {p}", file=sys.stderr)
+        fail(f"PROBLEM: {p}", 1)
     return 1 if problems else 0
+
+
+def _report_paths(report_dir: str | None, whole: bool):
+    """(VERIFICATION.md, verification.json, graph) paths; ``()`` when ids were named (no report),
+    ``None`` outside a checkout without ``--report-dir``; an exit status when ``--report-dir``
+    cannot be a folder (checked before any proof runs)."""
+    if not whole:
+        return ()
+    if report_dir is None:
+        if not is_checkout():
+            return None
+        return ROOT / "VERIFICATION.md", ROOT / "verification.json", ROOT / report.GRAPH_PATH
+    folder = Path(report_dir)
+    if folder.exists() and not folder.is_dir():
+        return fail(f"--report-dir {report_dir}: exists and is not a folder")
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        return fail(f"--report-dir {report_dir}: cannot create it ({exc.strerror or exc})")
+    if not os.access(folder, os.W_OK | os.X_OK):
+        return fail(f"--report-dir {report_dir}: the folder is not writable")
+    return folder / "VERIFICATION.md", folder / "verification.json", folder / "claim-graph.svg"
 
 
 if __name__ == "__main__":

@@ -115,3 +115,39 @@ def discover() -> list[str]:
         importlib.import_module(f"chaplygin_nd.proofs.{info.name}")
         names.append(info.name)
     return names
+
+
+def _declared_ids() -> set[str]:
+    """Every ledger id, read without importing a proof: CLAIMS.md, :data:`EXTRA_ROWS` and the
+    ``@claim("ID", ...)`` lines of the proof scripts (the rows they add)."""
+    ids = {r.id for r in claims_rows()} | {r.id for r in EXTRA_ROWS}
+    folder = Path(str(resources.files("chaplygin_nd.proofs")))
+    for script in folder.glob("*.py"):
+        ids.update(re.findall(r"@claim\(\s*[\"']([^\"']+)[\"']",
+                              script.read_text(encoding="utf-8")))
+    return ids
+
+
+def resolve(ids: list[str]) -> list[str]:
+    """The ledger ids named by ``ids`` (surrounding blanks stripped), checked before any proof is
+    imported; an unknown one raises ``KeyError`` with one line naming the nearest ids
+    ("did you mean"), case-insensitively."""
+    import difflib
+
+    known = _declared_ids()
+    lower: dict[str, list[str]] = {}
+    for i in sorted(known):
+        lower.setdefault(i.lower(), []).append(i)
+    out, bad = [], []
+    for raw in ids:
+        name = raw.strip()
+        if name in known:
+            out.append(name)
+            continue
+        near = lower.get(name.lower(), []) or [
+            i for k in difflib.get_close_matches(name.lower(), list(lower), n=3, cutoff=0.6)
+            for i in lower[k]]
+        bad.append(f"{raw!r}" + (f" (did you mean {', '.join(near[:3])}?)" if near else ""))
+    if bad:
+        raise KeyError(f"unknown ledger id {'; '.join(bad)}; `chaplygin prove --list` lists them")
+    return out

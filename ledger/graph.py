@@ -215,8 +215,8 @@ def draw(results: Sequence[Result]):
     return fig
 
 
-def write(results: Sequence[Result], path: Path) -> bool:
-    """Write the claim graph as SVG to ``path`` (atomically); True if its content changed."""
+def svg_text(results: Sequence[Result]) -> str:
+    """The claim graph as SVG text (the same bytes for the same ledger)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -229,12 +229,17 @@ def write(results: Sequence[Result], path: Path) -> bool:
         buffer = io.StringIO()
         fig.savefig(buffer, format="svg", metadata={"Date": None, "Creator": None})
         plt.close(fig)
-    text = buffer.getvalue()
+    return buffer.getvalue()
+
+
+def write(results: Sequence[Result], path: Path) -> bool:
+    """Write the claim graph as SVG to ``path`` (atomically, a unique temporary name); True if
+    its content changed."""
+    from chaplygin_nd.ledger.report import write_files
+
+    text = svg_text(results)
     old = path.read_text(encoding="utf-8") if path.exists() else None
     if old == text:
         return False
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(text, encoding="utf-8")
-    tmp.replace(path)
+    write_files({Path(path): text})
     return True

@@ -8,8 +8,12 @@ new verdict or kind needs only its one-line description in :data:`VERDICT_TEXT` 
 
 from __future__ import annotations
 
+import hashlib
 import json
+import os
 import platform
+import signal
+import tempfile
 from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -47,12 +51,24 @@ GRAPH_PATH = "docs/claim-graph.svg"
 
 @dataclass(frozen=True)
 class RunInfo:
-    """What a reader needs to repeat the run: the seed, and whether generated/ was checked."""
+    """What a reader needs to repeat the run and to tell runs apart: the seed, whether generated/
+    was checked, the commit (``None`` outside a checkout), the UTC time it started and a
+    generation id shared by the two reports of one run."""
 
     seed: int
     #: ``"up to date"``, ``"STALE"`` or ``"not checked"``
     generated: str = "not checked"
     problems: tuple[str, ...] = ()
+    commit: str | None = None
+    started: str = ""
+    generation: str = ""
+    #: the claim graph, relative to the reports (``docs/claim-graph.svg`` in a checkout)
+    graph: str = GRAPH_PATH
+
+    def names(self) -> str:
+        """``seed S, commit C, started T, generation G`` — the run, in one line."""
+        return (f"seed {self.seed}, commit {self.commit or 'none (not a checkout)'}, "
+                f"started {self.started or 'unknown'}, generation {self.generation or 'none'}")
 
     @property
     def trustworthy(self) -> bool:
@@ -98,21 +114,69 @@ def missing_kind(results: Sequence[Result]) -> list[str]:
     return [r.row.id for r in results if r.status in NEEDS_KIND and not r.verdict.kind]
 
 
-def write_json(results: Sequence[Result], path: Path, info: RunInfo) -> None:
-    data = {"seed": info.seed, "generated": info.generated, "problems": list(info.problems),
+def json_text(results: Sequence[Result], info: RunInfo, markdown_sha256: str | None = None) -> str:
+    """verification.json; ``markdown_sha256`` names the VERIFICATION.md written with it."""
+    data = {"seed": info.seed, "commit": info.commit, "started": info.started,
+            "generation": info.generation, "markdown_sha256": markdown_sha256,
+            "generated": info.generated, "problems": list(info.problems),
             "summary": dict(totals(results)),
             "kinds": dict(Counter(r.verdict.kind for r in results if r.verdict.kind)),
             "argued": [{"id": i, "part": name} for i, name in argued(results)],
-            "claim_graph": GRAPH_PATH,
+            "claim_graph": info.graph,
             "rows": [r.to_dict() for r in results],
             "environment": {"python": platform.python_version(), "sympy": sympy.__version__}}
-    _write_atomic(path, json.dumps(data, indent=2, ensure_ascii=False) + "\n")
+    return json.dumps(data, indent=2, ensure_ascii=False) + "\n"
 
 
-def _write_atomic(path: Path, text: str) -> None:
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(text, encoding="utf-8")
-    tmp.replace(path)
+def write_json(results: Sequence[Result], path: Path, info: RunInfo) -> None:
+    """verification.json alone (atomically); :func:`write_pair` writes it with the Markdown."""
+    write_files({Path(path): json_text(results, info)})
+
+
+def write_markdown(results: Sequence[Result], path: Path, info: RunInfo) -> None:
+    """VERIFICATION.md alone (atomically); :func:`write_pair` writes it with the JSON."""
+    write_files({Path(path): markdown_text(results, info)})
+
+
+def write_pair(results: Sequence[Result], markdown: Path, json_path: Path, info: RunInfo) -> None:
+    """VERIFICATION.md and verification.json as one result: both carry ``info``'s generation id,
+    the JSON names the Markdown's SHA-256, and both are written to unique temporary names first
+    and then moved into place together (:func:`write_files`)."""
+    md = markdown_text(results, info)
+    sha = hashlib.sha256(md.encode("utf-8")).hexdigest()
+    write_files({Path(markdown): md, Path(json_path): json_text(results, info, sha)})
+
+
+def write_files(texts: dict[Path, str]) -> None:
+    """Write every ``path -> text`` through a unique temporary file in the same folder, then move
+    them all into place with Ctrl-C and SIGTERM held back, so that an interrupted run leaves all
+    old or all new files (never one of each) and two concurrent runs never share a temporary.
+    An ``OSError`` names the path that failed (``exc.filename``)."""
+    temps: list[tuple[str, Path]] = []
+    try:
+        for path, text in texts.items():
+            path.parent.mkdir(parents=True, exist_ok=True)
+            fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+            temps.append((tmp, path))
+            with os.fdopen(fd, "w", encoding="utf-8") as fh:
+                fh.write(text)
+            mask = os.umask(0)
+            os.umask(mask)
+            os.chmod(tmp, 0o666 & ~mask)
+        held = {signal.SIGINT, signal.SIGTERM}
+        old = signal.pthread_sigmask(signal.SIG_BLOCK, held)
+        try:
+            for tmp, path in temps:
+                os.replace(tmp, path)
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, old)
+    except OSError as exc:
+        if exc.filename is None:
+            exc.filename = str(next(iter(texts)))
+        raise
+    finally:
+        for tmp, _ in temps:
+            Path(tmp).unlink(missing_ok=True)
 
 
 _MARKDOWN_SPECIAL = str.maketrans({c: "\\" + c for c in "\\`*_[]<>|$#"})
@@ -158,7 +222,7 @@ def _findings(r: Result):
     return bad or ([r.verdict] if r.status in NEEDS_KIND else [])
 
 
-def write_markdown(results: Sequence[Result], path: Path, info: RunInfo) -> None:
+def markdown_text(results: Sequence[Result], info: RunInfo) -> str:
     """VERIFICATION.md: run facts, errata, remarks, the full table, then each finding in LaTeX."""
     out = ["# Verification ledger", ""]
     if info.generated == "STALE":
@@ -169,6 +233,7 @@ def write_markdown(results: Sequence[Result], path: Path, info: RunInfo) -> None
         out += [f"> - {_cell(p.splitlines()[0])}" for p in info.problems] + [""]
     out += [f"Written by `make verify` (`chaplygin verify`) with **seed {info.seed}** (repeat with "
             f"`make verify SEED={info.seed}`); `generated/`: {info.generated}.", "",
+            f"Run: {info.names()} (verification.json carries the same generation id).", "",
             f"**{summary(results)}**", "",
             "One row per computable claim of the paper (`paper/CLAIMS.md`, plus rows this project "
             "added). Verdicts:", ""]
@@ -177,7 +242,7 @@ def write_markdown(results: Sequence[Result], path: Path, info: RunInfo) -> None
             + "; ".join(f"**{k}** — {KIND_TEXT[k]}" for k in KINDS)
             + f". Errata are {' and '.join(ERRATA_KINDS)}; the other kinds are remarks.", "",
             f"The claim graph (what each row uses, coloured by verdict and kind): "
-            f"[{GRAPH_PATH}]({GRAPH_PATH}).", "", f"![claim graph]({GRAPH_PATH})", ""]
+            f"[{info.graph}]({info.graph}).", "", f"![claim graph]({info.graph})", ""]
     out += _errata_table(results) + _remarks_table(results)
     out += ["## All rows", "", "| id | verdict | kind | seconds | n | method | proof |",
             "|---|---|---|---|---|---|---|"]
@@ -216,7 +281,7 @@ def write_markdown(results: Sequence[Result], path: Path, info: RunInfo) -> None
         out += ["## Notes", ""]
         out += [f"- `{r.row.id}`: {_cell(r.verdict.notes)}" for r in notes]
         out.append("")
-    _write_atomic(path, "\n".join(out).rstrip("\n") + "\n")
+    return "\n".join(out).rstrip("\n") + "\n"
 
 
 def _errata_table(results: Sequence[Result]) -> list[str]:

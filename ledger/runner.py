@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import multiprocessing as mp
 import os
+import signal
 import time
 import traceback
 from collections.abc import Callable, Sequence
@@ -74,6 +75,8 @@ def _run_one(claim_id: str, seed: int = points.DEFAULT_SEED
 
 
 def _init_worker():
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's: one line, exit 130
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
     discover()
 
 
@@ -129,6 +132,10 @@ def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFA
                 result = Result(row, verdict, 0.0)
             results.append(result)
             on_result(result)
+    except KeyboardInterrupt:  # do not wait for the rows in progress
+        for proc in list((getattr(pool, "_processes", None) or {}).values()):
+            proc.terminate()
+        raise
     finally:
         if pool is not None:
             pool.shutdown(cancel_futures=True)

@@ -68,17 +68,22 @@ def from_mass_tensor(n: int, mass: float, radius: float, j1: float, jn: float) -
     return Ball(n, float(mass), float(radius), float(j1) + float(jn), 2.0 * float(j1))
 
 
+#: Relative tolerance of the realisability bounds (a flat disc [0.15, 0.1 + 0.2] is j_n = -2.8e-17).
+REL_TOL = 1e-12
+
+
 def ball_violations(ball: Ball) -> list[str]:
     """The realisability inequalities (S4:physical-ball) that ``ball`` violates, in words."""
     n, (j1, jn) = ball.n, ball.mass_tensor
     out = []
     if not ball.In > 0:
         out.append(f"I_n = 2 j_1 > 0 fails (I_n = {ball.In:g}): all the mass would lie on the axis")
-    if not jn >= 0:
+    # both bounds with the same relative tolerance (rounding of moments given in decimal)
+    if not jn >= -REL_TOL * max(abs(ball.I1), abs(ball.In)):
         out.append(f"J >= 0 fails: j_n = I_1 - I_n/2 = {jn:g} < 0 (needs 2 I_1 >= I_n, the "
                    "triangle inequality of the moments)")
     trace = (n - 1) * j1 + jn
-    if not trace <= ball.mass * ball.radius**2 * (1 + 1e-12):
+    if not trace <= ball.mass * ball.radius**2 * (1 + REL_TOL):
         out.append(f"tr J <= m r^2 fails: tr J = I_1 + (n-2) I_n/2 = {trace:g} > m r^2 = "
                    f"{ball.mass * ball.radius**2:g} (no body inside radius r has these moments)")
     return out

@@ -3,7 +3,8 @@
 ``SCENE`` is a scene file or the name of a built-in scene (``generic4d``; ``--list`` shows them).
 Exit status: 0 done (and the cross-check, if asked, passed); 1 the cross-check failed; 2 the scene,
 ``--out`` or the run cannot give a right answer (one line on stderr, nothing written); 3 a kernel
-is missing from ``generated/``.
+is missing from ``generated/``; 130 interrupted (Ctrl-C or SIGTERM: one line, ``--out`` keeps its
+previous result, :mod:`simulate.outdir`). A closed stdout (``| head -1``) does not stop the run.
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ from chaplygin_nd.simulate.scene import SceneError, builtin_scenes, find
 from chaplygin_nd.simulate.stops import RunStopped, check_finite
 
 from chaplygin_nd.cli import version_line
+from chaplygin_nd.console import fail, interruptible, say, usable_backend
 
 __all__ = ["main", "summary"]
 
@@ -81,39 +83,51 @@ def main(argv: list[str] | None = None) -> int:
         ap.error("give a scene file or a built-in scene name (--list shows them)")
     start = time.perf_counter()
     out = Path(args.out) if args.out else None
-    try:
-        scene = find(args.scene, force=args.force)
-        out = out or Path("out") / scene.name
-        folder = claim(out, scene.name)
-        if isinstance(scene, FrequencyMapScene):  # a frequency map (simulate/fma_scene.py)
-            return _frequency_map(scene, folder, out, args, start)
-        # inf/nan are not warned about but checked: every field and output, naming it and the time
-        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            p = plan(scene)
-            print(p.describe(), flush=True)
-            traj = execute(scene, p, force=args.force)
-            arrays = collect(scene, traj)
-            for key, v in arrays.items():
-                check_finite(key, v, scene.t if key != "zeta" else scene.t[0])
-            check = None
-            if args.cross_check:
-                from chaplygin_nd.simulate.crosscheck import cross_check
-                check = cross_check(scene, p, arrays, force=args.force)
-            extra, extra_lines = (tori_scene.files(scene, traj) if tori_scene.wants(scene)
-                                  else ({}, []))
-        text = "\n".join([summary(scene, p, traj, arrays, time.perf_counter() - start, check, out),
-                          *extra_lines])
-        write(folder, arrays, text, plots=not args.no_plots and scene.figures, extra=extra)
-    except (SceneError, OutputError, RunStopped) as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 2
-    except KernelMissing as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 3
-    except OSError as exc:
-        print(f"error: writing {out}: {exc.strerror or exc}", file=sys.stderr)
-        return 2
-    print(text)
+    folder = None
+    with interruptible():
+        try:
+            scene = find(args.scene, force=args.force)
+            out = out or Path("out") / scene.name
+            folder = claim(out, scene.name)
+            if isinstance(scene, FrequencyMapScene):  # a frequency map (simulate/fma_scene.py)
+                return _frequency_map(scene, folder, out, args, start)
+            if not args.no_plots:
+                usable_backend()
+            # inf/nan are not warned about but checked: every field and output, naming it and the time
+            with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+                p = plan(scene)
+                say(p.describe())
+                traj = execute(scene, p, force=args.force)
+                arrays = collect(scene, traj)
+                for key, v in arrays.items():
+                    check_finite(key, v, scene.t if key != "zeta" else scene.t[0])
+                check = None
+                if args.cross_check:
+                    from chaplygin_nd.simulate.crosscheck import cross_check
+                    state = ({k: traj.data[k] for k in ("M", "gamma") if k in traj.data}
+                             if tori_scene.wants(scene) else None)
+                    check = cross_check(scene, p, arrays, force=args.force, state=state)
+                extra, extra_lines = (tori_scene.files(scene, traj) if tori_scene.wants(scene)
+                                      else ({}, []))
+            text = "\n".join([summary(scene, p, traj, arrays, time.perf_counter() - start, check,
+                                       out), *extra_lines])
+            try:
+                write(folder, arrays, text, plots=not args.no_plots and scene.figures, extra=extra)
+            except OSError as exc:
+                return fail(f"writing --out {out}: {exc.strerror or exc}")
+        except (SceneError, OutputError, RunStopped) as exc:
+            return fail(str(exc))
+        except KernelMissing as exc:
+            return fail(str(exc), 3)
+        except OSError as exc:
+            where = exc.filename or "a file the run needed"
+            return fail(f"{where}: {exc.strerror or exc}")
+        except KeyboardInterrupt:
+            return fail("interrupted", 130)
+        finally:
+            if folder is not None:
+                folder.release()
+    say(text)
     return 1 if check is not None and not check.passed else 0
 
 

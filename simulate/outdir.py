@@ -1,4 +1,4 @@
-"""The output folder of a run: write only files this program owns, each atomically.
+"""The output folder of a run: whole or marked incomplete, never mixed; only files this program owns.
 
 Rules (checked by :func:`claim` *before* any computation, so a refusal costs nothing and touches
 nothing):
@@ -9,28 +9,47 @@ nothing):
 * anything else is refused with a one-line :class:`OutputError`: an existing file or device
   (``/dev/null``), a folder holding files the program did not write (a user's ``thesis.tex``,
   or ``.`` with its contents), a folder that belongs to another scene, a read-only folder, a path
-  under an existing file, a read-only parent.
+  under an existing file, a read-only parent, a name longer than the file system allows;
+* one run at a time: :func:`claim` takes an exclusive lock keyed by the folder's real path (a
+  file in a private folder of the temporary directory, never in the user's folders); a second run
+  into the same folder is refused with one line while the first holds it.
 
-Writes (:meth:`OutputFolder.write`): each file goes to a temporary name in the same folder and is
-moved into place with :func:`os.replace`; files get the permissions of an ordinary new file (the
-process umask applies; :func:`tempfile.mkstemp` would leave them 0600), folders likewise. The
-manifest is written first with the union of the old and the new names (so an interrupted run
-still owns everything it may have left), and last with the new names only, after the files of
-the previous run that this run no longer produces were removed. Nothing is ever renamed away.
+Writes (:meth:`OutputFolder.write`), whole or nothing:
+
+* when the parent folder is writable, every file goes into a new hidden sibling folder
+  ``.NAME.chaplygin-new-XXXX`` whose manifest (``"status": "complete"``) is written last; the
+  sibling then takes the place of the folder in one atomic exchange (Linux ``renameat2``
+  ``RENAME_EXCHANGE``; elsewhere two renames) and the previous result is removed file by file
+  (only names its manifest lists). An interrupted run leaves the previous result untouched and a
+  hidden sibling that the next run into the same folder removes;
+* otherwise (an existing empty folder, or a folder in a read-only parent) the files are written in
+  place: the manifest says ``"status": "incomplete"`` first (listing the old and the new names, the
+  old files are removed before any new one is written), ``"complete"`` last. An interrupted run
+  leaves a folder that says it is incomplete; a rerun repairs it.
+
+Files and folders get the permissions of ordinary new ones (the process umask applies). Nothing is
+ever deleted that a manifest of this program does not list.
 """
 
 from __future__ import annotations
 
+import ctypes
+import ctypes.util
+import errno
+import fcntl
+import hashlib
 import json
 import os
 import tempfile
+import uuid
 from collections.abc import Callable, Iterable
 from pathlib import Path
 
-__all__ = ["MANIFEST", "OutputError", "OutputFolder", "claim"]
+__all__ = ["MANIFEST", "OutputError", "OutputFolder", "claim", "SIBLING"]
 
 MANIFEST = ".chaplygin-run.json"
 PROGRAM = "chaplygin-nd simulate"
+SIBLING = ".chaplygin-new-"
 
 
 class OutputError(Exception):
@@ -61,7 +80,7 @@ def _read_manifest(folder: Path) -> dict | None:
     path = folder / MANIFEST
     try:
         data = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
+    except (OSError, ValueError, RecursionError):
         return None
     files = data.get("files") if isinstance(data, dict) else None
     if (data.get("program") != PROGRAM or not isinstance(files, list)
@@ -77,55 +96,179 @@ def _is_leftover(entry: str, owned: set[str]) -> bool:
                for name in owned)
 
 
+def _remove_owned(folder: Path) -> None:
+    """Remove a folder this program wrote (a sibling or a replaced result): the files its manifest
+    lists, their temporaries and the manifest; the folder itself only when that emptied it."""
+    manifest = _read_manifest(folder)
+    owned = set(manifest["files"]) if manifest else set()
+    for entry in os.listdir(folder):
+        if entry in owned or entry == MANIFEST or _is_leftover(entry, owned | {MANIFEST}):
+            (folder / entry).unlink(missing_ok=True)
+    try:
+        folder.rmdir()
+    except OSError:
+        pass  # something not ours is in it: left as it is
+
+
+def _exchange(a: Path, b: Path) -> bool:
+    """Swap two paths atomically (Linux renameat2 RENAME_EXCHANGE); False when not supported."""
+    name = ctypes.util.find_library("c")
+    try:
+        libc = ctypes.CDLL(name, use_errno=True)
+        renameat2 = libc.renameat2
+    except (OSError, AttributeError, TypeError):
+        return False
+    at_fdcwd, rename_exchange = -100, 2
+    r = renameat2(at_fdcwd, os.fsencode(a), at_fdcwd, os.fsencode(b), rename_exchange)
+    if r == 0:
+        return True
+    err = ctypes.get_errno()
+    if err in (errno.EINVAL, errno.ENOSYS, errno.ENOTSUP, errno.EOPNOTSUPP):
+        return False
+    raise OSError(err, os.strerror(err), str(b))
+
+
+class _Lock:
+    """An exclusive lock on an output folder, keyed by its real path (see the module docstring)."""
+
+    def __init__(self, path: Path, given: str):
+        real = os.path.realpath(path)
+        folder = Path(tempfile.gettempdir()) / f"chaplygin-nd-locks-{os.getuid()}"
+        folder.mkdir(mode=0o700, exist_ok=True)
+        if folder.stat().st_uid != os.getuid() or folder.is_symlink():
+            raise OutputError(f"--out {given}: the lock folder {folder} belongs to another user; "
+                              "remove it or set TMPDIR")
+        self.file = folder / (hashlib.sha256(os.fsencode(real)).hexdigest()[:24] + ".lock")
+        self.fd = os.open(self.file, os.O_RDWR | os.O_CREAT, 0o600)
+        try:
+            fcntl.flock(self.fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            os.close(self.fd)
+            self.fd = None
+            raise OutputError(f"--out {given}: another run is writing into this folder now; "
+                              "wait for it to end or give another folder") from None
+        os.ftruncate(self.fd, 0)
+        os.write(self.fd, f"{os.getpid()} {real}\n".encode())
+
+    def release(self) -> None:
+        if getattr(self, "fd", None) is not None:
+            os.close(self.fd)  # closing drops the flock; the small file stays for the next run
+            self.fd = None
+
+    __del__ = release
+
+
 class OutputFolder:
     """A folder :func:`claim` found safe to write to; ``owned`` are the names it may replace."""
 
-    def __init__(self, path: Path, scene: str, owned: Iterable[str] = ()):
+    def __init__(self, path: Path, scene: str, owned: Iterable[str] = (), lock: _Lock | None = None):
         self.path = path
         self.scene = scene
         self.owned = set(owned)
         self.written: list[str] = []
+        self.lock = lock
+        self.run_id = uuid.uuid4().hex[:12]
 
-    def _manifest(self, names: Iterable[str]) -> None:
-        data = {"program": PROGRAM, "scene": self.scene, "files": sorted(set(names))}
-        self._atomic(MANIFEST, lambda p: p.write_text(json.dumps(data, indent=1) + "\n",
-                                                      encoding="utf-8"))
+    def release(self) -> None:
+        """Drop the lock (the run is over)."""
+        if self.lock is not None:
+            self.lock.release()
 
-    def _atomic(self, name: str, writer: Callable[[Path], None]) -> None:
+    def _manifest(self, folder: Path, names: Iterable[str], status: str) -> None:
+        data = {"program": PROGRAM, "scene": self.scene, "status": status, "run": self.run_id,
+                "files": sorted(set(names))}
+        self._atomic(folder, MANIFEST, lambda p: p.write_text(json.dumps(data, indent=1) + "\n",
+                                                              encoding="utf-8"))
+
+    @staticmethod
+    def _atomic(folder: Path, name: str, writer: Callable[[Path], None]) -> None:
         fd, tmp = tempfile.mkstemp(prefix=f".{name}.", suffix=f".tmp{Path(name).suffix}",
-                                   dir=self.path)
+                                   dir=folder)
         os.close(fd)
         try:
             writer(Path(tmp))
             os.chmod(tmp, 0o666 & ~_umask())
-            os.replace(tmp, self.path / name)
+            os.replace(tmp, folder / name)
         except BaseException:
             Path(tmp).unlink(missing_ok=True)
             raise
 
     def write(self, files: dict[str, Callable[[Path], None]]) -> Path:
-        """Write every ``name -> writer(path)`` of ``files`` atomically, then remove the files of
-        the previous run (listed in its manifest) that are not written again. Returns the folder."""
+        """Write every ``name -> writer(path)`` of ``files`` (rules in the module docstring);
+        returns the folder. The lock is released when the write ends (written or not)."""
+        try:
+            return self._write(files)
+        finally:
+            self.release()
+
+    def _write(self, files: dict[str, Callable[[Path], None]]) -> Path:
         for name in files:
             if not name or "/" in name or name in (".", "..", MANIFEST):
                 raise ValueError(f"not a plain output file name: {name!r}")
-        self.path.mkdir(parents=True, exist_ok=True)  # mode 0777 & ~umask, like mkdir(1)
-        self._manifest(self.owned | set(files))
-        for name, writer in files.items():
-            self._atomic(name, writer)
-            self.written.append(name)
-        for name in self.owned - set(files):
+        parent = self.path.absolute().parent
+        parent.mkdir(parents=True, exist_ok=True)  # mode 0777 & ~umask, like mkdir(1)
+        if self.path.is_dir() and not self.owned or not _probe_writable(parent):
+            return self._write_in_place(files)
+        staging = Path(tempfile.mkdtemp(prefix=f".{self.path.name}{SIBLING}", dir=parent))
+        try:
+            os.chmod(staging, 0o777 & ~_umask())
+            self._manifest(staging, files, "incomplete")  # so that a rerun may remove it
+            for name, writer in files.items():
+                self._atomic(staging, name, writer)
+                self.written.append(name)
+            self._manifest(staging, files, "complete")
+            if not self.path.exists():
+                os.rename(staging, self.path)
+            elif _exchange(staging, self.path):
+                _remove_owned(staging)  # the previous result, now at the sibling's name
+            else:
+                old = parent / f".{self.path.name}{SIBLING}old-{self.run_id}"
+                os.rename(self.path, old)
+                os.rename(staging, self.path)
+                _remove_owned(old)
+        except BaseException:
+            if staging.exists():
+                _remove_owned(staging)
+            raise
+        self.owned = set(files)
+        return self.path
+
+    def _write_in_place(self, files) -> Path:
+        self.path.mkdir(exist_ok=True)
+        self._manifest(self.path, self.owned | set(files), "incomplete")
+        for name in self.owned:
             (self.path / name).unlink(missing_ok=True)
-        self._manifest(files)
+        for name, writer in files.items():
+            self._atomic(self.path, name, writer)
+            self.written.append(name)
+        self._manifest(self.path, files, "complete")
         self.owned = set(files)
         return self.path
 
 
+def _check_names(path: Path, given: str) -> None:
+    """Refuse a component longer than the file system allows (before any computation)."""
+    ancestor = path.absolute()
+    while not ancestor.exists():
+        ancestor = ancestor.parent
+    try:
+        limit = os.pathconf(ancestor if ancestor.is_dir() else ancestor.parent, "PC_NAME_MAX")
+    except (OSError, ValueError):
+        limit = 255
+    for part in path.parts:
+        if len(os.fsencode(part)) + len(SIBLING) + 12 > limit:
+            raise OutputError(f"--out {given}: the name {part[:40]}... is longer than this file "
+                              f"system allows ({limit} bytes, with room for a temporary name); "
+                              "give a shorter name")
+
+
 def claim(path: str | Path, scene: str) -> OutputFolder:
-    """Check that ``path`` may receive the outputs of ``scene`` (rules in the module docstring);
-    raises :class:`OutputError` otherwise. Creates nothing."""
+    """Check that ``path`` may receive the outputs of ``scene`` (rules in the module docstring)
+    and lock it; raises :class:`OutputError` otherwise. Creates nothing in the user's folders;
+    call :meth:`OutputFolder.release` when the run is over."""
     given = str(path)
     path = Path(path)
+    _check_names(path, given)
     if path.is_symlink() or (path.exists() and not path.is_dir()):
         kind = ("a symbolic link" if path.is_symlink() else
                 "a file, not a folder" if path.is_file() else "a device or special file, not a folder")
@@ -149,7 +292,9 @@ def claim(path: str | Path, scene: str) -> OutputFolder:
                               "e.g. out/<scene name>")
         if not _probe_writable(path):
             raise OutputError(f"--out {given}: the folder is not writable; give another folder")
-        return OutputFolder(path, scene, owned | leftovers)
+        folder = OutputFolder(path, scene, owned | leftovers, _Lock(path, given))
+        _remove_siblings(path)
+        return folder
     ancestor = path.absolute().parent
     while not ancestor.exists() and not ancestor.is_symlink():
         ancestor = ancestor.parent
@@ -159,4 +304,19 @@ def claim(path: str | Path, scene: str) -> OutputFolder:
     if not _probe_writable(ancestor):
         raise OutputError(f"--out {given}: cannot create it, {ancestor} is not writable; give "
                           "a path under a writable folder")
-    return OutputFolder(path, scene)
+    folder = OutputFolder(path, scene, (), _Lock(path, given))
+    _remove_siblings(path)
+    return folder
+
+
+def _remove_siblings(path: Path) -> None:
+    """Remove the hidden staging folders an interrupted run into ``path`` left (called under the
+    lock, so no other run is writing them)."""
+    parent = path.absolute().parent
+    if not parent.is_dir():
+        return
+    prefix = f".{path.name}{SIBLING}"
+    for entry in os.listdir(parent):
+        candidate = parent / entry
+        if entry.startswith(prefix) and candidate.is_dir() and not candidate.is_symlink():
+            _remove_owned(candidate)

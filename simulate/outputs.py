@@ -13,7 +13,7 @@ Output arrays (``S`` samples, ``count`` initial conditions):
   $F_1, F_2, F_3, H$ (S5:red-integrals). Each with its drift $I(t) - I(0)$.
 
 :func:`write` puts ``outputs.npz``, one CSV per output and one PNG per output (drawn by
-:mod:`simulate.figures`) into the output folder, each file atomically (:mod:`simulate.outdir`
+:mod:`simulate.figures`) into the output folder, all of them or none (:mod:`simulate.outdir`
 decides which folders may be written).
 """
 
@@ -116,7 +116,7 @@ def write(folder: OutputFolder, arrays: dict[str, np.ndarray], summary: str,
           plots: bool = True, extra: dict | None = None) -> Path:
     """Write ``arrays`` (NPZ, CSV per output, PNG per output), the ``extra`` files
     (``{name: writer(path)}``, e.g. :func:`simulate.tori_scene.files`) and ``summary.txt`` into
-    ``folder`` (claimed by :func:`simulate.outdir.claim`), each file atomically; returns its path."""
+    ``folder`` (claimed by :func:`simulate.outdir.claim`), whole or not at all; returns its path."""
     t = arrays["t"]
     files = {"outputs.npz": lambda p: np.savez(p, **arrays)}
     for name, arr in arrays.items():

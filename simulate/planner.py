@@ -20,12 +20,13 @@ depend on the scale of $M_0$; a point passes when its residual is at most
 distance $r$ from the family leaves it at a rate $\sim r\|\Omega\|$, an error no closed form
 accounts for). The plan line says which residual was tested against which bound.
 
-Integrator of the reduced and full models (``accuracy.method = "auto"``): the candidate of least
-predicted cost — compile or cache load plus run — among heyoka compact, heyoka unrolled
-(:mod:`simulate.integrators.heyoka_taylor`, when heyoka is importable) and DOP853
-(:mod:`simulate.cost`); the plan line says which ("heyoka Taylor, order p, tol ...") and prints
-every prediction. A scene may ask for ``heyoka``, ``dop853``, ``lie``
-or ``reference`` explicitly.
+Integrator of the reduced and full models (``accuracy.method = "auto"``): among heyoka's Taylor
+method (:mod:`simulate.integrators.heyoka_taylor`, when heyoka is importable; compact or unrolled),
+DOP853 and the mpmath Taylor method, those whose calibrated settings honour ``accuracy.target``
+(:mod:`simulate.accuracy`; none honours it: the run is refused), and among those the one of least
+predicted cost — compile or cache load plus run (:mod:`simulate.cost`); the plan line says which,
+with what, and prints every prediction. A scene may ask for ``heyoka``, ``dop853``, ``lie`` or
+``reference`` explicitly.
 
 The reconstruction ($g$, contact path) is added only when ``orientation`` or ``contact_path`` is
 asked for; the closed forms 1–2 reconstruct in closed form (:mod:`simulate.closed_forms`), the
@@ -38,9 +39,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from chaplygin_nd.simulate import families
+from chaplygin_nd.simulate import accuracy, families
 from chaplygin_nd.simulate.dispatch import Kernels, active
-from chaplygin_nd.simulate.integrators import heyoka_taylor
 from chaplygin_nd.simulate.scene import Scene
 from chaplygin_nd.simulate.stops import check_finite
 
@@ -78,6 +78,7 @@ class Plan:
     detail: str = ""  # what the integrator runs with (plan line)
     compact: bool | None = None  # heyoka's mode, chosen by the cost model (simulate.cost)
     costs: str = ""  # the cost model's predictions (plan line)
+    accuracy: accuracy.Settings | None = None  # the calibrated settings (simulate.accuracy)
 
     def describe(self) -> str:
         """One paragraph: model, why, and what was ruled out."""
@@ -97,30 +98,32 @@ def _method(scene: Scene, model: str) -> str:
     if model in ("constant-Omega", "vertical", "horizontal-4D", "horizontal"):
         return "closed form"
     if scene.method == "auto":
-        return "heyoka" if heyoka_taylor.available() else "dop853"
+        return "auto"
     if model == "reduced-7D" and scene.method not in ("dop853", "heyoka"):
         return "dop853"  # the Lie-group and Taylor methods act on (M, gamma) only
     return scene.method
 
 
+def settings(scene: Scene, method: str, model: str = "full") -> accuracy.Settings | None:
+    """The calibrated settings of ``method`` for ``scene`` (:mod:`simulate.accuracy`); ``auto``
+    picks the first method that honours the target. ``None`` for a closed form."""
+    span = float(scene.t[-1] - scene.t[0])
+    if method == "closed form":
+        return None
+    if method == "auto":
+        return accuracy.automatic(scene.target, span, scene.dps, reduced=model == "reduced-7D")
+    return accuracy.choose(method, scene.target, span, step=scene.step, dps=scene.dps)
+
+
 def heyoka_tolerance(target: float) -> float:
-    """heyoka's tolerance for an accuracy target: target/100, at least 2^-52 (the bench measures
-    global errors up to ~50 tol on generic n = 4 to T = 100)."""
-    return max(target / 100, 2.0 ** -52)
+    """heyoka's tolerance for an accuracy target (calibrated, :mod:`simulate.accuracy`)."""
+    return accuracy.choose("heyoka", target, 1.0).value
 
 
-def method_detail(scene: Scene, method: str) -> str:
+def method_detail(scene: Scene, method: str, model: str = "full") -> str:
     """What the integrator ``method`` runs with for this scene (for the plan line)."""
-    if method == "heyoka":
-        tol = heyoka_tolerance(scene.target)
-        return f"heyoka Taylor, order {heyoka_taylor.order_for(tol)}, tol {tol:g}"
-    if method == "reference":
-        return f"{scene.dps} digits"
-    if method == "lie":
-        return f"step h <= {scene.step:g}; accuracy.target is not used"
-    if method == "dop853":
-        return f"DOP853, rtol = target/100 = {max(scene.target / 100, 2.3e-14):g}"
-    return method
+    s = settings(scene, method, model)
+    return method if s is None else s.describe()
 
 
 def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False) -> Plan:
@@ -140,26 +143,33 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
 
     def make(model, reason):
         method = _method(scene, model)
+        chosen = settings(scene, method, model)  # calibrated; "auto": the first that honours it
         compact, costs = None, ""
-        if model in ("full", "reduced-7D") and method in ("heyoka", "dop853"):
+        if model in ("full", "reduced-7D") and chosen is not None \
+                and chosen.method in ("heyoka", "dop853"):
             from chaplygin_nd.simulate import cost  # the method by predicted cost (compile + run)
 
-            allowed = "auto" if scene.method == "auto" and heyoka_taylor.available() else method
-            chosen = cost.for_scene(scene, model, reconstruct, allowed,
-                                    heyoka_tolerance(scene.target), max(scene.target / 100, 2.3e-14))
-            if chosen is not None:
-                (best, costs), method = chosen, chosen[0].method
+            dop = settings(scene, "dop853", model)
+            allowed = ("auto" if scene.method == "auto" and chosen.method == "heyoka" and dop.honoured
+                       else chosen.method)  # only methods that honour the target compete
+            picked = cost.for_scene(scene, model, reconstruct, allowed,
+                                    settings(scene, "heyoka", model).value, dop.value)
+            if picked is not None:
+                (best, costs) = picked
                 compact = best.compact
+                if best.method != chosen.method:
+                    chosen = settings(scene, best.method, model)
+        method = chosen.method if chosen else "closed form"
         return Plan(model, reason, reconstruct, method, Omega0, skipped, list(scene.notes),
-                    detail=method_detail(scene, method), compact=compact, costs=costs)
+                    detail=chosen.describe() if chosen else method, accuracy=chosen,
+                    compact=compact, costs=costs)
 
     if force_full:
         return make("full", "forced (cross-check)")
     if scene.method != "auto":
         skipped.append(f"closed forms and reduced models: accuracy.method = {scene.method!r} "
                        "asks for an integrator of the full system")
-        return make("full", f"integrator {scene.method} requested "
-                    f"({method_detail(scene, scene.method)})")
+        return make("full", f"integrator {scene.method} requested")
     is_vertical, v_text = _residual_test(
         "max |M0 gamma0|/|M0|",
         [families.claim_residual("vertical", M, g) for M, g in zip(scene.M0, scene.gamma0)], tol)

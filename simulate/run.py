@@ -22,7 +22,7 @@ from chaplygin_nd.simulate.closed_forms import horizontal, horizontal_nd, relati
 from chaplygin_nd.simulate.dispatch import active
 from chaplygin_nd.simulate.field import FullField, ReducedField
 from chaplygin_nd.simulate.integrators import dop853, heyoka_taylor, lie, taylor
-from chaplygin_nd.simulate.planner import Plan, heyoka_tolerance
+from chaplygin_nd.simulate.planner import Plan, settings
 from chaplygin_nd.simulate.scene import Scene
 from chaplygin_nd.simulate.stops import NonFinite, check_finite, fmt
 
@@ -180,18 +180,19 @@ def _integrate(f, y0, t, plan, scene, progress=True, force=False):
     label = f"{plan.model} {plan.method}"
     bar = Progress(t[-1], label, stream=sys.stderr if progress else _Null(),
                    projection=Projection(t[0], t[-1], label, force), t0=t[0])
+    acc = plan.accuracy or settings(scene, plan.method, plan.model)  # simulate.accuracy
     try:
         if plan.method == "heyoka":
             _checked(f)(t[0], y0)  # a non-finite start is named here (heyoka would only say nan)
-            return heyoka_taylor.integrate(f, y0, t, tol=heyoka_tolerance(scene.target),
+            return heyoka_taylor.integrate(f, y0, t, tol=acc.value, precision=acc.precision,
                                            compact=getattr(plan, "compact", None), progress=bar)
         if plan.method in ("dop853", "rk45"):
-            rtol = max(scene.target / 100, 2.3e-14)  # global error ~ 10-100 x rtol (bench)
-            return dop853.integrate(_checked(f), y0, t, rtol=rtol, atol=rtol, progress=bar,
+            return dop853.integrate(_checked(f), y0, t, rtol=acc.value, atol=acc.value,
+                                    progress=bar,
                                     scheme="DOP853" if plan.method == "dop853" else "RK45")
         if plan.method == "lie":
-            return lie.integrate(f, y0, t, h=scene.step, progress=bar)
-        return taylor.integrate(f, y0, t, dps=scene.dps, progress=bar)
+            return lie.integrate(f, y0, t, h=acc.value, progress=bar)
+        return taylor.integrate(f, y0, t, dps=int(acc.value), progress=bar)
     finally:
         bar.done()
 

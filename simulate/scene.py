@@ -39,14 +39,15 @@ r"""Scenes: TOML files that name a sphere, an initial condition, times, outputs 
     want = ["M", "gamma", "x", "integrals"]
 
     [accuracy]
-    target = 1e-10        # wanted error; DOP853 runs at rtol = atol = target/100 (the bench
-                          # measures global errors of about 8 rtol to T = 100), heyoka at
-                          # tol = target/100
-    method = "auto"       # auto (heyoka if installed, else dop853) | heyoka | dop853 | lie | reference
-    dps = 30              # digits of the reference method
-    step = 0.01           # step of the Lie-group method (which ignores target)
+    target = 1e-10        # wanted error of every output, relative to its largest value; each
+                          # method's settings come from a calibration (simulate/accuracy.py)
+    method = "auto"       # auto (heyoka if installed, else DOP853, else the mpmath Taylor method:
+                          # the first that honours target) | heyoka | dop853 | lie | reference
+    dps = 30              # digits of the reference method (at least what target needs)
+    step = 0.01           # largest step of the Lie-group method (smaller when target asks)
 
-:func:`load` validates everything before anything runs and raises one :class:`SceneError`
+:func:`load` reads only a regular file of at most 1 MiB (not a device or FIFO) and
+validates everything before anything runs and raises one :class:`SceneError`
 naming the field and the fix; that includes a memory or drawing cost past the limits of
 :mod:`simulate.budget` (lifted by ``force``, the command line's ``--force``), and a cost worth
 mentioning is said on stderr. :func:`find` also accepts the name of a built-in scene.
@@ -55,6 +56,8 @@ mentioning is said on stderr. :func:`find` also accepts the name of a built-in s
 from __future__ import annotations
 
 import math
+import os
+import stat
 import tomllib
 from dataclasses import dataclass, field
 from importlib import resources
@@ -165,7 +168,7 @@ def load(path: str | Path, force: bool = False) -> Scene:
     limit of :mod:`simulate.budget`."""
     path = Path(path)
     try:
-        text = path.read_bytes().decode("utf-8")
+        text = _read_limited(path).decode("utf-8")
     except OSError as exc:
         raise SceneError(str(path), "file", f"cannot read it ({exc.strerror})",
                          "give the path of a scene, e.g. scenes/generic4d.toml") from None
@@ -178,6 +181,31 @@ def load(path: str | Path, force: bool = False) -> Scene:
     return scene
 
 
+#: Fewest samples a ``frequencies``/``poincare`` run accepts (simulate/naff.py: >= 14 samples).
+MIN_SPECTRAL_SAMPLES = 64
+#: Largest scene file read (a scene is a few hundred bytes; /dev/zero or a FIFO is refused).
+MAX_BYTES = 1 << 20
+
+
+def _read_limited(path: Path) -> bytes:
+    """The bytes of ``path`` if it is a regular file of at most :data:`MAX_BYTES` (opened without
+    blocking, so a FIFO cannot hang the run); a :class:`SceneError` otherwise."""
+    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
+    try:
+        info = os.fstat(fd)
+        if not stat.S_ISREG(info.st_mode):
+            raise SceneError(str(path), "file", "not a regular file (a device, FIFO or folder)",
+                             "give the path of a scene file, e.g. scenes/generic4d.toml")
+        with os.fdopen(fd, "rb", closefd=False) as fh:
+            data = fh.read(MAX_BYTES + 1)
+    finally:
+        os.close(fd)
+    if len(data) > MAX_BYTES:
+        raise SceneError(str(path), "file", f"larger than {MAX_BYTES >> 20} MiB, not a scene",
+                         "give a scene file (a few hundred bytes of TOML)")
+    return data
+
+
 def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
     """Validate a scene given as TOML text; raises :class:`SceneError` (also when the predicted
     memory is past the limit of :mod:`simulate.budget` and ``force`` is not given)."""
@@ -188,6 +216,8 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
         raw = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         fail("TOML", f"not valid TOML ({exc})", "correct the syntax at the position given")
+    except RecursionError:
+        fail("TOML", "arrays or tables nested too deeply", "write plain arrays of numbers")
     if "fma" in raw:  # a frequency map (issue 16): its own keys, validated by simulate/fma_scene.py
         from chaplygin_nd.simulate.fma_scene import load_map
         return load_map(raw, source, fail)
@@ -220,6 +250,14 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
     count = _number(init, "count", fail, integer=True, default=1, where="initial.count")
     if count < 1:
         fail("initial.count", f"count = {count}", "use count >= 1")
+    members = init.get("members")
+    if members is not None:
+        if not (isinstance(members, list) and members and "count" not in init and all(
+                isinstance(m, int) and not isinstance(m, bool) and m >= 0 for m in members)):
+            fail("initial.members", f"{str(members)[:60]!r}", "a list of member indices >= 0 of "
+                 "the family draw (instead of count)")
+        count = len(members)  # the size check counts what is asked for and what is drawn
+    drawn = max(members) + 1 if members is not None else count
     scale = _number(init, "scale", fail, default=1.0, where="initial.scale")
     if not scale > 0:
         fail("initial.scale", f"scale = {scale} is not positive", "choose scale > 0")
@@ -228,22 +266,24 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
     samples = _samples(times, fail)
     want_list = raw.get("outputs", {}).get("want")
     outputs = [w for w in want_list if isinstance(w, str)] if isinstance(want_list, list) else []
-    need = budget.memory_bytes(n, count, samples, outputs)
+    need = max(budget.memory_bytes(n, count, samples, outputs), 3 * 8 * drawn * (n * n + n))
     if need > budget.memory_limit() and not force:
-        fail("times.samples" if count == 1 else "initial.count",
-             f"{samples} samples x {count} initial condition(s) in n = {n} need about "
+        fail("initial.members" if members is not None else
+             "times.samples" if count == 1 else "initial.count",
+             f"{samples} samples x {count} initial condition(s) ({drawn} drawn) in n = {n} need about "
              f"{budget.human_bytes(need)} of memory, past the limit of "
              f"{budget.human_bytes(budget.memory_limit())}",
              "use fewer samples or initial conditions, or pass --force")
     if need > budget.memory_limit() / 8:
         budget.announce(f"about {budget.human_bytes(need)} of memory ({samples} samples x "
                         f"{count} initial condition(s))")
-    draw = 0.0 if explicit else count * budget.DRAW_SECONDS
+    draw = 0.0 if explicit else drawn * budget.DRAW_SECONDS
     if draw > budget.LIMIT_SECONDS and not force:
-        fail("initial.count", f"drawing {count} initial conditions takes about {draw:.3g} s, "
+        fail("initial.members" if members is not None else "initial.count",
+             f"drawing {drawn} initial conditions takes about {draw:.3g} s, "
              f"past the limit of {budget.LIMIT_SECONDS:g} s", "use a smaller count or pass --force")
     if draw > budget.ANNOUNCE_SECONDS:
-        budget.announce(f"drawing {count} initial conditions: about {draw:.3g} s")
+        budget.announce(f"drawing {drawn} initial conditions: about {draw:.3g} s")
     Omega0 = None
     if explicit:
         if "M" in init and "Omega" in init:
@@ -252,8 +292,9 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
             fail("initial.gamma", "missing", f"give gamma, a list of {n} numbers with |gamma| = 1")
         if "M" not in init and "Omega" not in init:
             fail("initial.M", "missing", "give M (or Omega), an n x n skew-symmetric matrix")
-        if count != 1:
-            fail("initial.count", "an explicit initial condition is one point", "drop count")
+        if count != 1 or members is not None:
+            fail("initial.count", "an explicit initial condition is one point",
+                 "drop count and members")
         gamma0 = _array(init["gamma"], (n,), "initial.gamma", fail)
         name = "M" if "M" in init else "Omega"
         X = _array(init[name], (n, n), f"initial.{name}", fail)
@@ -281,13 +322,8 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
     else:
         if seed is None:
             fail("initial.seed", f"the {family} family needs a seed", "add seed = <integer>")
-        members = init.get("members")
         if members is not None:
-            if not (isinstance(members, list) and members and "count" not in init and all(
-                    isinstance(m, int) and not isinstance(m, bool) and m >= 0 for m in members)):
-                fail("initial.members", f"{members!r}", "a list of member indices >= 0 of the "
-                     "family draw (instead of count)")
-            M0, gamma0 = families.draw(family, n, a, b, seed, max(members) + 1, scale)
+            M0, gamma0 = families.draw(family, n, a, b, seed, drawn, scale)
             M0, gamma0 = M0[members], gamma0[members]
         else:
             M0, gamma0 = families.draw(family, n, a, b, seed, count, scale)
@@ -305,6 +341,11 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
     for w in want:
         if w not in OUTPUTS:
             fail("outputs.want", f"unknown output {w!r}", f"use names from {', '.join(OUTPUTS)}")
+    spectral = [w for w in ("frequencies", "poincare") if w in want]
+    if spectral and (len(t) < MIN_SPECTRAL_SAMPLES or "t" in times):
+        fail("times", f"{' and '.join(spectral)} need uniformly spaced samples, at least "
+             f"{MIN_SPECTRAL_SAMPLES} (NAFF splits the run in halves of >= 7 turns each)",
+             "give times.t_end and times.samples >= 64 (e.g. tori4d: 4097)")
     for name in ("reduced", "frequencies", "poincare"):
         if name in want and n != 4:
             fail("outputs.want", f"{name!r} uses the reduced invariants (eq:red-system), which "
@@ -420,7 +461,7 @@ def _number(table, key, fail, integer=False, required=False, default=0.0, where=
 def _array(value, shape, where, fail):
     try:
         arr = np.array(value, dtype=float)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, RecursionError, OverflowError):
         fail(where, "not a rectangular array of numbers", f"give an array of shape {shape}")
     if arr.shape != shape:
         fail(where, f"shape {arr.shape}, expected {shape}", f"give an array of shape {shape}")
@@ -470,6 +511,7 @@ def _times(times, fail):
         if t.size < 2 or t[0] < 0 or np.any(np.diff(t) <= 0):
             fail("times.t", "not an increasing list of >= 2 times starting at t >= 0",
                  "e.g. t = [0.0, 1.0, 2.0]")
+        _resolvable(t, "times.t", fail)
         return t
     t_end = _number(times, "t_end", fail, required=True, where="times.t_end")
     if not t_end > 0:
@@ -477,4 +519,13 @@ def _times(times, fail):
     samples = _number(times, "samples", fail, integer=True, default=201, where="times.samples")
     if samples < 2:
         fail("times.samples", f"samples = {samples}", "use samples >= 2")
-    return np.linspace(0.0, t_end, samples)
+    t = np.linspace(0.0, t_end, samples)
+    _resolvable(t, "times.t_end", fail)
+    return t
+
+
+def _resolvable(t, where, fail):
+    """Consecutive times at least 16 ulp apart (``t_end = 5e-324`` gives equal float64 samples)."""
+    if np.any(np.diff(t) <= 16 * np.spacing(np.abs(t[1:]))) or not np.isfinite(t).all():
+        fail(where, f"the sample times are not distinct in float64 (t_end = {t[-1]:g} with "
+             f"{len(t)} samples)", "choose a larger t_end or fewer samples")

@@ -119,7 +119,7 @@ def test_tori_scene_plans_the_full_system_for_frequencies_only():
     p = plan(scene)
     assert p.model == "full" and "frequencies on P" in p.reason
     text = ('n = 4\na = -0.5\nb = 0.5\n[initial]\nfamily = "generic"\nseed = 3\n'
-            'members = [3, 1]\n[times]\nt_end = 10.0\nsamples = 21\n[outputs]\nwant = ["poincare"]\n')
+            'members = [3, 1]\n[times]\nt_end = 10.0\nsamples = 64\n[outputs]\nwant = ["poincare"]\n')
     s2 = loads(text)
     assert plan(s2).model == "reduced-7D"
     M, g = families.draw("generic", 4, -0.5, 0.5, 3, count=4)

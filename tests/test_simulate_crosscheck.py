@@ -33,7 +33,7 @@ def test_cross_check_agreement(stem):
     p = plan(scene)
     arrays = collect(scene, execute(scene, p, progress=False))
     check = cross_check(scene, p, arrays, progress=False)
-    diffs = {k: d for k, d, _ in check.rows}
+    diffs = {k: d for k, d, _, _ in check.rows}
     assert set(diffs) == {k for k in arrays if k != "t" and k != "zeta"
                           and not k.startswith("drift.")}
     assert max(diffs.values()) < 1e-10, (p.model, diffs)

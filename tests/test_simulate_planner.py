@@ -59,14 +59,14 @@ def test_method_of_example_scenes():
     from chaplygin_nd.simulate.integrators import heyoka_taylor
 
     generic = plan(load(ROOT / "scenes/generic4d.toml"))
-    # auto: the candidate of least predicted cost (simulate.cost), every prediction in the plan line
-    assert "cost: predicted" in generic.describe()
-    if heyoka_taylor.available():
-        assert "heyoka compact" in generic.describe() and "heyoka unrolled" in generic.describe()
-    if generic.method == "heyoka":
-        assert "heyoka Taylor, order 18, tol 1e-14" in generic.describe()  # target 1e-12 / 100
-    else:
-        assert generic.method == "dop853" and "DOP853" in generic.describe()
+    if heyoka_taylor.available():  # auto: the honouring candidate of least predicted cost
+        assert generic.method == "heyoka"  # DOP853 cannot honour 1e-12 (simulate/accuracy.py)
+        assert "cost: predicted" in generic.describe()  # every prediction in the plan line
+        tol = generic.accuracy.value  # calibrated for target 1e-12
+        assert f"heyoka Taylor, tol {tol:.3g}; calibrated for relative error <= 1e-12" \
+            in generic.describe()
+    else:  # DOP853 cannot honour 1e-12: the mpmath Taylor method does
+        assert generic.method == "reference" and "mpmath Taylor" in generic.describe()
     assert plan(load(ROOT / "scenes/steady4d.toml")).method == "closed form"
 
 

@@ -1,0 +1,111 @@
+"""What every command says on the console, and how it ends when interrupted.
+
+* :func:`say` prints to stdout; a closed stdout (``| head -1``) is not an error — the rest of the
+  output is dropped and the run goes on to write its files; a stdout that cannot encode a
+  character (``PYTHONIOENCODING=ascii``) gets an ASCII spelling ("—" -> "-").
+* :func:`fail` prints one line ``error: ...`` on stderr and returns the exit status.
+* :func:`interruptible` turns SIGTERM into the same :class:`Interrupted` (a
+  :class:`KeyboardInterrupt`) as Ctrl-C, so the ``finally`` clauses that keep an output folder whole
+  run on both; the commands then print ``interrupted`` and exit 130.
+* :func:`usable_backend` replaces a bogus ``MPLBACKEND`` (which makes ``import matplotlib`` raise)
+  by ``Agg``, with a one-line warning (the figures are drawn with Agg in any case).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import signal
+import sys
+import threading
+
+__all__ = ["Interrupted", "say", "fail", "interruptible", "usable_backend", "ascii_text"]
+
+_ASCII = str.maketrans({"—": "-", "–": "-", "−": "-", "×": "x", "≤": "<=", "≥": ">=",
+                        "→": "->", "…": "...", "’": "'", "‘": "'", "“": '"', "”": '"',
+                        "·": ".", "±": "+-", "²": "^2", "⁻": "^-", "¹": "1", "√": "sqrt"})
+
+#: matplotlib's built-in backend names (``MPLBACKEND`` may also be ``module://...``).
+BACKENDS = {"gtk3agg", "gtk3cairo", "gtk4agg", "gtk4cairo", "macosx", "nbagg", "notebook",
+            "qtagg", "qtcairo", "qt5agg", "qt5cairo", "tkagg", "tkcairo", "webagg", "wx",
+            "wxagg", "wxcairo", "agg", "cairo", "pdf", "pgf", "ps", "svg", "template", "inline"}
+
+
+class Interrupted(KeyboardInterrupt):
+    """Ctrl-C or SIGTERM."""
+
+
+def ascii_text(text: str) -> str:
+    """``text`` with the project's few non-ASCII symbols spelled in ASCII, the rest escaped."""
+    return text.translate(_ASCII).encode("ascii", "backslashreplace").decode("ascii")
+
+
+def _write(stream, text: str) -> None:
+    try:
+        stream.write(text + "\n")
+    except UnicodeEncodeError:
+        stream.write(ascii_text(text) + "\n")
+    stream.flush()
+
+
+def say(text: str) -> None:
+    """Print ``text`` on stdout (see the module docstring); never raises for a closed pipe."""
+    if sys.stdout is None:
+        return
+    try:
+        _write(sys.stdout, text)
+    except (BrokenPipeError, ValueError):  # closed pipe, or stdout already closed
+        _silence_stdout()
+
+
+def _silence_stdout() -> None:
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())  # the interpreter's final flush must not fail
+        os.close(devnull)
+    except (OSError, ValueError, AttributeError):
+        pass
+
+
+def fail(message: str, status: int = 2) -> int:
+    """Print ``error: message`` (or ``interrupted``) as one line on stderr; return ``status``."""
+    line = message if status == 130 else f"error: {message}"
+    line = " ".join(line.split("\n"))
+    try:
+        _write(sys.stderr, line)
+    except (BrokenPipeError, ValueError, OSError):
+        pass
+    return status
+
+
+def _raise(signum, frame):
+    raise Interrupted(signal.Signals(signum).name)
+
+
+@contextlib.contextmanager
+def interruptible():
+    """Within the block SIGTERM raises :class:`Interrupted` as Ctrl-C does (main thread only)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    old = {s: signal.getsignal(s) for s in (signal.SIGTERM, signal.SIGINT)}
+    signal.signal(signal.SIGTERM, _raise)
+    signal.signal(signal.SIGINT, _raise)
+    try:
+        yield
+    finally:
+        for s, handler in old.items():
+            signal.signal(s, handler if handler is not None else signal.SIG_DFL)
+
+
+def usable_backend() -> None:
+    """Replace an ``MPLBACKEND`` matplotlib would refuse by ``Agg`` (see the module docstring)."""
+    name = os.environ.get("MPLBACKEND")
+    if name is None or name.lower() in BACKENDS or name.startswith("module://"):
+        return
+    os.environ["MPLBACKEND"] = "Agg"
+    try:
+        _write(sys.stderr, f"warning: MPLBACKEND={name!r} is not a matplotlib backend; "
+                           "drawing with Agg")
+    except (BrokenPipeError, ValueError, OSError):
+        pass

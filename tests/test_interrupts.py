@@ -1,0 +1,134 @@
+"""Whole or marked incomplete, never mixed (issue 19, item 4): runs into one output folder are
+interrupted at seeded random moments by SIGINT, SIGTERM or SIGKILL, the scene is edited between
+runs, and after every run the folder holds either nothing, or the complete result of exactly one
+run (every file of its manifest, no other, the CSV equal to the NPZ, the summary naming that run),
+or says it is incomplete; a final run repairs it. A second run into a locked folder is refused."""
+
+from __future__ import annotations
+
+import json
+import os
+import random
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+from chaplygin_nd.simulate.outdir import MANIFEST, SIBLING
+
+SCENE = """title = "run {tag}"
+n = 3
+a = 0.5
+b = 1.0
+[initial]
+family = "generic"
+seed = {seed}
+count = 3
+[times]
+t_end = 4.0
+samples = 161
+[outputs]
+want = ["M", "gamma", "x", "integrals"]
+[accuracy]
+target = 1e-8
+method = "dop853"
+"""
+
+
+def _start(scene: Path, out: Path) -> subprocess.Popen:
+    return subprocess.Popen([sys.executable, "-m", "chaplygin_nd", "simulate", str(scene),
+                             "--out", str(out)], stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, text=True, env=dict(os.environ))
+
+
+def _check_invariant(out: Path) -> str:
+    """'absent', 'complete:<tag>' or 'incomplete'; fails on anything else."""
+    if not out.exists():
+        return "absent"
+    manifest = json.loads((out / MANIFEST).read_text())
+    names = {p.name for p in out.iterdir()} - {MANIFEST}
+    if manifest.get("status") == "incomplete":
+        assert names <= set(manifest["files"]), names
+        return "incomplete"
+    assert names == set(manifest["files"]), (names, manifest)
+    with np.load(out / "outputs.npz") as data:
+        x = data["x"]
+    csv = np.loadtxt(out / "x.csv", delimiter=",", skiprows=1)
+    # rows: (t, member, x) ordered by member then time; the npz is (samples, members)
+    assert np.array_equal(csv[:, 2], x.T.ravel()), "x.csv and outputs.npz come from two runs"
+    summary = (out / "summary.txt").read_text()
+    tag = summary.split("scene   run ", 1)[1].split()[0]
+    seed = int(tag.split("-")[1])
+    from chaplygin_nd.simulate.scene import loads
+
+    expect = loads(SCENE.format(tag=tag, seed=seed)).gamma0[:, -1]
+    assert np.array_equal(x[0], expect), "the outputs are not those of the run the summary names"
+    return f"complete:{tag}"
+
+
+@pytest.mark.slow
+def test_interrupted_runs_leave_a_whole_result_or_an_incomplete_mark(tmp_path):
+    rng = random.Random(19)
+    scene, out = tmp_path / "edited.toml", tmp_path / "result"
+    states, codes = [], []
+    scene.write_text(SCENE.format(tag="first-1", seed=1))
+    started = time.perf_counter()
+    proc = _start(scene, out)
+    _, err = proc.communicate(timeout=300)
+    assert proc.returncode == 0, err
+    durations = [time.perf_counter() - started]  # of a whole run, on this machine now
+    for k in range(10):
+        seed = rng.randrange(1000)
+        scene.write_text(SCENE.format(tag=f"{k}-{seed}", seed=seed))
+        sig = rng.choice([signal.SIGINT, signal.SIGTERM, signal.SIGKILL])
+        proc = _start(scene, out)
+        started = time.perf_counter()
+        time.sleep(rng.uniform(0.3, 1.1) * max(durations))
+        proc.send_signal(sig)
+        _, err = proc.communicate(timeout=300)
+        codes.append(proc.returncode)
+        if proc.returncode == 0:
+            durations.append(time.perf_counter() - started)
+        elif sig != signal.SIGKILL:
+            assert proc.returncode == 130, err
+            assert err.strip().splitlines()[-1] == "interrupted" and "Traceback" not in err, err
+        else:
+            assert proc.returncode == -signal.SIGKILL
+        states.append(_check_invariant(out))
+        assert sorted(p.name for p in tmp_path.iterdir() if not p.name.startswith(".")) \
+            == sorted(["edited.toml"] + (["result"] if out.exists() else []))
+    assert any(c != 0 for c in codes), codes  # some runs were really interrupted
+    print("exit codes", codes, "states", states)
+    seed = 4242
+    scene.write_text(SCENE.format(tag=f"final-{seed}", seed=seed))
+    proc = _start(scene, out)
+    _, err = proc.communicate(timeout=300)
+    assert proc.returncode == 0, err
+    assert _check_invariant(out) == f"complete:final-{seed}"
+    assert not [p for p in tmp_path.iterdir() if SIBLING in p.name], "a staging folder was left"
+
+
+def test_a_second_run_into_a_locked_folder_is_refused(tmp_path):
+    scene, out = tmp_path / "s.toml", tmp_path / "result"
+    scene.write_text(SCENE.format(tag="0-1", seed=1).replace("t_end = 4.0", "t_end = 400.0"))
+    first = _start(scene, out)
+    try:
+        deadline = time.time() + 120
+        second = None
+        while time.time() < deadline:  # the first run holds the lock once it has claimed --out
+            second = subprocess.run([sys.executable, "-m", "chaplygin_nd", "simulate", str(scene),
+                                     "--out", str(out), "--no-plots"], capture_output=True,
+                                    text=True, timeout=300)
+            if "another run" in second.stderr or first.poll() is not None:
+                break
+        assert second is not None and second.returncode == 2, second.stderr
+        lines = second.stderr.strip().splitlines()
+        assert len(lines) == 1 and "another run is writing into this folder" in lines[0]
+    finally:
+        first.send_signal(signal.SIGINT)
+        _, err = first.communicate(timeout=300)
+    assert first.returncode == 130 and err.strip().splitlines()[-1] == "interrupted", err
+    assert not out.exists()  # interrupted before writing: nothing, not half a result
