@@ -65,6 +65,12 @@ def _run_one(claim_id: str, seed: int = points.DEFAULT_SEED
         points.set_ledger_seed(previous)
 
 
+#: How worker processes start: never ``fork`` (a forked child of a notebook kernel, of a process
+#: with threads, or on macOS can deadlock); ``forkserver`` where the platform has it, else
+#: ``spawn``. Each worker imports the proof modules once (:func:`_init_worker`).
+START_METHOD = "forkserver" if "forkserver" in mp.get_all_start_methods() else "spawn"
+
+
 def _init_worker():
     discover()
 
@@ -101,7 +107,7 @@ def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFA
         iterator = map(_run_one, todo, seeds)
         pool = None
     else:
-        pool = ProcessPoolExecutor(jobs, mp_context=mp.get_context("fork"), initializer=_init_worker)
+        pool = ProcessPoolExecutor(jobs, mp_context=mp.get_context(START_METHOD), initializer=_init_worker)
         iterator = pool.map(_run_one, todo, seeds)
     results = []
     try:
