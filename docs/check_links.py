@@ -41,6 +41,7 @@ def _parse(page: Path) -> _Links:
 
 def broken_links(site: Path) -> list[str]:
     """``page: link`` for every internal link that does not resolve."""
+    site = site.resolve()
     parsed = {p: _parse(p) for p in sorted(site.rglob("*.html"))}
     bad = []
     for page, links in parsed.items():
