@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 CLI := $(VENV)/bin/chaplygin
 STAMP := $(VENV)/.installed
 
-.PHONY: setup verify test generate bench mutate mutate-derivations clean
+.PHONY: setup verify test generate bench mutate mutate-derivations clean docs docs-html docs-test
 
 setup: $(STAMP)
 
@@ -47,5 +47,30 @@ generate: setup
 bench: setup
 	$(CLI) bench $(BENCH_ARGS)
 
+## docs: the reading site in docs/_build/html (open docs/_build/html/index.html): a page per ledger
+## row, generated from verification.json (`make verify` writes it; REPORT=path/to/verification.json
+## reads another), built with warnings as errors, its internal links checked, then tested in
+## headless Chromium (docs-test).
+REPORT ?= verification.json
+DOCS_STAMP := $(VENV)/.docs-installed
+$(DOCS_STAMP): $(STAMP)
+	$(PY) -m pip install --quiet -e '.[test,docs]'
+	touch $(DOCS_STAMP)
+
+docs: docs-test
+
+docs-html: $(DOCS_STAMP)
+	test -f $(REPORT) || $(CLI) verify
+	$(PY) docs/build_pages.py --report $(REPORT)
+	$(PY) -m sphinx -b html -W --keep-going -q -c docs docs/_build/src docs/_build/html
+	$(PY) docs/check_links.py docs/_build/html
+
+## docs-test: the browser test of the built site (installs Debian's chromium and chromium-driver
+## with apt-get when they are missing: needs root, as in CI).
+docs-test: docs-html
+	command -v chromium >/dev/null && command -v chromedriver >/dev/null || \
+	  { apt-get update -q && DEBIAN_FRONTEND=noninteractive apt-get install -y -q chromium chromium-driver; }
+	$(PY) -m pytest -q -m site tests/test_site_browser.py
+
 clean:
-	rm -rf $(VENV) build *.egg-info .pytest_cache
+	rm -rf $(VENV) build *.egg-info .pytest_cache docs/_build

@@ -13,9 +13,17 @@ under this namespace):
 * :mod:`chaplygin_nd.bench` — accuracy-versus-time and throughput benchmarks.
 
 The command line is ``chaplygin`` (``python -m chaplygin_nd``): see :mod:`chaplygin_nd.cli`.
+For notebooks, :mod:`chaplygin_nd.api` is re-exported here: ``chaplygin_nd.decide``,
+``chaplygin_nd.simulate``, ``chaplygin_nd.angular_velocity``, ``L_gamma``, ``vector_field``,
+``energy``, ``zeta``. They are imported on first use, so ``import chaplygin_nd`` loads neither
+SymPy nor NumPy. ``chaplygin_nd.simulate`` is both the subpackage and the function: calling the
+subpackage runs :func:`chaplygin_nd.api.simulate`.
 """
 
+import importlib
 import os
+import sys
+import types
 
 # SymPy's ground types, decided before SymPy is first imported: with python-flint installed,
 # SymPy >= 1.13 would silently switch to "flint" and its QQ arithmetic and DomainMatrix would
@@ -25,4 +33,41 @@ os.environ.setdefault("SYMPY_GROUND_TYPES", "gmpy")
 
 __version__ = "0.2.0"
 
-__all__ = ["__version__"]
+_API = ("decide", "simulate", "Simulation", "angular_velocity", "L_gamma", "vector_field",
+        "energy", "zeta")
+__all__ = ["__version__", *_API]
+
+
+class _CallableSubpackage(types.ModuleType):
+    """The subpackage :mod:`chaplygin_nd.simulate`, callable as :func:`chaplygin_nd.api.simulate`."""
+
+    def __call__(self, scene, **options):
+        from chaplygin_nd.api import simulate
+
+        return simulate(scene, **options)
+
+
+class _Package(types.ModuleType):
+    """This package's class: when the import system binds the subpackage ``simulate`` here, it
+    is made callable, so ``chaplygin_nd.simulate(scene)`` works whichever was imported first."""
+
+    def __setattr__(self, name, value):
+        if name == "simulate" and type(value) is types.ModuleType:
+            value.__class__ = _CallableSubpackage
+        super().__setattr__(name, value)
+
+
+sys.modules[__name__].__class__ = _Package
+
+
+def __getattr__(name):
+    """The notebook API (:mod:`chaplygin_nd.api`), imported on first use."""
+    if name == "simulate":
+        return importlib.import_module("chaplygin_nd.simulate")
+    if name in _API:
+        return getattr(importlib.import_module("chaplygin_nd.api"), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_API))

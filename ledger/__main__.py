@@ -135,7 +135,7 @@ def _main(argv: list[str] | None) -> int:
         info = dataclasses.replace(info, generated=generated, problems=tuple(problems),
                                    graph=svg.relative_to(md.parent).as_posix())
         try:
-            text = graph.svg_text(results)
+            text = graph.render(results)
             changed = not svg.exists() or svg.read_text(encoding="utf-8") != text
             report.write_pair(results, md, js, info)
             if changed:

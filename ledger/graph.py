@@ -5,6 +5,11 @@ A row that *rests on an erratum* — it uses, directly or through other rows, a 
 erratum (``formula`` or ``proof``) — gets a dashed border in that colour, so a reader sees at a
 glance which results depend on a corrected formula.
 
+Every node is a link (an SVG ``<a>``, matplotlib's ``set_url``) to the row's page of the reading
+site (``make docs``): ``claims/<page_name(id)>.html``. The graph ``make verify`` writes to
+``docs/claim-graph.svg`` links into ``docs/_build/html/``, so after ``make docs`` its nodes open
+the pages; the site's index draws it again with links relative to the index.
+
 Layout (no graphviz, so CI needs nothing installed by hand): a layered drawing. A row's column is
 the length of the longest chain of rows it uses (the rows that use nothing are column 0); inside a
 column rows are ordered by the mean position of the rows they use (barycentre sweeps), starting
@@ -14,7 +19,8 @@ an unchanged ledger rewrites the same bytes.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import re
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from chaplygin_nd.ledger.registry import ERRATA_KINDS, KINDS, VERDICTS
@@ -27,6 +33,22 @@ VERDICT_COLOUR = {
 }
 KIND_COLOUR = {"formula": "#e34a33", "proof": "#fdae61", "scope": "#fee08b", "reading": "#c2a5cf"}
 ERRATUM_EDGE = "#b2182b"
+
+#: Where the nodes of docs/claim-graph.svg link: the site's pages, relative to docs/.
+SITE_FROM_DOCS = "_build/html/"
+
+
+def page_name(claim_id: str) -> str:
+    """The stable file name (without ``.html``) of a row's page on the reading site: the label
+    with every character outside ``[A-Za-z0-9._-]`` replaced by ``-`` (``P:inversion`` ->
+    ``P-inversion``). The site's builder fails if two rows get the same name."""
+    return re.sub(r"[^A-Za-z0-9._-]", "-", claim_id)
+
+
+def site_link(claim_id: str, prefix: str = SITE_FROM_DOCS) -> str:
+    """The link of a node: ``prefix`` + ``claims/<page_name>.html``."""
+    return f"{prefix}claims/{page_name(claim_id)}.html"
+
 
 _LAYER_HEIGHT, _BOX_HEIGHT, _GAP = 0.62, 0.26, 0.22  # inches
 _FONT_SIZE = 7.5
@@ -135,8 +157,9 @@ def fill(result: Result) -> str:
     return VERDICT_COLOUR.get(result.status, "#ffffff")
 
 
-def draw(results: Sequence[Result]):
-    """The claim graph as a matplotlib figure: layers top to bottom, what is used above its users."""
+def draw(results: Sequence[Result], link: Callable[[str], str | None] = site_link):
+    """The claim graph as a matplotlib figure: layers top to bottom, what is used above its users;
+    node ``i`` links to ``link(i)`` (no link when it returns ``None``)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -188,15 +211,19 @@ def draw(results: Sequence[Result]):
     for i in ids:
         x, y = xy[i]
         rests = i in resting
-        ax.add_patch(FancyBboxPatch(
+        box = ax.add_patch(FancyBboxPatch(
             (x, y - _BOX_HEIGHT / 2), width[i], _BOX_HEIGHT,
             boxstyle="round,pad=0,rounding_size=0.05", facecolor=fill(by_id[i]),
             edgecolor=KIND_COLOUR[resting[i]] if rests else "#303030",
             linewidth=2.0 if rests else 0.6, linestyle=(0, (3, 1.5)) if rests else "solid",
             zorder=4))
-        ax.text(x + width[i] / 2, y, i, va="center", ha="center", fontsize=_FONT_SIZE,
-                family="monospace", zorder=5,
-                color="#ffffff" if by_id[i].status in ("fails", "error") else "#000000")
+        label = ax.text(x + width[i] / 2, y, i, va="center", ha="center", fontsize=_FONT_SIZE,
+                        family="monospace", zorder=5,
+                        color="#ffffff" if by_id[i].status in ("fails", "error") else "#000000")
+        url = link(i)
+        if url:
+            box.set_url(url)
+            label.set_url(url)
 
     present = {r.status for r in results}
     handles = [Patch(facecolor=VERDICT_COLOUR.get(v, "#ffffff"), edgecolor="#303030", label=v)
@@ -215,8 +242,8 @@ def draw(results: Sequence[Result]):
     return fig
 
 
-def svg_text(results: Sequence[Result]) -> str:
-    """The claim graph as SVG text (the same bytes for the same ledger)."""
+def render(results: Sequence[Result], link: Callable[[str], str | None] = site_link) -> str:
+    """The claim graph as SVG text (deterministic: fixed hash salt, no date)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -225,19 +252,21 @@ def svg_text(results: Sequence[Result]) -> str:
     from matplotlib import pyplot as plt
 
     with matplotlib.rc_context({"svg.hashsalt": "chaplygin-nd claim graph", "svg.fonttype": "none"}):
-        fig = draw(results)
+        fig = draw(results, link)
         buffer = io.StringIO()
         fig.savefig(buffer, format="svg", metadata={"Date": None, "Creator": None})
         plt.close(fig)
-    return buffer.getvalue()
+    # matplotlib opens every link in a new window; a node should open its page in place
+    return buffer.getvalue().replace(' target="_blank"', "")
 
 
-def write(results: Sequence[Result], path: Path) -> bool:
+def write(results: Sequence[Result], path: Path,
+          link: Callable[[str], str | None] = site_link) -> bool:
     """Write the claim graph as SVG to ``path`` (atomically, a unique temporary name); True if
     its content changed."""
     from chaplygin_nd.ledger.report import write_files
 
-    text = svg_text(results)
+    text = render(results, link)
     old = path.read_text(encoding="utf-8") if path.exists() else None
     if old == text:
         return False

@@ -74,6 +74,22 @@ def _run_one(claim_id: str, seed: int = points.DEFAULT_SEED
         points.set_ledger_seed(previous)
 
 
+#: How worker processes start: never ``fork`` (a forked child of a notebook kernel, of a process
+#: with threads, or on macOS can deadlock); ``forkserver`` where the platform has it, else
+#: ``spawn``. The fork server imports the proof modules once, before any worker starts (its
+#: preload list), so a worker forked from it starts with them loaded, as ``fork`` did.
+START_METHOD = "forkserver" if "forkserver" in mp.get_all_start_methods() else "spawn"
+
+
+def _context():
+    context = mp.get_context(START_METHOD)
+    if START_METHOD == "forkserver":
+        context.set_forkserver_preload(
+            ["chaplygin_nd.ledger.runner"]
+            + [f"chaplygin_nd.proofs.{name}" for name in discover()])
+    return context
+
+
 def _init_worker():
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's: one line, exit 130
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
@@ -112,7 +128,7 @@ def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFA
         iterator = map(_run_one, todo, seeds)
         pool = None
     else:
-        pool = ProcessPoolExecutor(jobs, mp_context=mp.get_context("fork"), initializer=_init_worker)
+        pool = ProcessPoolExecutor(jobs, mp_context=_context(), initializer=_init_worker)
         iterator = pool.map(_run_one, todo, seeds)
     results = []
     try:

@@ -1,0 +1,238 @@
+r"""A small public API for notebooks: decide a ledger row, run a scene, evaluate the kernels.
+
+Everything here is re-exported from :mod:`chaplygin_nd` and imported only when first used
+(``import chaplygin_nd`` stays light: no SymPy, no NumPy)::
+
+    import chaplygin_nd as cn
+    cn.decide("P:inversion").status                 # 'holds'
+    run = cn.simulate("steady4d")                   # a built-in scene, a path or TOML text
+    run.times, run.outputs["M"], run.plan.model
+    cn.angular_velocity(M, gamma, a, b)             # Omega = L_gamma^{-1}(M), P:inversion
+
+Nothing here writes a file: :func:`simulate` returns the arrays that ``chaplygin simulate``
+would write, :func:`decide` returns the row that ``chaplygin prove`` would print. Each example
+below is a doctest (``make test`` runs them) that checks an identity, not a printed number.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # pragma: no cover
+    import numpy as np
+
+    from chaplygin_nd.ledger.runner import Result
+    from chaplygin_nd.simulate.planner import Plan
+    from chaplygin_nd.simulate.run import Trajectory
+    from chaplygin_nd.simulate.scene import Scene
+
+__all__ = ["decide", "simulate", "Simulation", "angular_velocity", "L_gamma", "vector_field",
+           "energy", "zeta"]
+
+
+def decide(claim_id: str, *, seed: int | None = None) -> Result:
+    r"""Decide the ledger row ``claim_id`` (e.g. ``"P:inversion"``, the paper's label) in this
+    process, as ``chaplygin prove claim_id`` does, and return its
+    :class:`~chaplygin_nd.ledger.runner.Result`: ``result.status`` (``holds``, ``corrected``, …),
+    ``result.verdict`` (method, ``n_values``, the exact counterexample of a corrected row, kind),
+    ``result.seconds``, ``result.uses``. ``seed`` is the seed of the seeded checks (default: the
+    ledger's, :data:`chaplygin_nd.symbolic.points.DEFAULT_SEED`). An unknown id raises
+    ``KeyError``. Domain: every row of ``chaplygin prove --list``.
+
+    P:inversion, $\Omega = \tfrac12 M + K/(2\Delta)$ with the printed $K$, is decided by two
+    parts (the derived inverse solves $L_\gamma(\Omega) = M$; the printed formula equals it),
+    exactly for $n = 3, 4, 5$ and by a reduction argument for every $n \ge 4$:
+
+    >>> import chaplygin_nd as cn
+    >>> r = cn.decide("P:inversion")
+    >>> r.status, r.error, [part.verdict for part in r.verdict.parts]
+    ('holds', '', ['holds', 'holds'])
+    >>> {3, 4, 5} <= set(r.verdict.n_values) and r.verdict.counterexample is None
+    True
+    """
+    from chaplygin_nd.ledger.runner import run, select
+    from chaplygin_nd.symbolic import points
+
+    (result,) = run(select([claim_id]), jobs=1,
+                    seed=points.DEFAULT_SEED if seed is None else seed)
+    return result
+
+
+@dataclass
+class Simulation:
+    """The result of :func:`simulate`: the validated scene, the plan (model, method and why),
+    the sample times and one array per output (the keys of ``outputs.npz`` of
+    ``chaplygin simulate``: ``"M"``, ``"gamma"``, ``"integrals.energy"``, ``"drift.energy"``, …;
+    a leading ensemble axis after the time axis)."""
+
+    scene: Scene
+    plan: Plan
+    times: np.ndarray
+    outputs: dict[str, np.ndarray]
+    trajectory: Trajectory = field(repr=False)
+
+    def summary(self) -> str:
+        """The one-screen summary ``chaplygin simulate`` prints (scene, model, cost, drift)."""
+        from chaplygin_nd.simulate.cli import summary
+
+        return summary(self.scene, self.plan, self.trajectory, self.outputs,
+                       self.trajectory.seconds + self.trajectory.compile_seconds)
+
+
+def _scene(scene: str | Path, force: bool) -> Scene:
+    from chaplygin_nd.simulate.scene import find, loads
+
+    if isinstance(scene, str) and ("\n" in scene or "=" in scene):
+        return loads(scene, source="<TOML text>", force=force)
+    return find(str(scene), force=force)
+
+
+def simulate(scene: str | Path, *, force: bool = False, progress: bool = False) -> Simulation:
+    r"""Plan and run ``scene`` as ``chaplygin simulate`` does, without writing a file: a
+    built-in scene name (``"steady4d"``; ``chaplygin simulate --list``), the path of a scene file,
+    or the TOML text of a scene (scenes/README.md). The model is the cheapest exact one the
+    planner finds (closed forms of P:steady-rot, Th:Re, S5:H-linear-nD before integration of
+    eq:motion-general). ``force`` lifts the time and memory limits; ``progress`` shows progress on
+    stderr for long runs. A scene that cannot give a right answer raises
+    :class:`~chaplygin_nd.simulate.scene.SceneError` or
+    :class:`~chaplygin_nd.simulate.stops.RunStopped` (nothing is returned).
+
+    A steady rotation (P:steady-rot) keeps $\Omega$ constant and conserves the energy
+    (S2.2:energy):
+
+    >>> import numpy as np, chaplygin_nd as cn
+    >>> run = cn.simulate("steady4d")
+    >>> run.plan.model, run.times.shape == run.outputs["M"].shape[:1]
+    ('constant-Omega', True)
+    >>> bool(np.allclose(run.outputs["Omega"], run.outputs["Omega"][:1], atol=1e-12))
+    True
+    >>> float(np.max(np.abs(run.outputs["drift.energy"]))) < 1e-12
+    True
+    """
+    import numpy as np
+
+    from chaplygin_nd.simulate.outputs import collect
+    from chaplygin_nd.simulate.planner import plan
+    from chaplygin_nd.simulate.run import execute
+    from chaplygin_nd.simulate.stops import check_finite
+
+    sc = _scene(scene, force)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # checked below
+        p = plan(sc)
+        traj = execute(sc, p, progress=progress, force=force)
+        arrays = collect(sc, traj)
+        for key, v in arrays.items():
+            check_finite(key, v, sc.t if key != "zeta" else sc.t[0])
+    times = arrays.pop("t")
+    return Simulation(sc, p, times, arrays, traj)
+
+
+def angular_velocity(M: Any, gamma: Any, a: Any, b: Any) -> np.ndarray:
+    r"""$\Omega = L_\gamma^{-1}(M)$ (P:inversion, eq:M-O), ``(..., n, n)`` for skew ``M``
+    ``(..., n, n)`` and ``gamma`` ``(..., n)``, any $n \ge 3$ (generated kernels). Domain:
+    $\gamma \in S^{n-1}$, $\Delta(x) \ne 0 \ne 2+a+b$ (e.g. $|a| \le 1$, $b > 0$).
+
+    It inverts :func:`L_gamma` (a 5-dimensional example, where no component kernel exists):
+
+    >>> import numpy as np, chaplygin_nd as cn
+    >>> rng = np.random.default_rng(1)
+    >>> A = rng.normal(size=(5, 5)); M = A - A.T
+    >>> gamma = rng.normal(size=5); gamma /= np.linalg.norm(gamma)
+    >>> Omega = cn.angular_velocity(M, gamma, 0.7, 0.3)
+    >>> bool(np.allclose(cn.L_gamma(Omega, gamma, 0.7, 0.3), M, rtol=1e-12, atol=1e-12))
+    True
+    """
+    from chaplygin_nd.runtime import angular_velocity as kernel
+
+    return kernel(M, gamma, a, b)
+
+
+def L_gamma(Omega: Any, gamma: Any, a: Any, b: Any) -> np.ndarray:
+    r"""$M = L_\gamma(\Omega) = \mathbb{J}\Omega + \Omega\mathbb{J} + b(\Omega\gamma)\wedge\gamma$,
+    $\mathbb{J} = \mathrm{Id} + aE_nE_n^T$ (eq:M-O with eq:axisymm), ``(..., n, n)``; any
+    $\gamma \in \mathbb{R}^n$, any $n$.
+
+    For $n = 3$ it is the symmetric operator of eq:mom3D: $\langle L_\gamma\Omega_1,
+    \Omega_2\rangle = \langle \Omega_1, L_\gamma\Omega_2\rangle$ (trace pairing):
+
+    >>> import numpy as np, chaplygin_nd as cn
+    >>> rng = np.random.default_rng(2)
+    >>> A, B = rng.normal(size=(2, 3, 3)); O1, O2 = A - A.T, B - B.T
+    >>> gamma = np.array([2.0, 1.0, 2.0]) / 3
+    >>> lhs = np.trace(cn.L_gamma(O1, gamma, 0.4, 0.9) @ O2.T)
+    >>> rhs = np.trace(O1 @ cn.L_gamma(O2, gamma, 0.4, 0.9).T)
+    >>> bool(np.isclose(lhs, rhs, rtol=1e-13))
+    True
+    """
+    from chaplygin_nd.runtime import L_gamma as kernel
+
+    return kernel(Omega, gamma, a, b)
+
+
+def vector_field(M: Any, gamma: Any, a: Any, b: Any) -> tuple[np.ndarray, np.ndarray]:
+    r"""$(\dot M, \dot\gamma) = ([M, \Omega], -\Omega\gamma)$ with $\Omega = L_\gamma^{-1}M$
+    (eq:motion-general); domain as :func:`angular_velocity`.
+
+    The flow keeps $\gamma$ on the sphere and, in 4D, conserves the energy (S2.2:energy):
+    $\langle\gamma, \dot\gamma\rangle = 0$ and $\frac{d}{dt}H = 0$ (a finite-difference check):
+
+    >>> import numpy as np, chaplygin_nd as cn
+    >>> rng = np.random.default_rng(3)
+    >>> A = rng.normal(size=(4, 4)); M = A - A.T
+    >>> gamma = rng.normal(size=4); gamma /= np.linalg.norm(gamma)
+    >>> dM, dgamma = cn.vector_field(M, gamma, 0.5, 0.5)
+    >>> bool(abs(gamma @ dgamma) < 1e-12)
+    True
+    >>> h = 1e-6
+    >>> dH = (cn.energy(M + h * dM, gamma + h * dgamma, 0.5, 0.5)
+    ...       - cn.energy(M - h * dM, gamma - h * dgamma, 0.5, 0.5)) / (2 * h)
+    >>> bool(abs(dH) < 1e-7)
+    True
+    """
+    from chaplygin_nd.runtime import vector_field as kernel
+
+    return kernel(M, gamma, a, b)
+
+
+def energy(M: Any, gamma: Any, a: Any, b: Any) -> np.ndarray:
+    r"""$H = \tfrac12\langle M, \Omega\rangle_\kappa = \tfrac12\sum_{i<j} M_{ij}\Omega_{ij}$
+    (S2.2:energy), ``(...)``; domain as :func:`angular_velocity`.
+
+    $H$ is a positive quadratic form in $M$ (for $|a| < 1$, $b > 0$): $H(2M) = 4H(M) > 0$:
+
+    >>> import numpy as np, chaplygin_nd as cn
+    >>> rng = np.random.default_rng(4)
+    >>> A = rng.normal(size=(6, 6)); M = A - A.T
+    >>> gamma = rng.normal(size=6); gamma /= np.linalg.norm(gamma)
+    >>> H = cn.energy(M, gamma, 0.2, 1.5)
+    >>> bool(H > 0 and np.isclose(cn.energy(2 * M, gamma, 0.2, 1.5), 4 * H, rtol=1e-13))
+    True
+    """
+    from chaplygin_nd.runtime import energy as kernel
+
+    return kernel(M, gamma, a, b)
+
+
+def zeta(M0: Any, gamma0: Any, a: Any, b: Any) -> np.ndarray:
+    r"""$\zeta = \kappa(x_0)M_0 - L_{\gamma_0}^{-1}M_0 \in \mathfrak{so}(n-1)$ (Th:Re), the
+    generator of the relative equilibrium through a vertical state; domain: $(M_0, \gamma_0) \in
+    \mathcal{V}$ ($M_0\gamma_0 = 0$, $\gamma_0 \in S^{n-1}$).
+
+    $\zeta$ lies in $\mathfrak{so}(n-1)$: its last row and column vanish ($\zeta E_n = 0$). A
+    vertical state: $M_0 = u\wedge v$ with $u, v \perp \gamma_0$:
+
+    >>> import numpy as np, chaplygin_nd as cn
+    >>> gamma0 = np.array([0.48, 0.0, 0.6, 0.64])
+    >>> u = np.array([0.6, 0.0, -0.48, 0.0]); v = np.array([0.0, 1.0, 0.0, 0.0])
+    >>> M0 = np.outer(u, v) - np.outer(v, u)
+    >>> bool(np.allclose(M0 @ gamma0, 0))
+    True
+    >>> Z = cn.zeta(M0, gamma0, 0.8, 0.5)
+    >>> bool(np.allclose(Z[:, -1], 0, atol=1e-14) and np.allclose(Z, -Z.T, atol=1e-14))
+    True
+    """
+    from chaplygin_nd.runtime import zeta as kernel
+
+    return kernel(M0, gamma0, a, b)
