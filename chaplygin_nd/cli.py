@@ -6,6 +6,8 @@
 ``chaplygin bench [NAME ...]``  the benchmarks (``make bench``)
 ``chaplygin generate``          rewrite ``generated/`` from the proved formulas (``make generate``)
 ``chaplygin mutate``            mutation testing of the printed formulas (``make mutate``)
+``chaplygin docs [REPORT]``     build the reading site into docs/_build/html (``make docs-html``;
+                                in a source checkout, with the ``docs`` extra installed)
 ``chaplygin --version``         the version and, in a source checkout, the commit
 
 Each subcommand takes the options of the module it runs (``chaplygin simulate -h``). Subcommands
@@ -29,7 +31,35 @@ COMMANDS = {
     "bench": ("chaplygin_nd.bench.__main__", [], "run the benchmarks"),
     "generate": ("chaplygin_nd.symbolic.codegen", [], "rewrite generated/ from the proofs"),
     "mutate": ("chaplygin_nd.ledger.mutate", [], "mutation testing of the printed formulas"),
+    "docs": ("chaplygin_nd.cli", [], "build the reading site (a source checkout)"),
 }
+
+
+def docs(argv: list[str]) -> int:
+    """``chaplygin docs [REPORT]``: the steps of ``make docs-html`` — pages from ``REPORT``
+    (default ``verification.json``, written by ``chaplygin verify``), Sphinx with warnings as
+    errors, the internal link check. Only in a source checkout (the site's sources are not
+    installed)."""
+    root = Path(__file__).resolve().parent.parent
+    if not (root / "docs" / "build_pages.py").is_file():
+        print("chaplygin docs: the reading site is built from a source checkout (make docs); "
+              "this installation has no docs/ folder", file=sys.stderr)
+        return 2
+    report = Path(argv[0]) if argv else root / "verification.json"
+    if not report.is_file():
+        print(f"chaplygin docs: no report {report}: run `chaplygin verify` first "
+              "(or give the path of a verification.json)", file=sys.stderr)
+        return 2
+    steps = [[sys.executable, str(root / "docs" / "build_pages.py"), "--report", str(report)],
+             [sys.executable, "-m", "sphinx", "-b", "html", "-W", "--keep-going", "-q", "-c",
+              str(root / "docs"), str(root / "docs/_build/src"), str(root / "docs/_build/html")],
+             [sys.executable, str(root / "docs" / "check_links.py"), str(root / "docs/_build/html")]]
+    for step in steps:
+        code = subprocess.run(step, cwd=root).returncode
+        if code:
+            return code
+    print(f"wrote {root / 'docs/_build/html/index.html'}")
+    return 0
 
 
 def commit() -> str | None:
@@ -74,14 +104,16 @@ def main(argv: list[str] | None = None) -> int:
     if name not in COMMANDS:
         print(f"chaplygin: unknown command {name!r}\n\n{_usage()}", file=sys.stderr)
         return 2
-    if name == "prove" and not [a for a in rest if not a.startswith("-")]:
+    if name == "prove" and not [a for a in rest if not a.startswith("-")] \
+            and not {"--list", "-h", "--help"} & set(rest):
         print("chaplygin prove: name at least one ledger id (`chaplygin prove --list` lists them; "
               "`chaplygin verify` runs them all)", file=sys.stderr)
-        if "--list" not in rest:
-            return 2
+        return 2
     if name == "verify" and [a for a in rest if not a.startswith("-") and not _is_option_value(rest, a)]:
         print("chaplygin verify: takes no ids (use `chaplygin prove ID ...`)", file=sys.stderr)
         return 2
+    if name == "docs":
+        return docs(rest)
     module, front, _ = COMMANDS[name]
     try:  # Ctrl-C while the subcommand's module is imported: one line too (issue 19)
         run = importlib.import_module(module).main
