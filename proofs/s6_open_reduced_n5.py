@@ -12,7 +12,7 @@ $\dim P/SO(4) = 14 - 6 = 8$. (ii) The integrals: $p(\lambda, \sigma) = \det(M + 
 \lambda)$ (eq:pol-first-integrals) has the non-constant coefficients $c_{\lambda^3}$, $c_{\lambda^1}$
 (those of $\det(M - \lambda)$: $\|M\|^2$ and the sum of the squared $4\times 4$ Pfaffians) and the
 $\sigma\lambda^2$, $\sigma\lambda^0$ coefficients; with the energy $H = \frac12\langle M, L_\gamma^{-1}M\rangle$
-that is 5 functions; their differentials restricted to $T P$ have rank 5 at the point and vanish on
+that is 5 functions; their differentials (Jacobi's formula for the coefficients) restricted to $T P$ have rank 5 at the point and vanish on
 the group directions (exact zeros: they are invariant). So they descend to 5 independent integrals
 of the 8-dimensional reduced space, whose regular level sets have dimension 3; the invariant
 measure (P:Measure) descends too. Hence: **if the reduced system were integrable**, a quasi-periodic
@@ -61,30 +61,26 @@ def _point():
 
 def _integral_gradients(M, gamma, a, b):
     r"""Exact gradients in $(\mathrm{vec}\,M, \gamma) \in \mathbb{R}^{15}$ of the non-constant coefficients of
-    $p(\lambda, \sigma)$ and of $H$ at the point. Coefficients: directional derivatives by a
-    symbolic $\varepsilon$ (the coefficients are polynomials). $H$: $\partial_M H = \Omega$,
-    $\partial_{\gamma_k} H = -\frac12\omega^T(\partial L/\partial\gamma_k)\omega$ ($\omega = L^{-1}m$)."""
-    lam, sig, eps = sp.symbols("lambda sigma epsilon")
-    dim = algebra.so_dim(N)
-    m0 = list(algebra.vec(M))
-    g0 = list(gamma)
-    coeffs = None
+    $p(\lambda, \sigma)$ and of $H$ at the point. Coefficients: Jacobi's formula
+    $\partial\det A = \mathrm{tr}(\mathrm{adj}(A)\,\partial A)$ with $A = M + \sigma\gamma\gamma^T - \lambda$
+    ($\partial A = E_i\wedge E_j$ for $M$, $\sigma(E_k\gamma^T + \gamma E_k^T)$ for $\gamma_k$), polynomials in
+    $(\lambda, \sigma)$. $H$: $\partial_M H = \Omega$, $\partial_{\gamma_k} H = -\frac12\omega^T(\partial L/\partial\gamma_k)\omega$
+    ($\omega = L^{-1}m$)."""
+    lam, sig = sp.symbols("lambda sigma")
+    A = M + sig * gamma * gamma.T - lam * sp.eye(N)
+    adj = A.adjugate(method="berkowitz")
+    directions = list(algebra.so_basis(N))
+    for k in range(N):
+        e = algebra.basis_vector(N, k)
+        directions.append(sig * (e * gamma.T + gamma * e.T))
+    base = sp.Poly(sp.expand(A.det(method="berkowitz")), lam, sig)
+    coeffs = sorted(mon for mon, c in base.terms() if mon not in ((N, 0), (N - 1, 1)))
     rows = []
-    for k in range(dim + N):
-        m = [m0[i] + (eps if i == k else 0) for i in range(dim)]
-        g = [g0[i] + (eps if dim + i == k else 0) for i in range(N)]
-        Mk, gk = algebra.unvec(m, N), sp.Matrix(g)
-        p = sp.expand((Mk + sig * gk * gk.T - lam * sp.eye(N)).det(method="berkowitz"))
-        poly = sp.Poly(p, lam, sig, eps)
-        d = {}
-        for (i, j, e), c in poly.terms():
-            if e == 1:
-                d[(i, j)] = d.get((i, j), 0) + c
-        if coeffs is None:
-            base = sp.Poly(p.subs(eps, 0), lam, sig)
-            coeffs = sorted(mon for mon, c in base.terms() if mon not in ((N, 0), (N - 1, 1)))
-        rows.append([d.get(mon, 0) for mon in coeffs])
+    for D in directions:
+        d = sp.Poly(sp.expand((adj * D).trace()), lam, sig)
+        rows.append([d.coeff_monomial(lam ** i * sig ** j) for i, j in coeffs])
     grads = sp.Matrix(rows).T                       # one row per coefficient
+    m0 = list(algebra.vec(M))
     J = sp.diag(*([1] * (N - 1) + [1 + a]))
     L = model.L_matrix(gamma, J, b)
     omega = L.LUsolve(sp.Matrix(m0))
