@@ -35,11 +35,12 @@ ALL_N_MAX = 24
 SPARSE_LARGE_N = (16, 20, 24)
 
 
-def all_n(start: int = 3) -> tuple[int, ...]:
+def all_n(start: int = 3, top: int | None = None) -> tuple[int, ...]:
     """The n of the seeded exact point checks of an all-n row: every n from ``start`` to 12, then
-    :data:`SPARSE_LARGE_N` (up to ALL_N_MAX)."""
-    return tuple(range(start, min(12, ALL_N_MAX) + 1)) + tuple(
-        n for n in SPARSE_LARGE_N if start <= n <= ALL_N_MAX)
+    :data:`SPARSE_LARGE_N` up to ``top`` (default ALL_N_MAX)."""
+    top = ALL_N_MAX if top is None else min(top, ALL_N_MAX)
+    return tuple(range(start, min(12, top) + 1)) + tuple(
+        n for n in SPARSE_LARGE_N if start <= n <= top)
 
 
 def n_text(ns) -> str:
