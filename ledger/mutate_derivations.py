@@ -1,4 +1,4 @@
-r"""``chaplygin mutate-derivations`` (``make mutate-derivations``) — mutants of the derivations and the runtime.
+r"""``python -m chaplygin_nd.ledger.mutate_derivations`` (``make mutate-derivations``) — mutants of derivations and runtime.
 
 :mod:`ledger.mutate` mutates the printed transcriptions. This module applies the same one-token AST
 mutants (:func:`ledger.mutate.all_mutants`: sign, const, swap, exponent, factor) to two other
@@ -282,7 +282,7 @@ def summary(records: list[dict], target: str, seconds: float) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="chaplygin mutate-derivations",
+    parser = argparse.ArgumentParser(prog="python -m chaplygin_nd.ledger.mutate_derivations",
                                      description=__doc__.splitlines()[0])
     parser.add_argument("--target", choices=("derivations", "runtime"), action="append",
                         help="what to mutate (default: both)")
