@@ -12,10 +12,11 @@ A cache only saves time: deleting the folder is always safe.
 from __future__ import annotations
 
 import os
+import stat
 import sys
 from pathlib import Path
 
-__all__ = ["ENV", "cache_root", "cache_dir"]
+__all__ = ["ENV", "cache_root", "cache_dir", "unsafe_reason"]
 
 #: The environment variable that moves the whole cache.
 ENV = "CHAPLYGIN_ND_CACHE"
@@ -37,3 +38,24 @@ def cache_root() -> Path:
 def cache_dir(kind: str) -> Path:
     """The subfolder ``kind`` (``"heyoka"``, ``"evidence"``) of :func:`cache_root`; not created."""
     return cache_root() / kind
+
+
+def unsafe_reason(path: Path) -> str | None:
+    """Why ``path`` (a file or folder of the cache) may not be trusted, or None — the rule ssh
+    applies to its keys: owned by this user, not a symbolic link, not writable by group or others.
+    Both caches (compiled integrators, evidence) ask this before reading anything. Not applicable
+    where there are no POSIX owners (Windows: None)."""
+    if os.name == "nt" or not hasattr(os, "getuid"):
+        return None
+    try:
+        st = path.lstat()
+    except OSError as exc:
+        return f"cannot be inspected ({exc.strerror})"
+    if stat.S_ISLNK(st.st_mode):
+        return "is a symbolic link"
+    if st.st_uid != os.getuid():
+        return f"is owned by another user (uid {st.st_uid}, not {os.getuid()})"
+    if st.st_mode & (stat.S_IWGRP | stat.S_IWOTH):
+        return (f"is writable by group or others (mode {stat.S_IMODE(st.st_mode):04o}); "
+                f"`chmod go-w {path}` makes it private")
+    return None

@@ -40,7 +40,6 @@ import hashlib
 import json
 import os
 import pickle
-import stat
 import tempfile
 import time
 import warnings
@@ -94,22 +93,8 @@ def _warn(path: Path, problem: str, what: str) -> None:
                   CacheWarning, stacklevel=4)
 
 
-def unsafe_reason(path: Path) -> str | None:
-    """Why ``path`` (a file or folder of the cache) may not be trusted, or None: it must be owned by
-    this user and not writable by group or others. Not applicable on Windows (None)."""
-    if os.name == "nt" or not hasattr(os, "getuid"):
-        return None
-    try:
-        st = path.lstat()
-    except OSError as exc:
-        return f"cannot be inspected ({exc.strerror})"
-    if stat.S_ISLNK(st.st_mode):
-        return "is a symbolic link"
-    if st.st_uid != os.getuid():
-        return f"is owned by uid {st.st_uid}, not by this user (uid {os.getuid()})"
-    if st.st_mode & (stat.S_IWGRP | stat.S_IWOTH):
-        return f"is writable by {'group' if st.st_mode & stat.S_IWGRP else 'others'} (mode {stat.S_IMODE(st.st_mode):04o})"
-    return None
+#: The trust rule of every cache of the project (:func:`chaplygin_nd.cache.unsafe_reason`).
+unsafe_reason = project_cache.unsafe_reason
 
 
 def _chain_unsafe(path: Path) -> tuple[Path, str] | None:

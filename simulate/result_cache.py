@@ -30,7 +30,6 @@ import importlib.metadata
 import importlib.util
 import json
 import os
-import stat
 import sys
 import tempfile
 import warnings
@@ -62,15 +61,9 @@ def warn_once(message: str) -> None:
 
 
 def _unsafe(path: Path) -> str | None:
-    """Why ``path`` (an existing folder) must not be trusted, or None (the ssh rule: owned by
-    this user, not writable by group or others)."""
-    st = path.stat()
-    if hasattr(os, "getuid") and st.st_uid != os.getuid():
-        return f"{path} is owned by another user (uid {st.st_uid})"
-    if st.st_mode & (stat.S_IWGRP | stat.S_IWOTH):
-        return (f"{path} is writable by group or others (mode {stat.filemode(st.st_mode)}); "
-                f"`chmod go-w {path}` makes it private")
-    return None
+    """Why the folder ``path`` must not be trusted, or None (:func:`chaplygin_nd.cache.unsafe_reason`)."""
+    reason = project_cache.unsafe_reason(path)
+    return None if reason is None else f"{path} {reason}"
 
 
 def private_folder(kind: str) -> Path | None:
