@@ -78,6 +78,7 @@ class Plan:
     detail: str = ""  # what the integrator runs with (plan line)
     compact: bool | None = None  # heyoka's mode, chosen by the cost model (simulate.cost)
     costs: str = ""  # the cost model's predictions (plan line)
+    predicted_seconds: float | None = None  # the chosen candidate's predicted total (simulate.cost)
 
     def describe(self) -> str:
         """One paragraph: model, why, and what was ruled out."""
@@ -140,7 +141,7 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
 
     def make(model, reason):
         method = _method(scene, model)
-        compact, costs = None, ""
+        compact, costs, predicted = None, "", None
         if model in ("full", "reduced-7D") and method in ("heyoka", "dop853"):
             from chaplygin_nd.simulate import cost  # the method by predicted cost (compile + run)
 
@@ -149,9 +150,10 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
                                     heyoka_tolerance(scene.target), max(scene.target / 100, 2.3e-14))
             if chosen is not None:
                 (best, costs), method = chosen, chosen[0].method
-                compact = best.compact
+                compact, predicted = best.compact, best.total
         return Plan(model, reason, reconstruct, method, Omega0, skipped, list(scene.notes),
-                    detail=method_detail(scene, method), compact=compact, costs=costs)
+                    detail=method_detail(scene, method), compact=compact, costs=costs,
+                    predicted_seconds=predicted)
 
     if force_full:
         return make("full", "forced (cross-check)")
