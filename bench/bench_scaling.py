@@ -282,7 +282,7 @@ def _targets(rows, fixed, cfuncs, first, fits) -> list[str]:
             ok, detail = False, "not measured (--quick)"
         lines.append(target(f"heyoka / DOP853 at equal error (<= 1e-10, T = 10) >= {want}x at n = {n}",
                             ok, detail))
-    worst_fixed = max(fixed, key=lambda r: r["fixed_ms"])
+    worst_fixed = max((r for r in fixed if r["n"] <= 32), key=lambda r: r["fixed_ms"])
     lines.append(target("fixed cost of a warm heyoka integrate call <= 0.1 ms at every n <= 32",
                         all(r["fixed_ms"] <= 0.1 for r in fixed if r["n"] <= 32),
                         f"worst {worst_fixed['fixed_ms']:.3f} ms at n = {worst_fixed['n']}"))

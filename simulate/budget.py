@@ -23,7 +23,7 @@ import time
 from chaplygin_nd.simulate.stops import TooCostly
 
 __all__ = ["LIMIT_SECONDS", "PILOT_SECONDS", "DRAW_SECONDS", "memory_limit", "memory_bytes",
-           "Projection", "human_bytes", "announce"]
+           "Projection", "human_bytes", "announce", "refuse_before", "CLEARLY_PAST"]
 
 LIMIT_SECONDS = 600.0
 PILOT_SECONDS = 0.5
@@ -67,6 +67,23 @@ def announce(text: str, stream=None) -> None:
     stream = stream or sys.stderr
     stream.write(f"cost: {text}\n")
     stream.flush()
+
+
+#: A run whose predicted cost (the planner's cost model, :mod:`simulate.cost`, within 3x of the
+#: measured integration time) is past this many times the limit is refused before it starts.
+CLEARLY_PAST = 3.0
+
+
+def refuse_before(plan, label: str, t, force: bool = False) -> None:
+    """Refuse (:class:`TooCostly`) a run predicted to cost more than :data:`CLEARLY_PAST` x
+    :data:`LIMIT_SECONDS` before anything is compiled or integrated; nearer the limit the
+    :class:`Projection` of the run itself decides."""
+    predicted = getattr(plan, "predicted_seconds", None)
+    if force or predicted is None or not predicted > CLEARLY_PAST * LIMIT_SECONDS:
+        return
+    raise TooCostly(f"{label}: estimated {predicted:.3g} s for t in [{t[0]:g}, {t[-1]:g}] (the "
+                    f"planner's prediction), past the limit of {LIMIT_SECONDS:g} s; shorten times, "
+                    "loosen accuracy.target, or pass --force")
 
 
 class Projection:

@@ -103,7 +103,16 @@ def _dop853_pilot(field, y0: np.ndarray, t0: float, t_end: float, rtol: float):
     from scipy.integrate import DOP853
 
     shape = y0.shape
-    solver = DOP853(lambda s, y: field(s, y.reshape(shape)).ravel(), t0, y0.ravel(), t_end,
+
+    def finite_field(s, y):
+        dy = field(s, y.reshape(shape)).ravel()
+        if not np.isfinite(dy).all():  # SciPy's step-size loop never ends on a nan error norm
+            raise FloatingPointError("the field is not finite in the DOP853 pilot")
+        return dy
+
+    if not np.isfinite(y0).all():
+        raise FloatingPointError("the initial state is not finite")
+    solver = DOP853(finite_field, t0, y0.ravel(), t_end,
                     rtol=max(rtol, 100 * np.finfo(float).eps), atol=rtol)
     start = time.perf_counter()
     steps = 0

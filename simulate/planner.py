@@ -79,6 +79,7 @@ class Plan:
     compact: bool | None = None  # heyoka's mode, chosen by the cost model (simulate.cost)
     costs: str = ""  # the cost model's predictions (plan line)
     accuracy: accuracy.Settings | None = None  # the calibrated settings (simulate.accuracy)
+    predicted_seconds: float | None = None  # the chosen candidate's predicted total (simulate.cost)
 
     def describe(self) -> str:
         """One paragraph: model, why, and what was ruled out."""
@@ -144,7 +145,7 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
     def make(model, reason):
         method = _method(scene, model)
         chosen = settings(scene, method, model)  # calibrated; "auto": the first that honours it
-        compact, costs = None, ""
+        compact, costs, predicted = None, "", None
         if model in ("full", "reduced-7D") and chosen is not None \
                 and chosen.method in ("heyoka", "dop853"):
             from chaplygin_nd.simulate import cost  # the method by predicted cost (compile + run)
@@ -156,13 +157,13 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
                                     settings(scene, "heyoka", model).value, dop.value)
             if picked is not None:
                 (best, costs) = picked
-                compact = best.compact
+                compact, predicted = best.compact, best.total
                 if best.method != chosen.method:
                     chosen = settings(scene, best.method, model)
         method = chosen.method if chosen else "closed form"
         return Plan(model, reason, reconstruct, method, Omega0, skipped, list(scene.notes),
                     detail=chosen.describe() if chosen else method, accuracy=chosen,
-                    compact=compact, costs=costs)
+                    compact=compact, costs=costs, predicted_seconds=predicted)
 
     if force_full:
         return make("full", "forced (cross-check)")

@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from chaplygin_nd.simulate import so
-from chaplygin_nd.simulate.budget import Projection
+from chaplygin_nd.simulate.budget import Projection, refuse_before
 from chaplygin_nd.simulate.closed_forms import horizontal, horizontal_nd, relative_equilibrium
 from chaplygin_nd.simulate.dispatch import active
 from chaplygin_nd.simulate.field import FullField, ReducedField
@@ -178,6 +178,7 @@ def _checked(f):
 
 def _integrate(f, y0, t, plan, scene, progress=True, force=False):
     label = f"{plan.model} {plan.method}"
+    refuse_before(plan, label, t, force)
     bar = Progress(t[-1], label, stream=sys.stderr if progress else _Null(),
                    projection=Projection(t[0], t[-1], label, force), t0=t[0])
     acc = plan.accuracy or settings(scene, plan.method, plan.model)  # simulate.accuracy
