@@ -195,9 +195,16 @@ def unreached(printed_by_row: dict[str, list[str]]) -> list[str]:
 
 
 def clear_derivation_caches() -> None:
-    """Empty the ``functools`` caches of the derivations (the next calls are misses)."""
-    for wrapper in _caches(derivation_functions()).values():
-        wrapper.cache_clear()
+    """Empty every ``functools`` cache of ``symbolic/`` (private helpers too: a cached helper
+    would hide the derivations it calls), so the next calls are misses."""
+    import sys
+
+    derivation_functions()  # imports every module of symbolic/
+    for name, mod in list(sys.modules.items()):
+        if name.startswith("chaplygin_nd.symbolic.") and mod is not None:
+            for obj in list(vars(mod).values()):
+                if callable(getattr(obj, "cache_clear", None)) and hasattr(obj, "cache_info"):
+                    obj.cache_clear()
 
 
 def emitted_derivations() -> list[str]:

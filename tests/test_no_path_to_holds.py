@@ -45,10 +45,10 @@ def test_measure4d_controls_decide_the_row(monkeypatch):
 
 def test_argued_steps_are_marked():
     discover()
-    v = registry()["P:n3special"].run()
+    v = registry()["Th:Re-tori"].run()  # (ii), the measure facts, is argued (issue 17)
     argued = [p for p in v.parts if p.argued]
     assert argued and all(p.method.startswith("argued, not machine-checked") for p in argued)
-    assert v.verdict == "holds"
+    assert v.verdict == "corrected"
     assert Verdict.by_argument("a fact").as_part("x").argued
     with pytest.raises(ValueError):
         Verdict.by_argument(" ")
