@@ -24,10 +24,13 @@ LONGEST = {"long4d", "tori4d"}
 #: on the base install their reference is the mpmath Taylor method on an ensemble or in n = 5, 6
 #: (1-4 minutes each under load): also in the bench only
 LONG_ON_BASE = {"horizontal6d", "ensemble3d", "vertical5d", "spherical6d"}
+#: with heyoka the reference of these is the mpmath Taylor method on 64 members or in n = 5
+#: (2-6 minutes under load): in the bench
+LONG_ON_FAST = {"ensemble3d", "vertical5d"}
 CASES = [pytest.param(name, install, marks=pytest.mark.slow if install == "base" else ())
          for name in sorted(set(builtin_scenes()) - LONGEST)
          for install in ["base"] + (["fast"] if heyoka_taylor.available() else [])
-         if not (install == "base" and name in LONG_ON_BASE)]
+         if name not in (LONG_ON_BASE if install == "base" else LONG_ON_FAST)]
 
 
 @pytest.mark.parametrize("name,install", CASES)
