@@ -2,6 +2,10 @@
 
 import sys
 
-from chaplygin_nd.cli import main
+try:
+    from chaplygin_nd.cli import main
+except KeyboardInterrupt:  # Ctrl-C while the command is still being imported
+    print("interrupted", file=sys.stderr)
+    sys.exit(130)
 
 sys.exit(main())

@@ -92,7 +92,24 @@ def _usage() -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Run the ``chaplygin`` command; the exit status of the subcommand (2 on a usage error)."""
+    """Run the ``chaplygin`` command; the exit status of the subcommand (2 on a usage error,
+    130 when interrupted). Ctrl-C or SIGTERM at any moment of the command — while a module is
+    imported, while the subcommand runs or while it prints its last line — ends it with one line,
+    ``interrupted``; once the subcommand has returned, its files are whole and a late signal no
+    longer changes the exit status (the interpreter's shutdown ignores it)."""
+    import signal
+
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return 130
+    finally:
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            signal.signal(sig, signal.SIG_IGN)
+
+
+def _main(argv: list[str] | None) -> int:
     args = list(sys.argv[1:] if argv is None else argv)
     if not args or args[0] in ("-h", "--help"):
         print(_usage(), file=sys.stdout if args else sys.stderr)
@@ -115,11 +132,7 @@ def main(argv: list[str] | None = None) -> int:
     if name == "docs":
         return docs(rest)
     module, front, _ = COMMANDS[name]
-    try:  # Ctrl-C while the subcommand's module is imported: one line too (issue 19)
-        run = importlib.import_module(module).main
-    except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
-        return 130
+    run = importlib.import_module(module).main  # Ctrl-C here: one line too (see main)
     return int(run(front + rest) or 0)
 
 

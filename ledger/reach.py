@@ -62,6 +62,9 @@ NOT_DERIVATIONS = {
     "mpmath_eval": "the tests' 50-digit evaluator of derived expressions (reached by tests)",
     "points": "seeded exact points and the ledger seed (inputs of checks, not formulas)",
     "exact": "the exact zero-test engines (decide identities, build no formula)",
+    "flint_engine": "the second exact engine (FLINT): decides zero tests, builds no formula",
+    "flint_model": "the second engine's own evaluation of the definitions at exact points",
+    "counterexample": "renders a counterexample of the engine (text and LaTeX), derives nothing",
 }
 
 

@@ -24,7 +24,7 @@ def compute(jobs: int | None = 2
             ) -> tuple[dict[str, list[str]], dict[str, float], dict[str, list[str]]]:
     """Run every registered ledger row: (row -> printed functions it reached, row -> seconds,
     row -> derivations it reached)."""
-    results = run(select(), jobs=jobs)
+    results = run(select(), jobs=jobs, fresh=True)
     bad = [r.row.id for r in results if r.error]
     if bad:
         raise RuntimeError(f"rows raised while mapping reach: {', '.join(bad)}")

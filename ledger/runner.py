@@ -47,10 +47,16 @@ class Result:
         return d
 
 
-def _run_one(claim_id: str, seed: int = points.DEFAULT_SEED
+def _run_one(claim_id: str, seed: int = points.DEFAULT_SEED, fresh: bool = False
              ) -> tuple[Verdict, float, str, tuple[str, ...], tuple[str, ...]]:
     """Decide one row with ``seed`` as the seed of its seeded checks (in this process);
-    also the printed functions and the derivations it called (:mod:`ledger.reach`)."""
+    also the printed functions and the derivations it called (:mod:`ledger.reach`). ``fresh``
+    empties the derivation caches first, so the record of derivations does not depend on what
+    earlier rows (or the worker's preloading) computed: the reach map is written this way."""
+    if fresh:
+        from chaplygin_nd.ledger.reach import clear_derivation_caches
+
+        clear_derivation_caches()
     spec = registry()[claim_id]
     previous = points.set_ledger_seed(seed)
     start = time.perf_counter()
@@ -116,20 +122,23 @@ def unknown_registrations() -> list[str]:
 
 
 def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFAULT_SEED,
-        on_result: Callable[[Result], None] = lambda r: None) -> list[Result]:
+        on_result: Callable[[Result], None] = lambda r: None, fresh: bool = False
+        ) -> list[Result]:
     """Decide ``rows``; registered ones run in ``jobs`` processes, the rest are ``open``.
-    ``seed`` is the seed of every seeded check (passed to each worker with each row)."""
+    ``seed`` is the seed of every seeded check (passed to each worker with each row);
+    ``fresh``: see :func:`_run_one`."""
     discover()
     specs = registry()
     todo = [r.id for r in rows if r.id in specs]
     seeds = [seed] * len(todo)
+    freshness = [fresh] * len(todo)
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(todo) or 1))
     if jobs == 1:
-        iterator = map(_run_one, todo, seeds)
+        iterator = map(_run_one, todo, seeds, freshness)
         pool = None
     else:
         pool = ProcessPoolExecutor(jobs, mp_context=_context(), initializer=_init_worker)
-        iterator = pool.map(_run_one, todo, seeds)
+        iterator = pool.map(_run_one, todo, seeds, freshness)
     results = []
     try:
         pending = iter(todo)

@@ -113,8 +113,12 @@ def test_interrupted_runs_leave_a_whole_result_or_an_incomplete_mark(tmp_path):
 
 def test_a_second_run_into_a_locked_folder_is_refused(tmp_path):
     scene, out = tmp_path / "s.toml", tmp_path / "result"
-    scene.write_text(SCENE.format(tag="0-1", seed=1).replace("t_end = 4.0", "t_end = 400.0"))
-    first = _start(scene, out)
+    # a first run that lasts (the mpmath Taylor method, forced past the time limit) holds the lock
+    scene.write_text(SCENE.format(tag="0-1", seed=1).replace("t_end = 4.0", "t_end = 40000.0")
+                     .replace('method = "dop853"', 'method = "reference"'))
+    first = subprocess.Popen([sys.executable, "-m", "chaplygin_nd", "simulate", str(scene), "--out",
+                              str(out), "--force"], stdout=subprocess.DEVNULL,
+                             stderr=subprocess.PIPE, text=True, env=dict(os.environ))
     try:
         deadline = time.time() + 120
         second = None
