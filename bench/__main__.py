@@ -49,7 +49,9 @@ def _parser() -> argparse.ArgumentParser:
                         "caches of the last run are used (warm)")
     p.add_argument("--list", action="store_true", help="list the benchmarks and exit")
     p.add_argument("--version", action="version", version=version_line())
-    p.add_argument("--out", type=Path, default=OUT, help=f"output folder (default {OUT})")
+    p.add_argument("--out", type=Path, default=None,
+                   help="output folder (default: bench/out/ of the source checkout; required "
+                        "when installed, so nothing is written inside the installed package)")
     return p
 
 
@@ -77,6 +79,11 @@ def _main(argv: list[str] | None) -> int:
         print(f"chaplygin bench: unknown benchmark {', '.join(unknown)}; known: {', '.join(known)}",
               file=sys.stderr)
         return 2
+    if args.out is None:
+        if not (OUT.parent.parent / "pyproject.toml").is_file():
+            return fail("chaplygin bench: give --out DIR (an installed package is never written "
+                        "into)")
+        args.out = OUT
     args.out.mkdir(parents=True, exist_ok=True)
     _own_caches(args.out / "cache", args.cold)
     return _run(names, args)

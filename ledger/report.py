@@ -83,8 +83,9 @@ def line(result: Result) -> str:
     if result.error:
         method = "ERROR: " + result.error.strip().splitlines()[-1]
     status = result.status + (f" ({v.kind})" if v.kind else "")
-    text = f"{result.row.id:<24} {status:<20} {result.seconds:7.2f}s  {method}{ns}"
-    return text if len(text) <= 220 else text[:217] + "..."
+    head = f"{result.row.id:<24} {status:<20} {result.seconds:7.2f}s  "
+    room = 220 - len(head) - len(ns)  # the method is shortened, never the [n] it is backed for
+    return head + (method if len(method) <= room else method[:room - 3] + "...") + ns
 
 
 def totals(results: Sequence[Result]) -> Counter:

@@ -107,3 +107,15 @@ def record(results) -> list[dict]:
              "diffusion": float(f"{r.diffusion:.3g}"), "megno": round(r.megno, 3),
              "lyapunov": float(f"{r.lyapunov:.3g}"), "megno_class": r.megno_cls}
             for r in results]
+
+
+def without_heyoka() -> str:
+    """Why an evidence row cannot run here, or ``""``: its drawn orbits and MEGNO tangents are
+    integrated with heyoka (the extra ``fast``), which the base install does not have. The row then
+    says ``open`` with this reason instead of raising."""
+    from chaplygin_nd.simulate.integrators import heyoka_taylor
+
+    if heyoka_taylor.available():
+        return ""
+    return ("not measured here: the drawn orbits are integrated with heyoka, which is not "
+            "installed (pip install 'chaplygin-nd[fast]')")

@@ -1,6 +1,6 @@
 r"""Th:Re-tori — the solutions on $\mathcal{V}$ are quasi-periodic on tori of generic dimension rank $SO(n-1)$.
 
-Claim (Section 4, "The nD case", lines 544-546; Section 5, lines 904-906 for $n = 4$):
+Claim (Section 4, "The nD case", lines 579-580; Section 5, lines 904-906 for $n = 4$):
 "Since $SO(n-1)$ is compact, the corresponding solutions on $P$ are quasi-periodic on tori whose
 generic dimension is $\operatorname{rank}(SO(n-1)) = [\frac{n-1}{2}]$", and for $n = 4$
 "Considering that $SO(3)$ has rank 1, we conclude that $\mathcal{V}$ is foliated by periodic orbits".
@@ -429,7 +429,7 @@ def th_re_tori() -> Verdict:
             "(iii) trivial isotropy, exact ranks for n = 3..24"),
     ]
     return Verdict.of_parts([
-        generic.as_part("generic torus dimension = rank SO(n-1) (lines 544-546)"),
+        generic.as_part("generic torus dimension = rank SO(n-1) (lines 579-580)"),
         periodic.as_part("n = 4: V foliated by periodic orbits (lines 904-906)"),
         *argued,
     ], n_values=NS, notes="Needs a != 0: for a = 0 (spherical inertia, allowed at line 368) "

@@ -101,7 +101,8 @@ def _remove_owned(folder: Path) -> None:
     lists, their temporaries and the manifest; the folder itself only when that emptied it."""
     manifest = _read_manifest(folder)
     owned = set(manifest["files"]) if manifest else set()
-    for entry in os.listdir(folder):
+    # the manifest goes last: an interruption in between leaves a folder still recognised as ours
+    for entry in sorted(os.listdir(folder), key=lambda e: e == MANIFEST):
         if entry in owned or entry == MANIFEST or _is_leftover(entry, owned | {MANIFEST}):
             (folder / entry).unlink(missing_ok=True)
     try:

@@ -302,6 +302,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         description="Rewrite generated/ (NumPy kernels) from the derived SymPy expressions; "
                     "the same as `make generate`.")
     parser.parse_args(argv)
+    if not (ROOT / "pyproject.toml").is_file():
+        print("chaplygin generate: rewrites generated/ of a source checkout (make generate); an "
+              "installed package is never written into", file=sys.stderr)
+        return 2
     for path in write():
         print(f"wrote {path.relative_to(ROOT)}")
     return 0

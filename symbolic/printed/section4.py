@@ -31,7 +31,7 @@ SOURCE = {
     "P:Measure": (398, 410, 411, 412, 421, 422, 423, 424, 428, 430), "P:inversion": (441, 446, 447, 448),
     "eq:aux-inversion": (460, 466, 467, 472, 479), "eq:action": (495,),
     "eq:V-velocity": (514, 515), "eq:xiV3D": (522, 525, 526, 527, 539, 540, 541, 542, 543, 558),
-    "Th:Re": (587, 591, 592, 610, 614), "Th:Re-corollary": (628,), "Th:Re-tori": (544, 545, 546, 904, 905, 906), "eq:xiVnD": (642, 643, 644), "P:n3special": (666, 671, 674),
+    "Th:Re": (587, 591, 592, 610, 614), "Th:Re-corollary": (628,), "Th:Re-tori": (579, 580, 904, 905, 906), "eq:xiVnD": (642, 643, 644), "P:n3special": (666, 671, 674),
     "eq:itildendim": (708, 712), "eq:solManakov": (728, 736),
     "Th:Re-tori:frequencies": (579, 580),
 }
@@ -249,9 +249,9 @@ def zeta_Th_Re(M0, gamma0, a, b):
             + (a * (2 + b) * wedge(M0 * E, E) - a * b * x0 * wedge(M0 * E, gamma0)) / (2 * D))
 
 
-# -- Th:Re-tori, lines 544-546 (prose) and lines 904-906 (n = 4)
+# -- Th:Re-tori, lines 579-580 (prose) and lines 904-906 (n = 4)
 def tori_generic_dimension(n):
-    """Th:Re-tori (lines 544-546), prose — the claim as a number. The sentence: ``Since $\\SO(n-1)$ is
+    """Th:Re-tori (lines 579-580), prose — the claim as a number. The sentence: ``Since $\\SO(n-1)$ is
     compact, the corresponding solutions on $P$ are quasi-periodic on tori whose generic dimension
     is $\\mbox{rank}(\\SO(n-1))=[\\frac{n-1}{2}]$``; for $n = 4$ (lines 904-906): ``Considering that
     $\\SO(3)$ has rank 1, we conclude that $\\mathcal{V}$ is foliated by periodic orbits``. Returned:
