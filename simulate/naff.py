@@ -143,15 +143,21 @@ def analyse(signals, dt: float, *, terms: int = 10, rel_amp: float = 0.05, tol: 
     chance that a random frequency falls within that tolerance of one of the $(2K+1)^k K$
     combinations of a $k$-frequency basis is about $2\,\text{tol}\,(2K+1)^kK/k$ (for $K = 4$, $k = 3$,
     $\text{tol} = 10^{-6}$: $2\cdot10^{-3}$ per line). Frequencies are reported as $|\omega|$."""
+    return _spectrum([spectral_lines(z, dt, terms) for z in signals],
+                     frequency_diffusion(signals, dt), rel_amp, tol, K, precision_factor)
+
+
+def _spectrum(lines, diffusion: float, rel_amp: float, tol: float, K: int,
+              precision_factor: float) -> Spectrum:
+    """Pool the strong ``lines`` (pairs ``(omega, amplitude)``, one per signal) and count the
+    independent frequencies at the tolerance the ``diffusion`` allows (see :func:`analyse`)."""
     pooled: list[tuple[float, float]] = []
-    for z in signals:
-        w, amp = spectral_lines(z, dt, terms)
+    for w, amp in lines:
         if len(w) == 0:
             continue
         strong = amp >= rel_amp * amp.max()
         pooled += [(float(x), float(y / amp.max())) for x, y in zip(w[strong], amp[strong])]
     pooled.sort(key=lambda p: -p[1])
-    diffusion = frequency_diffusion(signals, dt)
     scale = max((abs(w) for w, _ in pooled), default=1.0)
     rel = max(tol, precision_factor * diffusion) if np.isfinite(diffusion) else 1.0
     basis = independent_frequencies([w for w, _ in pooled], rel * scale, K)
@@ -298,18 +304,7 @@ def spectrum_from_lines(whole, first, second, *, rel_amp: float = 0.05, tol: flo
                         K: int = 4, precision_factor: float = 10.0) -> Spectrum:
     """The :class:`Spectrum` of one orbit from the lines of its signals (any subset of them) —
     pooling, diffusion and the integer-relation count exactly as :func:`analyse`."""
-    pooled: list[tuple[float, float]] = []
-    for w, amp in whole:
-        if len(w) == 0:
-            continue
-        strong = amp >= rel_amp * amp.max()
-        pooled += [(float(x), float(y / amp.max())) for x, y in zip(w[strong], amp[strong])]
-    pooled.sort(key=lambda p: -p[1])
-    diffusion = diffusion_from_lines(first, second)
-    scale = max((abs(w) for w, _ in pooled), default=1.0)
-    rel = max(tol, precision_factor * diffusion) if np.isfinite(diffusion) else 1.0
-    basis = independent_frequencies([w for w, _ in pooled], rel * scale, K)
-    return Spectrum(pooled, sorted(abs(f) for f in basis), diffusion, rel)
+    return _spectrum(whole, diffusion_from_lines(first, second), rel_amp, tol, K, precision_factor)
 
 
 def analyse_batch(signals: np.ndarray, dt: float, *, terms: int = 8, half_terms: int = 4,
