@@ -99,19 +99,10 @@ def frequency_diffusion(signals, dt: float, lines: int = 3, terms: int = 8,
     of the second half; the maximum over signals and lines. On a torus it decreases like a
     power of the orbit length (the NAFF error); on a chaotic orbit the frequencies drift.
     Domain: signals of equal length $\ge 14$ samples; returns inf if a half has no line."""
-    worst = 0.0
-    for z in signals:
-        half = len(z) // 2
-        w1, a1 = spectral_lines(z[:half], dt, terms)
-        w2, _ = spectral_lines(z[half:2 * half], dt, terms)
-        if len(w1) == 0 and len(w2) == 0:
-            continue
-        if len(w1) == 0 or len(w2) == 0:
-            return float("inf")
-        big = (np.abs(w1) >= 1e-3 * np.max(np.abs(w1))) & (a1 >= rel_amp * a1.max())
-        for w in w1[big][:lines]:
-            worst = max(worst, float(np.min(np.abs(w2 - w)) / abs(w)))
-    return worst
+    halves = [len(z) // 2 for z in signals]
+    first = [spectral_lines(z[:h], dt, terms) for z, h in zip(signals, halves)]
+    second = [spectral_lines(z[h:2 * h], dt, terms) for z, h in zip(signals, halves)]
+    return diffusion_from_lines(first, second, lines, rel_amp)
 
 
 @dataclass
