@@ -45,7 +45,7 @@ import uuid
 from collections.abc import Callable, Iterable
 from pathlib import Path
 
-__all__ = ["MANIFEST", "OutputError", "OutputFolder", "claim", "SIBLING"]
+__all__ = ["MANIFEST", "OutputError", "OutputFolder", "claim", "lock_file", "SIBLING"]
 
 MANIFEST = ".chaplygin-run.json"
 PROGRAM = "chaplygin-nd simulate"
@@ -129,17 +129,25 @@ def _exchange(a: Path, b: Path) -> bool:
     raise OSError(err, os.strerror(err), str(b))
 
 
+def lock_file(path: str | Path) -> Path:
+    """The file whose exclusive ``flock`` marks a run writing into the output folder ``path``
+    (keyed by its real path); while held it holds ``"<pid> <real path>"``."""
+    real = os.path.realpath(path)
+    folder = Path(tempfile.gettempdir()) / f"chaplygin-nd-locks-{os.getuid()}"
+    return folder / (hashlib.sha256(os.fsencode(real)).hexdigest()[:24] + ".lock")
+
+
 class _Lock:
     """An exclusive lock on an output folder, keyed by its real path (see the module docstring)."""
 
     def __init__(self, path: Path, given: str):
         real = os.path.realpath(path)
-        folder = Path(tempfile.gettempdir()) / f"chaplygin-nd-locks-{os.getuid()}"
+        self.file = lock_file(path)
+        folder = self.file.parent
         folder.mkdir(mode=0o700, exist_ok=True)
         if folder.stat().st_uid != os.getuid() or folder.is_symlink():
             raise OutputError(f"--out {given}: the lock folder {folder} belongs to another user; "
                               "remove it or set TMPDIR")
-        self.file = folder / (hashlib.sha256(os.fsencode(real)).hexdigest()[:24] + ".lock")
         self.fd = os.open(self.file, os.O_RDWR | os.O_CREAT, 0o600)
         try:
             fcntl.flock(self.fd, fcntl.LOCK_EX | fcntl.LOCK_NB)

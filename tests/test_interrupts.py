@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from chaplygin_nd.simulate.outdir import MANIFEST, SIBLING
+from chaplygin_nd.simulate.outdir import MANIFEST, SIBLING, lock_file
 
 SCENE = """title = "run {tag}"
 n = 3
@@ -120,15 +120,18 @@ def test_a_second_run_into_a_locked_folder_is_refused(tmp_path):
                               str(out), "--force"], stdout=subprocess.DEVNULL,
                              stderr=subprocess.PIPE, text=True, env=dict(os.environ))
     try:
-        deadline = time.time() + 120
-        second = None
-        while time.time() < deadline:  # the first run holds the lock once it has claimed --out
-            second = subprocess.run([sys.executable, "-m", "chaplygin_nd", "simulate", str(scene),
-                                     "--out", str(out), "--no-plots"], capture_output=True,
-                                    text=True, timeout=300)
-            if "another run" in second.stderr or first.poll() is not None:
+        lock, expected = lock_file(out), f"{first.pid} {os.path.realpath(out)}"
+        deadline = time.time() + 240
+        while time.time() < deadline and first.poll() is None:  # until the first run holds it
+            if lock.exists() and lock.read_text().strip() == expected:
                 break
-        assert second is not None and second.returncode == 2, second.stderr
+            time.sleep(0.05)
+        assert first.poll() is None, first.stderr.read()
+        assert lock.read_text().strip() == expected, "the first run never took the lock"
+        second = subprocess.run([sys.executable, "-m", "chaplygin_nd", "simulate", str(scene),
+                                 "--out", str(out), "--no-plots"], capture_output=True, text=True,
+                                timeout=300)
+        assert second.returncode == 2, second.stderr
         lines = second.stderr.strip().splitlines()
         assert len(lines) == 1 and "another run is writing into this folder" in lines[0]
     finally:
