@@ -20,16 +20,16 @@ SymPy nor NumPy. ``chaplygin_nd.simulate`` is both the subpackage and the functi
 subpackage runs :func:`chaplygin_nd.api.simulate`.
 """
 
-import importlib
-import os
-import sys
-import types
+import importlib as _importlib
+import os as _os
+import sys as _sys
+import types as _types
 
 # SymPy's ground types, decided before SymPy is first imported: with python-flint installed,
 # SymPy >= 1.13 would silently switch to "flint" and its QQ arithmetic and DomainMatrix would
 # then run on FLINT — the second engine (symbolic/flint_engine.py) would share code with the
 # first. "gmpy" keeps SymPy's engine its own (README: "Two exact engines").
-os.environ.setdefault("SYMPY_GROUND_TYPES", "gmpy")
+_os.environ.setdefault("SYMPY_GROUND_TYPES", "gmpy")
 
 __version__ = "0.2.0"
 
@@ -38,7 +38,7 @@ _API = ("decide", "simulate", "Simulation", "angular_velocity", "L_gamma", "vect
 __all__ = ["__version__", *_API]
 
 
-class _CallableSubpackage(types.ModuleType):
+class _CallableSubpackage(_types.ModuleType):
     """The subpackage :mod:`chaplygin_nd.simulate`, callable as :func:`chaplygin_nd.api.simulate`."""
 
     def __call__(self, scene, **options):
@@ -47,27 +47,29 @@ class _CallableSubpackage(types.ModuleType):
         return simulate(scene, **options)
 
 
-class _Package(types.ModuleType):
+class _Package(_types.ModuleType):
     """This package's class: when the import system binds the subpackage ``simulate`` here, it
     is made callable, so ``chaplygin_nd.simulate(scene)`` works whichever was imported first."""
 
     def __setattr__(self, name, value):
-        if name == "simulate" and type(value) is types.ModuleType:
+        if name == "simulate" and type(value) is _types.ModuleType:
             value.__class__ = _CallableSubpackage
         super().__setattr__(name, value)
 
 
-sys.modules[__name__].__class__ = _Package
+_sys.modules[__name__].__class__ = _Package
 
 
 def __getattr__(name):
     """The notebook API (:mod:`chaplygin_nd.api`), imported on first use."""
     if name == "simulate":
-        return importlib.import_module("chaplygin_nd.simulate")
+        return _importlib.import_module("chaplygin_nd.simulate")
     if name in _API:
-        return getattr(importlib.import_module("chaplygin_nd.api"), name)
+        return getattr(_importlib.import_module("chaplygin_nd.api"), name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def __dir__():
-    return sorted(set(globals()) | set(_API))
+    """The public names: the API, the version, the subpackages imported so far, the module's
+    dunders; not the private helpers (``_importlib``, ``_Package``, ...)."""
+    return sorted({k for k in globals() if not k.startswith("_") or k.endswith("__")} | set(_API))

@@ -6,7 +6,8 @@
 inside the installed package. Each user of the cache has its own subfolder
 (:func:`cache_dir`): ``heyoka/`` (compiled integrators, :mod:`chaplygin_nd.runtime.jit_cache`),
 ``evidence/`` (orbits and spectra of the evidence rows, :mod:`chaplygin_nd.simulate.evidence`).
-A cache only saves time: deleting the folder is always safe.
+A cache only saves time: deleting the folder is always safe. When a cache cannot be used, the run
+goes on and says why once, as a :class:`CacheWarning`: one line ``warning: ...`` on stderr.
 """
 
 from __future__ import annotations
@@ -16,10 +17,17 @@ import stat
 import sys
 from pathlib import Path
 
-__all__ = ["ENV", "cache_root", "cache_dir", "unsafe_reason"]
+from chaplygin_nd.console import OneLineWarning
+
+__all__ = ["ENV", "CacheWarning", "cache_root", "cache_dir", "unsafe_reason"]
 
 #: The environment variable that moves the whole cache.
 ENV = "CHAPLYGIN_ND_CACHE"
+
+
+class CacheWarning(OneLineWarning):
+    """A cache entry or folder was unusable (corrupt, stale, unsafe, unwritable); the run goes on
+    (recomputing, or uncached). Shown as one line ``warning: ...`` (:mod:`chaplygin_nd.console`)."""
 
 
 def cache_root() -> Path:

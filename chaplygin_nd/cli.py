@@ -23,15 +23,15 @@ from pathlib import Path
 
 from chaplygin_nd import __version__
 
-#: subcommand -> (module whose ``main(argv)`` runs it, arguments put in front, one-line help)
+#: subcommand -> (module, its function ``f(argv) -> exit status`` that runs it, one-line help)
 COMMANDS = {
-    "verify": ("chaplygin_nd.ledger.__main__", [], "decide every ledger row and write the reports"),
-    "prove": ("chaplygin_nd.ledger.__main__", [], "decide the ledger rows named"),
-    "simulate": ("chaplygin_nd.simulate.cli", [], "plan and run a scene"),
-    "bench": ("chaplygin_nd.bench.__main__", [], "run the benchmarks"),
-    "generate": ("chaplygin_nd.symbolic.codegen", [], "rewrite generated/ from the proofs"),
-    "mutate": ("chaplygin_nd.ledger.mutate", [], "mutation testing of the printed formulas"),
-    "docs": ("chaplygin_nd.cli", [], "build the reading site (a source checkout)"),
+    "verify": ("chaplygin_nd.ledger.__main__", "main", "decide every ledger row and write the reports"),
+    "prove": ("chaplygin_nd.ledger.__main__", "prove", "decide the ledger rows named"),
+    "simulate": ("chaplygin_nd.simulate.cli", "main", "plan and run a scene"),
+    "bench": ("chaplygin_nd.bench.__main__", "main", "run the benchmarks"),
+    "generate": ("chaplygin_nd.symbolic.codegen", "main", "rewrite generated/ from the proofs"),
+    "mutate": ("chaplygin_nd.ledger.mutate", "main", "mutation testing of the printed formulas"),
+    "docs": ("chaplygin_nd.cli", "docs", "build the reading site (a source checkout)"),
 }
 
 
@@ -129,11 +129,9 @@ def _main(argv: list[str] | None) -> int:
     if name == "verify" and [a for a in rest if not a.startswith("-") and not _is_option_value(rest, a)]:
         print("chaplygin verify: takes no ids (use `chaplygin prove ID ...`)", file=sys.stderr)
         return 2
-    if name == "docs":
-        return docs(rest)
-    module, front, _ = COMMANDS[name]
-    run = importlib.import_module(module).main  # Ctrl-C here: one line too (see main)
-    return int(run(front + rest) or 0)
+    module, function, _ = COMMANDS[name]
+    run = getattr(importlib.import_module(module), function)  # Ctrl-C here: one line too (see main)
+    return int(run(rest) or 0)
 
 
 def _is_option_value(args: list[str], value: str) -> bool:

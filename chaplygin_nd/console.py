@@ -9,17 +9,28 @@
   run on both; the commands then print ``interrupted`` and exit 130.
 * :func:`usable_backend` replaces a bogus ``MPLBACKEND`` (which makes ``import matplotlib`` raise)
   by ``Agg``, with a one-line warning (the figures are drawn with Agg in any case).
+* :class:`OneLineParser` is argparse with one-line usage errors (``error: PROG: --option: ...``,
+  exit 2); :func:`path_argument` is the ``type`` of every path option (an empty path is an error,
+  not the current folder or the default).
+* :class:`OneLineWarning`, the base of the project's warnings (the caches'), is shown as one line
+  ``warning: MESSAGE`` on stderr instead of Python's two-line ``file:line: Category: ...`` format.
+  It stays a warning: filters, ``-W error`` and ``pytest.warns`` see it as before (only
+  :func:`warnings.formatwarning` is wrapped, for this category alone, when this module is imported).
 """
 
 from __future__ import annotations
 
+import argparse
 import contextlib
 import os
 import signal
 import sys
 import threading
+import warnings
+from pathlib import Path
 
-__all__ = ["Interrupted", "say", "fail", "interruptible", "usable_backend", "ascii_text"]
+__all__ = ["Interrupted", "say", "fail", "interruptible", "usable_backend", "ascii_text",
+           "OneLineParser", "path_argument", "OneLineWarning"]
 
 _ASCII = str.maketrans({"—": "-", "–": "-", "−": "-", "×": "x", "≤": "<=", "≥": ">=",
                         "→": "->", "…": "...", "’": "'", "‘": "'", "“": '"', "”": '"',
@@ -109,3 +120,38 @@ def usable_backend() -> None:
                            "drawing with Agg")
     except (BrokenPipeError, ValueError, OSError):
         pass
+
+
+class OneLineParser(argparse.ArgumentParser):
+    """argparse whose usage errors are one line ``error: PROG: --option: ...`` on stderr (exit 2)."""
+
+    def error(self, message):
+        fail(f"{self.prog}: {message.removeprefix('argument ')}")
+        sys.exit(2)
+
+
+def path_argument(text: str) -> Path:
+    """The ``type`` of a path option: ``text`` as a :class:`~pathlib.Path`; an empty or blank
+    ``text`` is refused (``Path("")`` would silently mean the current folder, and a test
+    ``if args.out`` the default)."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError(f"an empty path ({text!r}); give a file or folder name")
+    return Path(text)
+
+
+class OneLineWarning(UserWarning):
+    """A warning of this project, shown as one line ``warning: MESSAGE`` on stderr."""
+
+
+def _one_line_format(previous):
+    def formatwarning(message, category, filename, lineno, line=None):
+        if isinstance(category, type) and issubclass(category, OneLineWarning):
+            return "warning: " + " ".join(str(message).split("\n")) + "\n"
+        return previous(message, category, filename, lineno, line)
+
+    formatwarning.one_line_warnings = True
+    return formatwarning
+
+
+if not getattr(warnings.formatwarning, "one_line_warnings", False):
+    warnings.formatwarning = _one_line_format(warnings.formatwarning)

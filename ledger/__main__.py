@@ -10,7 +10,9 @@ closed stdout (``| head -1``) does not stop the run. ``--seed N`` is the seed of
 seeded check (recorded in both reports). Exit status 1 when a row fails, a proof raises, an open row
 gives no reason, a finding has no kind, a proof registers an id that is not a ledger row, or
 (``--check-generated``) ``generated/`` is stale — then the report says STALE at its top; 2 on a
-usage error or a report that cannot be written (one line naming the path).
+usage error or a report that cannot be written (one line naming the path). With ids named
+(``chaplygin prove``) no report is written: ``--report-dir`` is then refused (a partial report must
+never stand in for the whole ledger's).
 """
 
 from __future__ import annotations
@@ -30,15 +32,17 @@ from chaplygin_nd.ledger.runner import run, select, unknown_registrations
 from chaplygin_nd.symbolic.points import DEFAULT_SEED
 
 from chaplygin_nd.cli import commit, version_line
-from chaplygin_nd.console import fail, interruptible, say
+from chaplygin_nd.console import OneLineParser, fail, interruptible, path_argument, say
 
-
-class _Parser(argparse.ArgumentParser):
-    """argparse with one-line errors naming the option as given (``--seed: not a ...``)."""
-
-    def error(self, message):
-        fail(f"{self.prog}: {message.removeprefix('argument ')}")
-        sys.exit(2)
+#: command -> its one-line description (``-h``).
+_DESCRIPTIONS = {
+    "verify": "Decide every ledger row, print one line per row and write VERIFICATION.md, "
+              "verification.json and the claim graph.",
+    "prove": "Decide the ledger rows named and print one line per row (no report is written: "
+             "`chaplygin verify` writes the reports of the whole ledger).",
+    "python -m chaplygin_nd.ledger": "Decide the ledger rows named, or every row and write the "
+                                      "reports (`chaplygin prove` / `chaplygin verify`).",
+}
 
 
 def _seed(text: str) -> int:
@@ -52,17 +56,30 @@ def _seed(text: str) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Run ``chaplygin verify`` / ``chaplygin prove``; the exit status (module docstring)."""
+    """Run ``chaplygin verify`` (and ``python -m chaplygin_nd.ledger [ID ...]``); the exit status
+    (module docstring)."""
+    return _entry(argv, "verify")
+
+
+def prove(argv: list[str] | None = None) -> int:
+    """Run ``chaplygin prove ID [ID ...]``; the exit status (module docstring)."""
+    return _entry(argv, "prove")
+
+
+def _entry(argv: list[str] | None, command: str) -> int:
     with interruptible():
         try:
-            return _main(argv)
+            return _main(argv, command)
         except KeyboardInterrupt:
             return fail("interrupted", 130)
 
 
-def _main(argv: list[str] | None) -> int:
-    parser = _Parser(prog="chaplygin verify", description=__doc__.splitlines()[0])
-    parser.add_argument("ids", nargs="*", help="ledger ids to run (default: all)")
+def _main(argv: list[str] | None, command: str) -> int:
+    prog = command if command.startswith("python") else f"chaplygin {command}"
+    parser = OneLineParser(prog=prog, description=_DESCRIPTIONS[command])
+    parser.add_argument("ids", nargs="*", metavar="ID", help={
+        "prove": "ledger ids to decide (--list lists them)",
+        "verify": argparse.SUPPRESS}.get(command, "ledger ids to run (default: all)"))
     parser.add_argument("--version", action="version", version=version_line())
     parser.add_argument("--jobs", "-j", type=int, default=None,
                         help="worker processes (default: one per core)")
@@ -70,10 +87,11 @@ def _main(argv: list[str] | None) -> int:
                         help="also regenerate generated/ into a temporary folder and fail on a difference")
     parser.add_argument("--seed", type=_seed, default=DEFAULT_SEED,
                         help=f"seed of every seeded exact check (default {DEFAULT_SEED})")
-    parser.add_argument("--report-dir", metavar="DIR",
-                        help="write VERIFICATION.md, verification.json and claim-graph.svg into DIR "
-                             "(default: the checkout's root and docs/; an installed package writes "
-                             "them only when DIR is given)")
+    parser.add_argument("--report-dir", metavar="DIR", type=path_argument,
+                        help=argparse.SUPPRESS if command == "prove" else
+                        "write VERIFICATION.md, verification.json and claim-graph.svg into DIR "
+                        "(default: the checkout's root and docs/; an installed package writes "
+                        "them only when DIR is given)")
     parser.add_argument("--list", action="store_true", help="list the ledger ids and exit")
     args = parser.parse_args(argv)
 
@@ -150,11 +168,15 @@ def _main(argv: list[str] | None) -> int:
     return 1 if problems else 0
 
 
-def _report_paths(report_dir: str | None, whole: bool):
+def _report_paths(report_dir: str | Path | None, whole: bool):
     """(VERIFICATION.md, verification.json, graph) paths; ``()`` when ids were named (no report),
     ``None`` outside a checkout without ``--report-dir``; an exit status when ``--report-dir``
-    cannot be a folder (checked before any proof runs)."""
+    cannot be a folder or is given with ids (checked before any proof runs)."""
     if not whole:
+        if report_dir is not None:
+            return fail(f"--report-dir {report_dir}: the reports are written for the whole ledger "
+                        "only, and ids were named; drop --report-dir (`chaplygin prove` writes no "
+                        "report) or run `chaplygin verify --report-dir DIR`")
         return ()
     if report_dir is None:
         if not is_checkout():
@@ -173,4 +195,4 @@ def _report_paths(report_dir: str | None, whole: bool):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(_entry(None, "python -m chaplygin_nd.ledger"))

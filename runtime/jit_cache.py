@@ -62,7 +62,7 @@ CODE_MODULES = ("chaplygin_nd.generated.expression_builders", "chaplygin_nd.runt
                 "chaplygin_nd.simulate.integrators.heyoka_taylor")
 
 
-class CacheWarning(UserWarning):
+class CacheWarning(project_cache.CacheWarning):
     """A cache entry was corrupt, stale or unsafe, or the cache could not be written; the run goes on."""
 
 

@@ -9,7 +9,6 @@ previous result, :mod:`simulate.outdir`). A closed stdout (``| head -1``) does n
 
 from __future__ import annotations
 
-import argparse
 import sys
 import time
 from pathlib import Path
@@ -26,17 +25,31 @@ from chaplygin_nd.simulate.scene import SceneError, builtin_scenes, find
 from chaplygin_nd.simulate.stops import RunStopped, check_finite
 
 from chaplygin_nd.cli import version_line
-from chaplygin_nd.console import fail, interruptible, say, usable_backend
+from chaplygin_nd.console import (
+    OneLineParser,
+    fail,
+    interruptible,
+    path_argument,
+    say,
+    usable_backend,
+)
 
-__all__ = ["main", "summary"]
+__all__ = ["main", "summary", "heading"]
 
 
-def summary(scene, p, traj, arrays, seconds, check=None, out=None) -> str:
-    """The one-screen summary: scene, model and why, cost, integral drift, cross-check."""
-    lines = [f"scene   {scene.title}  (n = {scene.n}, a = {scene.a:g}, b = {scene.b:g}, "
-             f"{scene.count} initial condition{'s' if scene.count > 1 else ''}, "
-             f"t in [{scene.t[0]:g}, {scene.t[-1]:g}], {len(scene.t)} samples)",
-             p.describe(),
+def heading(scene, p) -> str:
+    """The summary's first lines, the scene and the plan (model and why), which ``chaplygin
+    simulate`` prints before the run."""
+    return "\n".join([f"scene   {scene.title}  (n = {scene.n}, a = {scene.a:g}, b = {scene.b:g}, "
+                      f"{scene.count} initial condition{'s' if scene.count > 1 else ''}, "
+                      f"t in [{scene.t[0]:g}, {scene.t[-1]:g}], {len(scene.t)} samples)",
+                      p.describe()])
+
+
+def summary(scene, p, traj, arrays, seconds, check=None, out=None, *, with_heading=True) -> str:
+    """The one-screen summary: scene, model and why (:func:`heading`; left out when
+    ``with_heading`` is false), cost, integral drift, cross-check."""
+    lines = ([heading(scene, p)] if with_heading else []) + [
              (f"cost    closed form: {traj.calls} kernel evaluation(s) and matrix exponentials "
               f"at {len(scene.t)} samples, {traj.seconds:.3f} s; {seconds:.3f} s in all"
               if traj.method == "closed form" else
@@ -57,11 +70,11 @@ def summary(scene, p, traj, arrays, seconds, check=None, out=None) -> str:
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point; returns the exit status (see the module docstring)."""
-    ap = argparse.ArgumentParser(prog="chaplygin simulate", description=__doc__.split("\n\n")[0])
+    ap = OneLineParser(prog="chaplygin simulate", description=__doc__.split("\n\n")[0])
     ap.add_argument("--version", action="version", version=version_line())
     ap.add_argument("scene", nargs="?",
                     help="a scene file (TOML), e.g. scenes/generic4d.toml, or a built-in scene name")
-    ap.add_argument("--out", help="output folder: new, empty, or written before by this scene "
+    ap.add_argument("--out", type=path_argument, help="output folder: new, empty, or written before by this scene "
                     "(default: out/<scene name>)")
     ap.add_argument("--cross-check", action="store_true",
                     help="also run an independent model and judge the difference (exit 1 on FAIL)")
@@ -82,7 +95,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.scene is None:
         ap.error("give a scene file or a built-in scene name (--list shows them)")
     start = time.perf_counter()
-    out = Path(args.out) if args.out else None
+    out = args.out  # a Path (path_argument refuses an empty one), or None: out/<scene name>
     folder = None
     with interruptible():
         try:
@@ -96,7 +109,7 @@ def main(argv: list[str] | None = None) -> int:
             # inf/nan are not warned about but checked: every field and output, naming it and the time
             with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
                 p = plan(scene)
-                say(p.describe())
+                say(heading(scene, p))  # before the run; the rest of the summary after it
                 traj = execute(scene, p, force=args.force)
                 arrays = collect(scene, traj)
                 for key, v in arrays.items():
@@ -109,8 +122,9 @@ def main(argv: list[str] | None = None) -> int:
                     check = cross_check(scene, p, arrays, force=args.force, state=state)
                 extra, extra_lines = (tori_scene.files(scene, traj) if tori_scene.wants(scene)
                                       else ({}, []))
-            text = "\n".join([summary(scene, p, traj, arrays, time.perf_counter() - start, check,
-                                       out), *extra_lines])
+            rest = "\n".join([summary(scene, p, traj, arrays, time.perf_counter() - start, check,
+                                       out, with_heading=False), *extra_lines])
+            text = heading(scene, p) + "\n" + rest  # summary.txt: the whole summary
             try:
                 write(folder, arrays, text, plots=not args.no_plots and scene.figures, extra=extra)
             except OSError as exc:
@@ -127,7 +141,7 @@ def main(argv: list[str] | None = None) -> int:
         finally:
             if folder is not None:
                 folder.release()
-    say(text)
+    say(rest)
     return 1 if check is not None and not check.passed else 0
 
 

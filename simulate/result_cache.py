@@ -46,7 +46,7 @@ _WARNED: set[str] = set()
 _HASHES: dict[tuple[str, int, int], str] = {}
 
 
-class ResultCacheWarning(UserWarning):
+class ResultCacheWarning(project_cache.CacheWarning):
     """A cache folder or entry was unusable; the run goes on (recomputing, or uncached)."""
 
 
