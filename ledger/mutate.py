@@ -38,7 +38,6 @@ sample of K mutants.
 
 from __future__ import annotations
 
-import argparse
 import ast
 import inspect
 import multiprocessing as mp
@@ -65,6 +64,8 @@ from chaplygin_nd.ledger.reach import (
 )
 from chaplygin_nd.ledger.reach import save as save_reach
 from chaplygin_nd.symbolic.flint_engine import ENGINES_ENV, active_engines, engine_label
+
+from chaplygin_nd.console import OneLineParser, fail, path_argument, say
 
 OUT_PATH = ROOT / "mutation.json"
 #: Name pairs swapped by the ``swap`` operator (each direction).
@@ -558,13 +559,30 @@ def _compare(records: list[dict], other: Path) -> list[str]:
             and theirs[(r["function"], r["mutation"])] != r["outcome"]]
 
 
+def unknown_functions(names: list[str], known, list_option: str) -> str | None:
+    """The one-line error for the ``--function`` names not in ``known`` (with "did you mean" for
+    a near miss and ``list_option``, the command that lists the names), or None when all are
+    known. Checked before anything runs."""
+    import difflib
+
+    bad = [name for name in names if name not in known]
+    if not bad:
+        return None
+    hints = [f"{name!r}" + "".join(f" (did you mean {m}?)" for m in
+                                   difflib.get_close_matches(name, list(known), n=1)) for name in bad]
+    return (f"--function: unknown function {', '.join(hints)}; `{list_option}` lists the "
+            f"{len(known)} names it takes")
+
+
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="chaplygin mutate", description=__doc__.splitlines()[0])
+    parser = OneLineParser(prog="chaplygin mutate", description=__doc__.splitlines()[0])
     parser.add_argument("--jobs", "-j", type=int, default=2)
     parser.add_argument("--per-function", type=int, default=PER_FUNCTION)
     parser.add_argument("--function", action="append", default=[],
-                        help="only these printed functions (e.g. section4.K)")
-    parser.add_argument("--out", type=Path, default=None,
+                        help="only these printed functions (e.g. section4.K; --list lists them)")
+    parser.add_argument("--list", action="store_true",
+                        help="list the printed functions (the names --function takes) and exit")
+    parser.add_argument("--out", type=path_argument, default=None,
                         help="where to write (default mutation.json; mutation-flint.json with "
                              "--engines flint)")
     parser.add_argument("--engines", choices=("both", "flint"), default="both",
@@ -574,9 +592,15 @@ def main(argv: list[str] | None = None) -> int:
                         help="run a seeded sample of this many mutants among those whose rows "
                              f"are cheap (< {SAMPLE_ROW_SECONDS:.0f} s in ledger/reach.json), "
                              "with a baseline of those rows only (0: all)")
-    parser.add_argument("--compare", type=Path, default=None,
+    parser.add_argument("--compare", type=path_argument, default=None,
                         help="a mutation.json of another run: report mutants whose outcome differs")
     args = parser.parse_args(argv)
+    if args.list:
+        say("\n".join(printed_functions()))
+        return 0
+    problem = unknown_functions(args.function, printed_functions(), "chaplygin mutate --list")
+    if problem:
+        return fail(problem)
     os.environ[ENGINES_ENV] = args.engines
     if args.out is None:
         args.out = OUT_PATH if args.engines == "both" else ROOT / "mutation-flint.json"

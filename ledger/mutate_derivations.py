@@ -27,7 +27,6 @@ on a survivor or an error.
 
 from __future__ import annotations
 
-import argparse
 import importlib
 import multiprocessing as mp
 import pkgutil
@@ -37,12 +36,13 @@ import time
 import traceback
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
-from pathlib import Path
 from types import FunctionType
 
 from chaplygin_nd.ledger import mutate as mu
 from chaplygin_nd.ledger.catalog import ROOT
 from chaplygin_nd.ledger.reach import derivation_functions, load_derived, write_json_atomic
+
+from chaplygin_nd.console import OneLineParser, fail, path_argument, say
 
 OUT_PATH = ROOT / "mutation-derivations.json"
 #: The tests that check the runtime (the files that import it), run with ``pytest -x``.
@@ -282,20 +282,31 @@ def summary(records: list[dict], target: str, seconds: float) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m chaplygin_nd.ledger.mutate_derivations",
-                                     description=__doc__.splitlines()[0])
+    parser = OneLineParser(prog="python -m chaplygin_nd.ledger.mutate_derivations",
+                           description=__doc__.splitlines()[0])
     parser.add_argument("--target", choices=("derivations", "runtime"), action="append",
                         help="what to mutate (default: both)")
     parser.add_argument("--sample", type=int, default=None,
                         help="draw this many mutants per target (seeded); default: all")
     parser.add_argument("--seed", type=int, default=SEED)
     parser.add_argument("--function", action="append", default=[],
-                        help="only these functions (e.g. reduced.horizontal_blocks)")
-    parser.add_argument("--rerun", type=Path, default=None,
+                        help="only these functions (e.g. reduced.horizontal_blocks; --list lists them)")
+    parser.add_argument("--list", action="store_true",
+                        help="list the functions of the targets (the names --function takes) and exit")
+    parser.add_argument("--rerun", type=path_argument, default=None,
                         help="re-run only the survivors and errors recorded in this JSON file")
     parser.add_argument("--jobs", "-j", type=int, default=2)
-    parser.add_argument("--out", type=Path, default=OUT_PATH)
+    parser.add_argument("--out", type=path_argument, default=OUT_PATH)
     args = parser.parse_args(argv)
+    known = [name for target in args.target or ["derivations", "runtime"]
+             for name in functions(target)]
+    if args.list:
+        say("\n".join(known))
+        return 0
+    lister = " ".join([parser.prog, *(f"--target {t}" for t in args.target or []), "--list"])
+    problem = mu.unknown_functions(args.function, known, lister)
+    if problem:
+        return fail(problem)
     start = time.perf_counter()
     _init_worker()
     records, lines = [], []
