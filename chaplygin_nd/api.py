@@ -129,10 +129,65 @@ def simulate(scene: str | Path, *, force: bool = False, progress: bool = False) 
     return Simulation(sc, p, times, arrays, traj)
 
 
+#: Relative tolerance of the domain checks on float input (the scenes' default tolerance).
+TOLERANCE = 1e-10
+
+
+def _checked(name: str, X: Any, gamma: Any, a: Any, b: Any, *, vertical: bool = False):
+    r"""``(X, gamma)`` as float arrays after the domain checks of the kernels below, or
+    ``ValueError`` naming the argument and its domain: ``X`` (``M``, ``Omega`` or ``M0``)
+    ``(..., n, n)`` skew-symmetric ($\mathfrak{so}(n)$, eq:M-O) within :data:`TOLERANCE`
+    relative to $\max(1, \lVert XVert)$, ``gamma`` ``(..., n)``, $a \ge -1$ (eq:axisymm:
+    $\mathbb{J} = \mathrm{Id} + aE_nE_n^T$ is a mass tensor; the paper assumes $-1 \le a \le 1$,
+    $a > 1$ is a prolate body and allowed), $b > 0$ ($b = mr^2$, eq:M-O); with ``vertical``,
+    $X\gamma = 0$ (the set $\mathcal{V}$ of Th:Re). These hypotheses give $\Delta(x) > 0$ and
+    $2 + a + b > 0$ for $|x| \le 1$ (eq:Delta), so $L_\gamma$ is invertible."""
+    import numpy as np
+
+    X, gamma = np.asarray(X, dtype=float), np.asarray(gamma, dtype=float)
+    if X.ndim < 2 or X.shape[-1] != X.shape[-2]:
+        raise ValueError(f"{name} has shape {X.shape}: the domain is (..., n, n) skew-symmetric "
+                         "matrices (so(n), eq:M-O)")
+    if gamma.ndim < 1 or gamma.shape[-1] != X.shape[-1]:
+        raise ValueError(f"gamma has shape {gamma.shape}: the domain is (..., n) vectors with "
+                         f"n = {X.shape[-1]} (the size of {name})")
+    scale = np.maximum(1.0, np.linalg.norm(X, axis=(-2, -1)))
+    skew = np.linalg.norm(X + np.swapaxes(X, -1, -2), axis=(-2, -1)) / scale
+    if not np.all(skew <= TOLERANCE):  # also catches nan
+        raise ValueError(f"{name} is not skew-symmetric (max |{name} + {name}^T|/max(1, |{name}|)"
+                         f" = {np.max(skew):.3g} > {TOLERANCE:g}): the domain is so(n), "
+                         f"{name}^T = -{name} (eq:M-O)")
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    if not np.all(a >= -1.0) or not np.all(np.isfinite(a)):
+        raise ValueError(f"a = {_first_bad(a, a >= -1.0)} is outside the domain: a finite a >= -1 "
+                         "(eq:axisymm: J = Id + a E_n E_n^T must be positive semidefinite; the "
+                         "paper assumes -1 <= a <= 1)")
+    if not np.all(b > 0.0) or not np.all(np.isfinite(b)):
+        raise ValueError(f"b = {_first_bad(b, b > 0.0)} is outside the domain: a finite b > 0 "
+                         "(b = m r^2, eq:M-O)")
+    if vertical:
+        Xg = np.einsum("...ij,...j->...i", X, gamma)
+        off = np.linalg.norm(Xg, axis=-1) / scale
+        if not np.all(off <= TOLERANCE):
+            raise ValueError(f"{name} gamma0 != 0 (max |{name} gamma0|/max(1, |{name}|) = "
+                             f"{np.max(off):.3g}): the domain is the vertical set V, "
+                             f"{name} gamma0 = 0 (Th:Re)")
+    return X, gamma
+
+
+def _first_bad(values, ok) -> str:
+    """The first value of ``values`` that is not ``ok`` (or not finite), as text."""
+    import numpy as np
+
+    bad = values[~(ok & np.isfinite(values))] if values.ndim else values
+    return f"{float(bad.flat[0]):g}"
+
+
 def angular_velocity(M: Any, gamma: Any, a: Any, b: Any) -> np.ndarray:
     r"""$\Omega = L_\gamma^{-1}(M)$ (P:inversion, eq:M-O), ``(..., n, n)`` for skew ``M``
     ``(..., n, n)`` and ``gamma`` ``(..., n)``, any $n \ge 3$ (generated kernels). Domain:
-    $\gamma \in S^{n-1}$, $\Delta(x) \ne 0 \ne 2+a+b$ (e.g. $|a| \le 1$, $b > 0$).
+    $\gamma \in S^{n-1}$, $a \ge -1$, $b > 0$ (then $\Delta(x) > 0$ and $2+a+b > 0$); a non-skew
+    ``M``, $a < -1$ or $b \le 0$ raises ``ValueError`` naming the argument.
 
     It inverts :func:`L_gamma` (a 5-dimensional example, where no component kernel exists):
 
@@ -146,13 +201,14 @@ def angular_velocity(M: Any, gamma: Any, a: Any, b: Any) -> np.ndarray:
     """
     from chaplygin_nd.runtime import angular_velocity as kernel
 
+    M, gamma = _checked("M", M, gamma, a, b)
     return kernel(M, gamma, a, b)
 
 
 def L_gamma(Omega: Any, gamma: Any, a: Any, b: Any) -> np.ndarray:
     r"""$M = L_\gamma(\Omega) = \mathbb{J}\Omega + \Omega\mathbb{J} + b(\Omega\gamma)\wedge\gamma$,
     $\mathbb{J} = \mathrm{Id} + aE_nE_n^T$ (eq:M-O with eq:axisymm), ``(..., n, n)``; any
-    $\gamma \in \mathbb{R}^n$, any $n$.
+    $\gamma \in \mathbb{R}^n$, any $n$; ``Omega`` skew, $a \ge -1$, $b > 0$ (else ``ValueError``).
 
     For $n = 3$ it is the symmetric operator of eq:mom3D: $\langle L_\gamma\Omega_1,
     \Omega_2\rangle = \langle \Omega_1, L_\gamma\Omega_2\rangle$ (trace pairing):
@@ -168,6 +224,7 @@ def L_gamma(Omega: Any, gamma: Any, a: Any, b: Any) -> np.ndarray:
     """
     from chaplygin_nd.runtime import L_gamma as kernel
 
+    Omega, gamma = _checked("Omega", Omega, gamma, a, b)
     return kernel(Omega, gamma, a, b)
 
 
@@ -193,6 +250,7 @@ def vector_field(M: Any, gamma: Any, a: Any, b: Any) -> tuple[np.ndarray, np.nda
     """
     from chaplygin_nd.runtime import vector_field as kernel
 
+    M, gamma = _checked("M", M, gamma, a, b)
     return kernel(M, gamma, a, b)
 
 
@@ -212,13 +270,15 @@ def energy(M: Any, gamma: Any, a: Any, b: Any) -> np.ndarray:
     """
     from chaplygin_nd.runtime import energy as kernel
 
+    M, gamma = _checked("M", M, gamma, a, b)
     return kernel(M, gamma, a, b)
 
 
 def zeta(M0: Any, gamma0: Any, a: Any, b: Any) -> np.ndarray:
     r"""$\zeta = \kappa(x_0)M_0 - L_{\gamma_0}^{-1}M_0 \in \mathfrak{so}(n-1)$ (Th:Re), the
     generator of the relative equilibrium through a vertical state; domain: $(M_0, \gamma_0) \in
-    \mathcal{V}$ ($M_0\gamma_0 = 0$, $\gamma_0 \in S^{n-1}$).
+    \mathcal{V}$ ($M_0\gamma_0 = 0$, $\gamma_0 \in S^{n-1}$), $a \ge -1$, $b > 0$ (else
+    ``ValueError``).
 
     $\zeta$ lies in $\mathfrak{so}(n-1)$: its last row and column vanish ($\zeta E_n = 0$). A
     vertical state: $M_0 = u\wedge v$ with $u, v \perp \gamma_0$:
@@ -235,4 +295,5 @@ def zeta(M0: Any, gamma0: Any, a: Any, b: Any) -> np.ndarray:
     """
     from chaplygin_nd.runtime import zeta as kernel
 
+    M0, gamma0 = _checked("M0", M0, gamma0, a, b, vertical=True)
     return kernel(M0, gamma0, a, b)
