@@ -16,7 +16,7 @@ import time
 from pathlib import Path
 
 from chaplygin_nd.cli import version_line
-from chaplygin_nd.console import fail, interruptible
+from chaplygin_nd.console import fail, interruptible, path_argument
 
 OUT = Path(__file__).resolve().parent / "out"
 #: Run when no name is given (``make bench``). ``heyoka`` (bench_heyoka.py) repeats the heyoka
@@ -49,7 +49,7 @@ def _parser() -> argparse.ArgumentParser:
                         "caches of the last run are used (warm)")
     p.add_argument("--list", action="store_true", help="list the benchmarks and exit")
     p.add_argument("--version", action="version", version=version_line())
-    p.add_argument("--out", type=Path, default=None,
+    p.add_argument("--out", type=path_argument, default=None,
                    help="output folder (default: bench/out/ of the source checkout; required "
                         "when installed, so nothing is written inside the installed package)")
     return p

@@ -67,6 +67,13 @@ def test_an_empty_path_option_is_one_line_and_writes_nothing(argv, tmp_path, mon
     assert list(tmp_path.iterdir()) == []
 
 
+def test_bench_refuses_an_empty_out(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    assert _exit_code(cli.main, ["bench", "--quick", "--out", ""]) == 2
+    assert "--out: an empty path" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []
+
+
 # 3. --report-dir with ids is refused before any proof runs; nothing is created or replaced
 def test_report_dir_with_ids_is_refused(tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
