@@ -28,10 +28,14 @@ __all__ = ["FlintMatrix", "formula_matrix", "from_columns", "entries"]
 
 class FlintMatrix:
     """A rational matrix (``fmpq_mat``) with the operators of a SymPy ``Matrix`` that the printed
-    formulas use: ``* + -`` (matrix or rational scalar), unary ``-``, ``.T``, ``.shape``,
-    ``.rows``, ``.cols``, ``[i, j]`` and column slices ``[:, j]``."""
+    formulas use: ``* + -`` (with a FlintMatrix, a SymPy matrix of rationals on either side, or a
+    rational scalar for ``*``), unary ``-``, ``.T``, ``.shape``, ``.rows``, ``.cols``, ``[i, j]``
+    and column slices ``[:, j]``. A non-rational entry raises (``TypeError``/``ValueError``)."""
 
     __slots__ = ("mat",)
+    #: SymPy's matrix operators defer to the operand of higher priority (a SymPy ``Matrix`` on
+    #: the left of ``*``, ``+``, ``-`` calls our reflected operator)
+    _op_priority = 20.0
 
     def __init__(self, mat: flint.fmpq_mat):
         if not isinstance(mat, flint.fmpq_mat):
@@ -55,14 +59,18 @@ class FlintMatrix:
         return FlintMatrix(self.mat.transpose())
 
     @staticmethod
-    def _operand(other):
+    def _operand(other, *, scalar: bool = True):
+        """``other`` as ``fmpq_mat`` (a FlintMatrix, or a SymPy matrix of rationals such as
+        ``sp.eye(n)`` in a formula) or, if ``scalar``, as ``fmpq`` (a rational number)."""
         if isinstance(other, FlintMatrix):
             return other.mat
-        if isinstance(other, (flint.fmpq, flint.fmpz, int)):
+        if isinstance(other, sp.MatrixBase):
+            return _to_fmpq_mat(other)
+        if scalar and isinstance(other, (flint.fmpq, flint.fmpz, int)) and not isinstance(other, bool):
             return flint.fmpq(other)
-        if isinstance(other, sp.Basic) and other.is_Rational:
+        if scalar and isinstance(other, sp.Basic) and other.is_Rational:
             return to_fmpq(other)
-        raise TypeError(f"a FlintMatrix combines with FlintMatrix or a rational, not {other!r}")
+        raise TypeError(f"a FlintMatrix combines with a rational matrix or number, not {other!r}")
 
     def __mul__(self, other) -> FlintMatrix:
         return FlintMatrix(self.mat * self._operand(other))
@@ -71,14 +79,16 @@ class FlintMatrix:
         return FlintMatrix(self._operand(other) * self.mat)
 
     def __add__(self, other) -> FlintMatrix:
-        if not isinstance(other, FlintMatrix):
-            raise TypeError("a FlintMatrix adds to a FlintMatrix only")
-        return FlintMatrix(self.mat + other.mat)
+        return FlintMatrix(self.mat + self._operand(other, scalar=False))
+
+    def __radd__(self, other) -> FlintMatrix:
+        return FlintMatrix(self._operand(other, scalar=False) + self.mat)
 
     def __sub__(self, other) -> FlintMatrix:
-        if not isinstance(other, FlintMatrix):
-            raise TypeError("a FlintMatrix subtracts a FlintMatrix only")
-        return FlintMatrix(self.mat - other.mat)
+        return FlintMatrix(self.mat - self._operand(other, scalar=False))
+
+    def __rsub__(self, other) -> FlintMatrix:
+        return FlintMatrix(self._operand(other, scalar=False) - self.mat)
 
     def __neg__(self) -> FlintMatrix:
         return FlintMatrix(-self.mat)
@@ -104,12 +114,16 @@ class FlintMatrix:
         return f"FlintMatrix({self.mat!r})"
 
 
+def _to_fmpq_mat(A: sp.MatrixBase) -> flint.fmpq_mat:
+    return flint.fmpq_mat(A.rows, A.cols, [to_fmpq(v) for v in _flat(A)])
+
+
 def formula_matrix(A: sp.Matrix):
     """``A`` (rational entries) in the current engine's formula type: itself (a SymPy ``Matrix``)
     for SymPy, a :class:`FlintMatrix` for FLINT. Counts as an engine-dispatched step."""
     note_call()
     if current_engine() == "flint":
-        return FlintMatrix(flint.fmpq_mat(A.rows, A.cols, [to_fmpq(v) for v in _flat(A)]))
+        return FlintMatrix(_to_fmpq_mat(A))
     return A
 
 

@@ -53,7 +53,20 @@ def test_flint_matrix_refuses_inexact_or_symbolic_operands():
         with pytest.raises(TypeError):
             A * bad
     with pytest.raises(TypeError):
-        A + sp.eye(2)
+        A + 1
+    with pytest.raises(ValueError):
+        sp.Matrix([[sp.Symbol("x"), 0], [0, 1]]) * A
+
+
+def test_sympy_matrices_of_rationals_mix_in_on_either_side():
+    # a (mutated or printed) formula may use sp.eye(n) or basis_vector next to its arguments
+    S = sp.Matrix([[1, sp.Rational(1, 3)], [-2, 5]])
+    with use_engine("flint"):
+        A = formula_matrix(sp.Matrix([[0, 1], [sp.Rational(-1, 2), 4]]))
+    A_sympy = sp.Matrix([[0, 1], [sp.Rational(-1, 2), 4]])
+    for got, want in ((S * A, S * A_sympy), (A * S, A_sympy * S), (S + A, S + A_sympy),
+                      (S - A, S - A_sympy), (A - S, A_sympy - S), (A + S, A_sympy + S)):
+        assert isinstance(got, FlintMatrix) and entries(got) == _q(entries(want))
     with pytest.raises(ValueError):
         with use_engine("flint"):
             formula_matrix(sp.Matrix([[sp.sqrt(2)]]))
