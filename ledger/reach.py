@@ -64,6 +64,7 @@ NOT_DERIVATIONS = {
     "exact": "the exact zero-test engines (decide identities, build no formula)",
     "flint_engine": "the second exact engine (FLINT): decides zero tests, builds no formula",
     "flint_model": "the second engine's own evaluation of the definitions at exact points",
+    "flint_matrix": "the second engine's matrix type: printed formulas evaluated in fmpq",
     "counterexample": "renders a counterexample of the engine (text and LaTeX), derives nothing",
 }
 

@@ -22,11 +22,12 @@ Claims decided here, and why the checks cover every $n$:
   $dM = \det L_\gamma\, d\Omega$ (the Jacobian of $\Omega\mapsto L_\gamma\Omega$ in $\mathfrak{so}(n)$).
 
 All $n$: the first three are identities of matrix algebra proved symbolically for
-$n = 3,\dots,6$ and at seeded exact points up to $n = 12$; each is a formal consequence of
+$n = 3,\dots,6$ and at seeded exact points up to $n = 24$; each is a formal consequence of
 $\tfrac{d}{dt}(u v^T) = \dot u v^T + u\dot v^T$ and $[AB, \cdot]$ rules that do not depend on $n$.
 The energy and the measure need $L_\gamma^{-1}$, for which no closed form is known for a general
 $\mathbb{J}$: they are decided symbolically for $n = 3$ (and the energy for $n = 4$) and at exact
-rational points, where $\Omega = L_\gamma^{-1}M$ is an exact linear solve, up to $n = 12$.
+rational points, where $\Omega = L_\gamma^{-1}M$ is an exact linear solve, up to $n = 24$
+(every $n \le 12$, then 16, 20, 24: :func:`symbolic.points.all_n`).
 """
 
 from __future__ import annotations
@@ -65,11 +66,11 @@ from sympy.polys.matrices import DomainMatrix
 
 SYMBOLIC_N = (3, 4, 5, 6)
 POINT_N = tuple(points.all_n(3))
-#: the rows whose point step inverts L_gamma exactly: SymPy decides their points up to n = 8;
-#: eq:invmeasuredet's divergence needs the full exact inverse of the n(n-1)/2-square L_gamma
-#: (5 s for one point at n = 24 on an idle core, entries of thousands of bits): it stops at 20
+#: the rows whose point step inverts L_gamma exactly: SymPy decides their points up to n = 8
+#: (full inverse), FLINT at every n; FLINT's divergence takes one solve with n + 1 right-hand
+#: sides instead of the full inverse (flint_model.divergence_at_fmpq: 0.4 s at n = 24, not 2.7 s)
 ENERGY_N = points.all_n(3)
-MEASURE_N = points.all_n(3, top=20)
+MEASURE_N = points.all_n(3)
 eps = sp.Symbol("epsilon")
 b = sp.Symbol("b", positive=True)
 
@@ -355,7 +356,10 @@ def invariant_measure() -> Verdict:
         checks, n_values=MEASURE_N,
         method="ambient divergence of (det L)^(-1/2) X at seeded exact points (2 for n<=8, 1 above) of "
                f"so(n) x S^(n-1) (general diagonal J, b) for each n={points.n_text(MEASURE_N)}, computed exactly via "
-               "d(L^-1) = -L^-1 dL L^-1 and Jacobi's formula (symbolic.measure); the Leray-form "
+               "d(L^-1) = -L^-1 dL L^-1 and Jacobi's formula (symbolic.measure; SymPy with the full "
+               "inverse of L_gamma for n<=8, FLINT at every n with one solve L_gamma [Omega | Y] = "
+               "[M | e_r ^ gamma] and the trace identities of a symmetric L_gamma, "
+               "flint_model.divergence_at_fmpq); the Leray-form "
                "argument reduces invariance on P to the ambient divergence on ||gamma||=1",
         notes="The general-J claim (Fedorov-Kozlov) is backed by exact evidence at points, not a "
               "symbolic proof; the axisymmetric case is proved symbolically under P:Measure.")

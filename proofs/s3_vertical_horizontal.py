@@ -26,7 +26,7 @@ Euler's equations $\tilde{\mathbb I}\dot\Omega = (\tilde{\mathbb I}\Omega)\times
 
 * invariance for any $\Omega$ (so any inertia): $\tfrac{d}{dt}(M\gamma) = -\Omega(M\gamma)$ and, with
   $g = M - (M\gamma)\wedge\gamma$, $\dot g = [g, \Omega]$ — identities of matrix algebra, proved
-  symbolically for $n = 3..6$ and at exact points up to $n = 12$; they use only
+  symbolically for $n = 3..6$ and at exact points up to $n = 24$; they use only
   $[u\wedge v, \Omega] = -(\Omega u)\wedge v - u\wedge(\Omega v)$, which holds for every $n$;
 * space forms: for a rational rotation $R$ with $R\gamma = e_n$, $M_s = RMR^T$ satisfies
   $M_s e_n = R(M\gamma)$ and $M_s - (M_s e_n)\wedge e_n = R\,g\,R^T$, which gives the printed block forms;
@@ -43,14 +43,13 @@ from chaplygin_nd.symbolic.algebra import (
     basis_vector,
     hat,
     skew_symbols,
-    so_basis,
-    vec,
     vector_symbols,
     wedge,
 )
 from chaplygin_nd.symbolic.exact import Check, point_engines, rational_identity, zero_at_points
 from chaplygin_nd.symbolic.flint_engine import det as exact_det
 from chaplygin_nd.symbolic.flint_engine import rank as exact_rank
+from chaplygin_nd.symbolic.flint_matrix import entries, formula_matrix, from_columns
 from chaplygin_nd.symbolic.model import commutator, cross, mom3d, motion, motion3d
 from chaplygin_nd.symbolic.printed import section2 as printed2
 from chaplygin_nd.symbolic.printed import section3 as printed
@@ -69,7 +68,7 @@ SAMPLERS = {s: (lambda r: points.rational(r, 0, 4, 6, open_lo=True)) for s in (I
 SYMBOLIC_N = (3, 4, 5, 6)
 #: eq:def-H-V's dimension count evaluates the printed H_nd on all n(n-1)/2 basis elements in
 #: SymPy (O(n^5), 120 s at n = 24 under load): its points stop at n = 16
-POINT_N = tuple(n for n in points.all_n(3) if n <= 16)
+POINT_N = points.all_n(3)
 
 
 def _nullity(A: sp.Matrix) -> int:
@@ -253,10 +252,14 @@ def _space_forms(n, p):
 
 
 def _dimension_residual(n, p):
-    g = p["gamma"]
-    basis = so_basis(n)
-    maps = {"V": sp.Matrix.hstack(*[B * g for B in basis]),
-            "H": sp.Matrix.hstack(*[vec(printed.H_nd(B, g)) for B in basis])}
+    # the printed V_nd, H_nd on the basis E_i ^ E_j of so(n), evaluated in the arithmetic of this
+    # evaluation's engine (SymPy Matrix or flint_matrix.FlintMatrix: the transcription is the same)
+    g, eye = formula_matrix(p["gamma"]), formula_matrix(sp.eye(n))
+    basis = [wedge(eye[:, i], eye[:, j]) for i in range(n) for j in range(i + 1, n)]
+    upper = [i * n + j for i in range(n) for j in range(i + 1, n)]  # so(n) coordinates (vec)
+    maps = {"V": from_columns([entries(printed.V_nd(B, g)) for B in basis]),
+            "H": from_columns([[h[k] for k in upper]
+                               for h in (entries(printed.H_nd(B, g)) for B in basis)])}
     dims = printed.dimensions_nd(n)
     return [_nullity(maps[k]) + (n - 1) - dims[k] for k in ("V", "H")]
 

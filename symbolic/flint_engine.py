@@ -257,9 +257,16 @@ def linear_algebra_calls() -> int:
 def _fmpq_mat(A) -> flint.fmpq_mat:
     if isinstance(A, flint.fmpq_mat):
         return A
+    if isinstance(getattr(A, "mat", None), flint.fmpq_mat):  # a flint_matrix.FlintMatrix
+        return A.mat
     if isinstance(A, DomainMatrix):
         A = A.to_Matrix()
-    return flint.fmpq_mat(A.rows, A.cols, [to_fmpq(v) for v in A])
+    # the non-zero entries only (todok), not A[i, j] one by one: SymPy's item access dominated
+    # the conversion of the sparse n(n-1)/2-square matrices of the all-n rows
+    out = flint.fmpq_mat(A.rows, A.cols)
+    for (i, j), v in A.todok().items():
+        out[i, j] = to_fmpq(v)
+    return out
 
 
 def to_sympy_matrix(X: flint.fmpq_mat) -> sp.Matrix:
