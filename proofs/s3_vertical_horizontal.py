@@ -66,8 +66,8 @@ inertia = sp.diag(I1, I2, I3)
 SPHERE = tuple(gamma)
 SAMPLERS = {s: (lambda r: points.rational(r, 0, 4, 6, open_lo=True)) for s in (I1, I2, I3, b)}
 SYMBOLIC_N = (3, 4, 5, 6)
-#: eq:def-H-V's dimension count evaluates the printed H_nd on all n(n-1)/2 basis elements in
-#: SymPy (O(n^5), 120 s at n = 24 under load): its points stop at n = 16
+#: eq:def-H-V's dimension count evaluates the printed H_nd on all n(n-1)/2 basis elements in the
+#: engine's own arithmetic (FLINT alone above n = 12), so its points reach n = 24
 POINT_N = points.all_n(3)
 
 
