@@ -23,6 +23,7 @@ silence that one warning and report how many lines it returned.
 
 from __future__ import annotations
 
+import functools
 import itertools
 import warnings
 from dataclasses import dataclass
@@ -59,11 +60,20 @@ def spectral_lines(z: np.ndarray, dt: float, terms: int = 12, constant: float = 
     return omega[keep], amp[keep]
 
 
+@functools.lru_cache(maxsize=32)
+def _coefficient_grid(K: int, k: int) -> np.ndarray:
+    """Every integer vector in $[-K, K]^k$ (rows, as floats, read-only), in ``itertools.product``
+    order; built once per ``(K, k)`` (it was rebuilt on every call, 3 s of a cold evidence row)."""
+    grid = np.array(list(itertools.product(range(-K, K + 1), repeat=k)), dtype=float)
+    grid.flags.writeable = False
+    return grid
+
+
 def _relation(f: float, basis: list[float], tol: float, K: int) -> tuple[int, ...] | None:
     """Integers (c0, c1..ck), 1 <= c0 <= K, |ci| <= K, with |c0 f - sum ci bi| <= tol·c0, or None."""
     if not basis:
         return None
-    grid = np.array(list(itertools.product(range(-K, K + 1), repeat=len(basis))), dtype=float)
+    grid = _coefficient_grid(K, len(basis))
     combos = grid @ np.asarray(basis)
     for c0 in range(1, K + 1):
         err = np.abs(c0 * f - combos)
