@@ -208,6 +208,42 @@ def _projections(X: np.ndarray, nu: np.ndarray, dt: float, L: int, derivatives: 
     return S[:, 0], -1j * S[:, 1], -S[:, 2]
 
 
+def _find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a) -> None:
+    """The loop of :func:`spectral_lines_batch`: ``terms`` lines of every row of the residual
+    ``R`` (subtracted in place) into ``found_w``, ``found_a``. Runs with one BLAS thread (the caller
+    limits it): the products are small, and on a busy machine (``make verify`` runs a worker per
+    core) OpenBLAS's waiting threads made them and everything after them up to 3x slower
+    (measured, notes/r20-evidence.md)."""
+    K, N = R.shape
+    omega_grid = 2 * np.pi * np.fft.fftfreq(pad, d=dt)
+    idx = np.arange(K)
+    X = np.zeros((K, P * L), dtype=complex)      # the windowed residual, zero-padded to P * L
+    for m in range(terms):
+        np.multiply(R, w[None], out=X[:, :N])
+        spec = np.abs(np.fft.fft(X, n=pad, axis=1))  # pad >= N: the same zero-padded input
+        i = np.argmax(spec, axis=1)
+        y0, y1, y2 = (np.log(spec[idx, (i + s) % pad] + 1e-300) for s in (-1, 0, 1))
+        den = y0 - 2 * y1 + y2
+        shift = np.where(np.abs(den) > 0, 0.5 * (y0 - y2) / np.where(den == 0, 1, den), 0.0)
+        nu = omega_grid[i] + shift * (2 * np.pi / (pad * dt))
+        Xr = X.reshape(K, P, L)
+        for _ in range(newton):
+            phi, d1, d2 = _projections(Xr, nu, dt, L, True)
+            g = 2 * np.real(np.conj(phi) * d1)
+            h = 2 * np.real(np.abs(d1) ** 2 + np.conj(phi) * d2)
+            step = np.where(h < 0, g / np.where(h == 0, 1, h), 0.0)
+            nu = nu - np.clip(step, -np.pi / (N * dt), np.pi / (N * dt))
+        phi, alpha, beta = _projections(Xr, nu, dt, L, False)
+        found_w[:, m] = nu
+        found_a[:, m] = np.abs(phi)
+        # subtract the line phi e^{i nu t}, e^{i nu t_j} = conj(alpha_p beta_l) (<e, e>_w = 1)
+        line = alpha[:, :, None] * beta[:, None, :]
+        np.conjugate(line, out=line)
+        line = line.reshape(K, P * L)[:, :N]
+        line *= phi[:, None]
+        R -= line
+
+
 def spectral_lines_batch(Z: np.ndarray, dt: float, terms: int = 12, constant: float = 1e-6,
                          floor: float = 1e-9, newton: int = 4) -> list[tuple[np.ndarray, np.ndarray]]:
     r"""NAFF lines of many signals at once (the orbits of an ensemble): ``Z`` of shape ``(K, N)``,
@@ -235,35 +271,12 @@ def spectral_lines_batch(Z: np.ndarray, dt: float, terms: int = 12, constant: fl
     from scipy.fft import next_fast_len
 
     pad = next_fast_len(N)
-    omega_grid = 2 * np.pi * np.fft.fftfreq(pad, d=dt)
     found_w = np.zeros((K, terms))
     found_a = np.zeros((K, terms))
-    idx = np.arange(K)
-    X = np.zeros((K, P * L), dtype=complex)      # the windowed residual, zero-padded to P * L
-    for m in range(terms):
-        np.multiply(R, w[None], out=X[:, :N])
-        spec = np.abs(np.fft.fft(X, n=pad, axis=1))  # pad >= N: the same zero-padded input
-        i = np.argmax(spec, axis=1)
-        y0, y1, y2 = (np.log(spec[idx, (i + s) % pad] + 1e-300) for s in (-1, 0, 1))
-        den = y0 - 2 * y1 + y2
-        shift = np.where(np.abs(den) > 0, 0.5 * (y0 - y2) / np.where(den == 0, 1, den), 0.0)
-        nu = omega_grid[i] + shift * (2 * np.pi / (pad * dt))
-        Xr = X.reshape(K, P, L)
-        for _ in range(newton):
-            phi, d1, d2 = _projections(Xr, nu, dt, L, True)
-            g = 2 * np.real(np.conj(phi) * d1)
-            h = 2 * np.real(np.abs(d1) ** 2 + np.conj(phi) * d2)
-            step = np.where(h < 0, g / np.where(h == 0, 1, h), 0.0)
-            nu = nu - np.clip(step, -np.pi / (N * dt), np.pi / (N * dt))
-        phi, alpha, beta = _projections(Xr, nu, dt, L, False)
-        found_w[:, m] = nu
-        found_a[:, m] = np.abs(phi)
-        # subtract the line phi e^{i nu t}, e^{i nu t_j} = conj(alpha_p beta_l) (<e, e>_w = 1)
-        line = alpha[:, :, None] * beta[:, None, :]
-        np.conjugate(line, out=line)
-        line = line.reshape(K, P * L)[:, :N]
-        line *= phi[:, None]
-        R -= line
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(1, user_api="blas"):
+        _find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a)
     out = []
     for k in range(K):
         if not live[k]:
