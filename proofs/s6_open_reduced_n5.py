@@ -43,6 +43,7 @@ from chaplygin_nd.ledger.registry import Verdict, claim
 from chaplygin_nd.proofs import drawn_common as dc
 from chaplygin_nd.simulate import evidence_rows as er
 from chaplygin_nd.simulate.control import CHAOTIC_J
+from chaplygin_nd.simulate.drawn_evidence import BATCH
 from chaplygin_nd.simulate.frequencies import REGULAR
 from chaplygin_nd.symbolic import algebra, model, points
 from chaplygin_nd.symbolic.points import ledger_seed
@@ -193,7 +194,7 @@ def s6_open_reduced_n5() -> Verdict:
     return Verdict.numerical(
         derived and no_chaos and over <= dc.CONTRADICTING_MAX,
         measured=measured, initial_conditions=len(res),
-        tolerance=("heyoka Taylor tol 1e-10, batch 4, T = 4096 at energy scale 1, dt = 0.5; NAFF "
+        tolerance=(f"heyoka Taylor tol 1e-10, batch {BATCH}, T = 4096 at energy scale 1, dt = 0.5; NAFF "
                    "vectorised; |coefficients| <= 4; D < 1e-5 regular; MEGNO regular <= 2.5, "
                    "chaotic >= 4"),
         contradiction=("of integrability: more than 2 % MEGNO-chaotic orbits, fewer than 90 % "

@@ -1,5 +1,5 @@
 """Issue 20: the faster vectorised NAFF (BLAS products, one windowed buffer) equals the earlier
-``einsum`` formulation, and the batch schedule of the drawn evidence changes no orbit."""
+``einsum`` formulation, and the batch schedule and width of the drawn evidence change no orbit."""
 
 from __future__ import annotations
 
@@ -107,18 +107,19 @@ def test_lines_equal_the_einsum_formulation_on_random_signals(N, dt):
     assert compared >= 24 * 5                        # every planted line was compared
 
 
-def test_the_batch_schedule_changes_no_orbit(tmp_path, monkeypatch):
+def test_the_batch_schedule_and_width_change_no_orbit(tmp_path, monkeypatch):
     pytest.importorskip("heyoka")
     from chaplygin_nd.simulate import drawn_evidence as de
     from chaplygin_nd.simulate import draws, so
 
     monkeypatch.setenv("CHAPLYGIN_ND_CACHE", str(tmp_path))
-    ens = draws.draw("schedule test", "generic", 4, 7, 5)   # 7 orbits: a padded last batch
+    ens = draws.draw("schedule test", "generic", 4, 11, 5)  # 11 orbits: padded last batches
     y0 = np.concatenate([so.vec(ens.M0), ens.gamma0], axis=-1)
     s = de.Setting("schedule", "full", 4, 48.0, 0.5, observables="four", expected=3)
     order = de.schedule(ens)
-    assert sorted(order) == list(range(7)) and not np.array_equal(order, np.arange(7))
+    assert sorted(order) == list(range(11)) and not np.array_equal(order, np.arange(11))
     Z, megno, lyap = de._integrate(s, ens, y0, 5)
     monkeypatch.setattr(de, "schedule", lambda e: np.arange(e.count))
+    monkeypatch.setattr(de, "BATCH", 4)            # and the SIMD width of issue 16
     Z0, megno0, lyap0 = de._integrate(s, ens, y0, 5)
     assert np.array_equal(Z, Z0) and np.array_equal(megno, megno0) and np.array_equal(lyap, lyap0)
