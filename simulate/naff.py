@@ -208,6 +208,18 @@ def _projections(X: np.ndarray, nu: np.ndarray, dt: float, L: int, derivatives: 
     return S[:, 0], -1j * S[:, 1], -S[:, 2]
 
 
+def _one_blas_thread():
+    """A context with one BLAS thread (threadpoolctl, a dependency; a venv installed before it was
+    added only runs slower, the lines are the same)."""
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:  # pragma: no cover - the dependency is declared
+        import contextlib
+
+        return contextlib.nullcontext()
+    return threadpool_limits(1, user_api="blas")
+
+
 def _find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a) -> None:
     """The loop of :func:`spectral_lines_batch`: ``terms`` lines of every row of the residual
     ``R`` (subtracted in place) into ``found_w``, ``found_a``. Runs with one BLAS thread (the caller
@@ -273,9 +285,7 @@ def spectral_lines_batch(Z: np.ndarray, dt: float, terms: int = 12, constant: fl
     pad = next_fast_len(N)
     found_w = np.zeros((K, terms))
     found_a = np.zeros((K, terms))
-    from threadpoolctl import threadpool_limits
-
-    with threadpool_limits(1, user_api="blas"):
+    with _one_blas_thread():
         _find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a)
     out = []
     for k in range(K):
