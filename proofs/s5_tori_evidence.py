@@ -38,6 +38,7 @@ from chaplygin_nd.proofs import drawn_common as dc
 from chaplygin_nd.simulate import evidence_rows as er
 from chaplygin_nd.simulate.chaos import MEGNO_CHAOTIC, MEGNO_REGULAR
 from chaplygin_nd.simulate.control import CHAOTIC_J
+from chaplygin_nd.simulate.drawn_evidence import BATCH
 from chaplygin_nd.simulate.frequencies import REGULAR
 from chaplygin_nd.symbolic.points import ledger_seed
 from chaplygin_nd.symbolic.printed import section4 as printed4
@@ -47,7 +48,7 @@ SECTION4 = "Section 4 — the axisymmetric sphere"
 SECTION5 = "Section 5 — n = 4"
 ROTATION_AGREE = 1e-6     # relative: the same rotation number on one level set
 
-SETTINGS = (f"heyoka Taylor (batch of 4, compact mode, tol 1e-10) with a MEGNO tangent vector; "
+SETTINGS = (f"heyoka Taylor (batch of {BATCH}, compact mode, tol 1e-10) with a MEGNO tangent vector; "
             f"NAFF vectorised over orbits (order-2 Hann window) on complex observables; "
             f"integer-relation search |coefficients| <= 4, relative tolerance max(1e-7, 10 D); "
             f"regular: D < {REGULAR:g}; MEGNO regular <= {MEGNO_REGULAR:g}, chaotic >= "

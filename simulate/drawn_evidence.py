@@ -37,9 +37,13 @@ from chaplygin_nd.simulate import chaos, draws, naff, so
 from chaplygin_nd.simulate.draws import Ensemble
 from chaplygin_nd.simulate.frequencies import REGULAR
 
-__all__ = ["Setting", "OrbitResult", "measure", "classify", "summary", "BATCH"]
+__all__ = ["Setting", "OrbitResult", "measure", "classify", "summary", "schedule", "BATCH"]
 
-BATCH = 4   # SIMD lanes of heyoka's batch mode (AVX2 doubles); one compiled integrator each
+#: orbits per compiled step of heyoka's batch mode (one compiled integrator per system). 8, not
+#: heyoka's recommended SIMD width 4: measured per orbit (CPU, n = 5 / 7 tangent systems, one
+#: batch of equal orbits) 0.087 / 0.136 s at 4, 0.050 / 0.084 s at 8, 0.047 / 0.085 s at 16. The
+#: lanes are independent, so the width changes no orbit (bit-identical, tests/test_naff_projections.py).
+BATCH = 8
 
 
 @dataclass(frozen=True)
@@ -137,19 +141,34 @@ def observables(s: Setting, Y: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.n
     return np.moveaxis(np.array(z), (0, 1, 2), (1, 2, 0))
 
 
+def schedule(ens: Ensemble) -> np.ndarray:
+    r"""The order in which the orbits of ``ens`` fill heyoka's batches: sorted by $(a, b, s)$.
+
+    A batch runs until its slowest lane is done, and the number of Taylor steps of an orbit
+    depends mostly on $a$ (measured on the $n = 5$ draw: about 8000 at $a = -0.9$, 3000 at $a = 2$),
+    while the draws cycle $a$ with period 4: in draw order every batch held orbits of every $a$
+    and waited for the slowest (with 4 lanes: 1.4x the steps of the sorted order). Each lane is
+    integrated independently (its own step sizes), so the order changes no orbit: the results are
+    bit-identical (tests/test_drawn_evidence.py) and are returned in draw order."""
+    return np.lexsort((ens.scale, ens.b, ens.a))
+
+
 def _integrate(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int):
-    """Signals ``(count, signals, samples)``, MEGNO and Lyapunov estimates per orbit."""
+    """Signals ``(count, signals, samples)``, MEGNO and Lyapunov estimates per orbit (draw order)."""
     from chaplygin_nd.simulate.integrators.heyoka_taylor import compiled_integrator
 
     system = _system(s)
     ta, _, _ = compiled_integrator(system, "double", s.tol, compact=True, batch=BATCH)
     d = y0.shape[1]
     u0 = chaos.initial_tangents(len(y0), d, seed)
+    order = schedule(ens)
+    ens, y0, u0 = subset(ens, order), y0[order], u0[order]
     t = np.arange(int(round(s.T / s.dt)) + 1) * s.dt
-    sig, megno, lyap = [], [], []
+    sig, megno, lyap = None, np.empty(len(y0)), np.empty(len(y0))
     for start in range(0, len(y0), BATCH):
         sl = slice(start, min(start + BATCH, len(y0)))
         used = sl.stop - sl.start
+        where = order[sl]                                     # their places in draw order
 
         def pad(x, used=used):
             return np.concatenate([x, np.repeat(x[-1:], BATCH - used, 0)])
@@ -163,13 +182,16 @@ def _integrate(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int):
         _, states = ta.propagate_grid(grid)
         for lane, res in enumerate(ta.propagate_res[:used]):
             if str(res[0]) != "taylor_outcome.time_limit":
-                raise RuntimeError(f"{s.name}: heyoka stopped early ({res[0]}) on orbit {start + lane}")
+                raise RuntimeError(f"{s.name}: heyoka stopped early ({res[0]}) on orbit {where[lane]}")
         states = states[:, :, :used]
         Y = np.moveaxis(states[:, :d, :], 1, 2)              # (samples, lanes, dim)
-        sig.append(observables(s, Y, ens.a[sl], ens.b[sl]))
-        megno.append(chaos.megno_from_samples(grid[:, :used], states[:, -1, :]))
-        lyap.append(states[-1, -2, :] / grid[-1, :used])
-    return np.concatenate(sig), np.concatenate(megno), np.concatenate(lyap)
+        z = observables(s, Y, ens.a[sl], ens.b[sl])
+        if sig is None:
+            sig = np.empty((len(y0),) + z.shape[1:], dtype=z.dtype)
+        sig[where] = z
+        megno[where] = chaos.megno_from_samples(grid[:, :used], states[:, -1, :])
+        lyap[where] = states[-1, -2, :] / grid[-1, :used]
+    return sig, megno, lyap
 
 
 def _relation(spec: naff.Spectrum) -> str:

@@ -23,6 +23,7 @@ silence that one warning and report how many lines it returned.
 
 from __future__ import annotations
 
+import functools
 import itertools
 import warnings
 from dataclasses import dataclass
@@ -59,11 +60,20 @@ def spectral_lines(z: np.ndarray, dt: float, terms: int = 12, constant: float = 
     return omega[keep], amp[keep]
 
 
+@functools.lru_cache(maxsize=32)
+def _coefficient_grid(K: int, k: int) -> np.ndarray:
+    """Every integer vector in $[-K, K]^k$ (rows, as floats, read-only), in ``itertools.product``
+    order; built once per ``(K, k)`` (it was rebuilt on every call, 3 s of a cold evidence row)."""
+    grid = np.array(list(itertools.product(range(-K, K + 1), repeat=k)), dtype=float)
+    grid.flags.writeable = False
+    return grid
+
+
 def _relation(f: float, basis: list[float], tol: float, K: int) -> tuple[int, ...] | None:
     """Integers (c0, c1..ck), 1 <= c0 <= K, |ci| <= K, with |c0 f - sum ci bi| <= tol·c0, or None."""
     if not basis:
         return None
-    grid = np.array(list(itertools.product(range(-K, K + 1), repeat=len(basis))), dtype=float)
+    grid = _coefficient_grid(K, len(basis))
     combos = grid @ np.asarray(basis)
     for c0 in range(1, K + 1):
         err = np.abs(c0 * f - combos)
@@ -172,25 +182,78 @@ def _blocks(N: int) -> tuple[int, int]:
 
 def _projections(X: np.ndarray, nu: np.ndarray, dt: float, L: int, derivatives: bool):
     r"""$\phi(\nu) = \sum_j X_j e^{-i\nu t_j}$ and (``derivatives``) $\phi'$, $\phi''$ for every row of
-    ``X`` (shape ``(K, P, L)``, zero-padded), $t_j = j\,dt$, $j = pL + l$: the exponential factorises,
-    $e^{-i\nu t_j} = \alpha_p\beta_l$, so each sum is two small matrix products (no $K\times N$
-    exponentials)."""
+    ``X`` (shape ``(K, P, L)``, zero-padded, C-contiguous complex128), $t_j = j\,dt$, $j = pL + l$: the
+    exponential factorises, $e^{-i\nu t_j} = \alpha_p\beta_l$, so each sum is two small matrix
+    products per row (no $K\times N$ exponentials). Without ``derivatives`` returns
+    ``(phi, alpha, beta)``.
+
+    The products are stacked ``@`` with three columns (one BLAS ``zgemm`` per row): the same sums
+    as the earlier ``einsum`` formulation, which did not use BLAS and was half of the NAFF time
+    (tests/test_naff_projections.py compares the two). Always three columns, also when only
+    $\phi$ is needed: a one-column product is a matrix-vector product, which OpenBLAS runs
+    multi-threaded and which was 10-100x slower on the shared 2-core machine (measured)."""
     K, P, _ = X.shape
     p = np.arange(P) * (L * dt)
     l_ = np.arange(L) * dt
     alpha = np.exp(-1j * nu[:, None] * p[None])     # (K, P)
     beta = np.exp(-1j * nu[:, None] * l_[None])     # (K, L)
-    if not derivatives:
-        phi = np.einsum("kp,kp->k", alpha, np.einsum("kpl,kl->kp", X, beta))
-        return phi, alpha, beta
     B = np.stack([beta, beta * l_[None], beta * (l_ ** 2)[None]], axis=-1)   # (K, L, 3)
-    XB = np.einsum("kpl,klj->kpj", X, B)                                     # (K, P, 3)
+    XB = X @ B                                                               # (K, P, 3)
     Xb, Xbl, Xbll = XB[..., 0], XB[..., 1], XB[..., 2]
     # t = p + l (in time units): sum t X e = sum_p alpha (p Xb + Xbl), and so on
-    phi = np.einsum("kp,kp->k", alpha, Xb)
-    d1 = np.einsum("kp,kp->k", alpha, p[None] * Xb + Xbl)
-    d2 = np.einsum("kp,kp->k", alpha, (p ** 2)[None] * Xb + 2 * p[None] * Xbl + Xbll)
-    return phi, -1j * d1, -d2
+    W = np.stack([Xb, p[None] * Xb + Xbl, (p ** 2)[None] * Xb + 2 * p[None] * Xbl + Xbll], axis=-1)
+    S = (alpha[:, None, :] @ W)[:, 0, :]                                     # (K, 3)
+    if not derivatives:
+        return S[:, 0], alpha, beta
+    return S[:, 0], -1j * S[:, 1], -S[:, 2]
+
+
+def _one_blas_thread():
+    """A context with one BLAS thread (threadpoolctl, a dependency; a venv installed before it was
+    added only runs slower, the lines are the same)."""
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:  # pragma: no cover - the dependency is declared
+        import contextlib
+
+        return contextlib.nullcontext()
+    return threadpool_limits(1, user_api="blas")
+
+
+def _find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a) -> None:
+    """The loop of :func:`spectral_lines_batch`: ``terms`` lines of every row of the residual
+    ``R`` (subtracted in place) into ``found_w``, ``found_a``. Runs with one BLAS thread (the caller
+    limits it): the products are small, and on a busy machine (``make verify`` runs a worker per
+    core) OpenBLAS's waiting threads made them and everything after them up to 3x slower
+    (measured, notes/r20-evidence.md)."""
+    K, N = R.shape
+    omega_grid = 2 * np.pi * np.fft.fftfreq(pad, d=dt)
+    idx = np.arange(K)
+    X = np.zeros((K, P * L), dtype=complex)      # the windowed residual, zero-padded to P * L
+    for m in range(terms):
+        np.multiply(R, w[None], out=X[:, :N])
+        spec = np.abs(np.fft.fft(X, n=pad, axis=1))  # pad >= N: the same zero-padded input
+        i = np.argmax(spec, axis=1)
+        y0, y1, y2 = (np.log(spec[idx, (i + s) % pad] + 1e-300) for s in (-1, 0, 1))
+        den = y0 - 2 * y1 + y2
+        shift = np.where(np.abs(den) > 0, 0.5 * (y0 - y2) / np.where(den == 0, 1, den), 0.0)
+        nu = omega_grid[i] + shift * (2 * np.pi / (pad * dt))
+        Xr = X.reshape(K, P, L)
+        for _ in range(newton):
+            phi, d1, d2 = _projections(Xr, nu, dt, L, True)
+            g = 2 * np.real(np.conj(phi) * d1)
+            h = 2 * np.real(np.abs(d1) ** 2 + np.conj(phi) * d2)
+            step = np.where(h < 0, g / np.where(h == 0, 1, h), 0.0)
+            nu = nu - np.clip(step, -np.pi / (N * dt), np.pi / (N * dt))
+        phi, alpha, beta = _projections(Xr, nu, dt, L, False)
+        found_w[:, m] = nu
+        found_a[:, m] = np.abs(phi)
+        # subtract the line phi e^{i nu t}, e^{i nu t_j} = conj(alpha_p beta_l) (<e, e>_w = 1)
+        line = alpha[:, :, None] * beta[:, None, :]
+        np.conjugate(line, out=line)
+        line = line.reshape(K, P * L)[:, :N]
+        line *= phi[:, None]
+        R -= line
 
 
 def spectral_lines_batch(Z: np.ndarray, dt: float, terms: int = 12, constant: float = 1e-6,
@@ -220,32 +283,10 @@ def spectral_lines_batch(Z: np.ndarray, dt: float, terms: int = 12, constant: fl
     from scipy.fft import next_fast_len
 
     pad = next_fast_len(N)
-    omega_grid = 2 * np.pi * np.fft.fftfreq(pad, d=dt)
     found_w = np.zeros((K, terms))
     found_a = np.zeros((K, terms))
-    idx = np.arange(K)
-    for m in range(terms):
-        spec = np.abs(np.fft.fft(R * w[None], n=pad, axis=1))
-        i = np.argmax(spec, axis=1)
-        y0, y1, y2 = (np.log(spec[idx, (i + s) % pad] + 1e-300) for s in (-1, 0, 1))
-        den = y0 - 2 * y1 + y2
-        shift = np.where(np.abs(den) > 0, 0.5 * (y0 - y2) / np.where(den == 0, 1, den), 0.0)
-        nu = omega_grid[i] + shift * (2 * np.pi / (pad * dt))
-        X = np.zeros((K, P * L), dtype=complex)
-        X[:, :N] = R * w[None]
-        X = X.reshape(K, P, L)
-        for _ in range(newton):
-            phi, d1, d2 = _projections(X, nu, dt, L, True)
-            g = 2 * np.real(np.conj(phi) * d1)
-            h = 2 * np.real(np.abs(d1) ** 2 + np.conj(phi) * d2)
-            step = np.where(h < 0, g / np.where(h == 0, 1, h), 0.0)
-            nu = nu - np.clip(step, -np.pi / (N * dt), np.pi / (N * dt))
-        phi, alpha, beta = _projections(X, nu, dt, L, False)
-        found_w[:, m] = nu
-        found_a[:, m] = np.abs(phi)
-        # subtract the line phi e^{i nu t}, e^{i nu t_j} = conj(alpha_p beta_l) (<e, e>_w = 1)
-        line = np.conj(alpha[:, :, None] * beta[:, None, :]).reshape(K, P * L)[:, :N]
-        R -= phi[:, None] * line
+    with _one_blas_thread():
+        _find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a)
     out = []
     for k in range(K):
         if not live[k]:
