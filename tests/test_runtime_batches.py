@@ -157,3 +157,21 @@ def test_compiled_with_gamma_alone_batched(n):
         scale = float(np.linalg.norm(M)) * 4  # |L^-1| <= 1/min(2, 2+a) at these a, b
         assert err <= 16 * EPS * scale, (k, err / (EPS * scale))
         assert np.array_equal(Omega[k], -Omega[k].T)
+
+
+@pytest.mark.parametrize("n", [3, 4, 6])
+def test_vec_and_unvec_are_inverse_on_skew_matrices(n):
+    """unvec returns skew matrices (both triangles: a mutant writing +c below the diagonal had
+    passed every runtime test, which read results through vec), and vec/unvec invert each other."""
+    rng = np.random.default_rng(n)
+    c = rng.standard_normal((5, 2, n * (n - 1) // 2))
+    A = axisym.unvec(c, n)
+    assert A.shape == (5, 2, n, n)
+    assert np.array_equal(A, -np.swapaxes(A, -1, -2))
+    assert np.array_equal(axisym.vec(A), c)
+    assert np.array_equal(axisym.unvec(axisym.vec(A), n), A)
+    M = axisym.unvec(c[0, 0], n)
+    gamma = rng.standard_normal(n)
+    gamma /= np.linalg.norm(gamma)
+    Omega = axisym.angular_velocity(M, gamma, 0.3, 1.2)
+    assert np.array_equal(Omega, -Omega.T)  # the result is a skew matrix, not only its upper half
