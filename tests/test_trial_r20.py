@@ -7,10 +7,11 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
 import pytest
 from chaplygin_nd.ledger.__main__ import _report_paths
 
-from chaplygin_nd import cli
+from chaplygin_nd import api, cli
 
 
 def _exit_code(call, argv) -> int:
@@ -62,3 +63,49 @@ def test_report_dir_accepts_its_own_earlier_reports(tmp_path):
     assert (md.name, js.name, svg.name) == ("VERIFICATION.md", "verification.json",
                                             "claim-graph.svg")
     assert _report_paths(str(tmp_path / "new"), whole=True)[0].parent == tmp_path / "new"
+
+
+# the notebook API: input outside the domain raises ValueError naming it, never a silent answer
+def _state(n, seed=0):
+    rng = np.random.default_rng(seed)
+    A = rng.normal(size=(n, n))
+    gamma = rng.normal(size=n)
+    return A - A.T, gamma / np.linalg.norm(gamma)
+
+
+@pytest.mark.parametrize("kernel", [api.angular_velocity, api.L_gamma, api.vector_field,
+                                    api.energy])
+def test_the_api_refuses_complex_input(kernel):
+    M, gamma = _state(4)
+    for args, name in [((M * (1 + 1j), gamma, 0.5, 1.0), "M"),
+                       ((M, gamma * 1j, 0.5, 1.0), "gamma"),
+                       ((M, gamma, 0.5 + 1j, 1.0), "a"),
+                       ((M, gamma, 0.5, np.complex128(1.0)), "b")]:
+        with pytest.raises(ValueError, match=f"^{name}" if name != "M" else "^(M|Omega) is complex"):
+            kernel(*args)
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_the_api_refuses_non_finite_M_and_gamma(bad):
+    M, gamma = _state(4)
+    gamma[1] = bad
+    with pytest.raises(ValueError, match="^gamma has a non-finite entry"):
+        api.angular_velocity(M, gamma, 0.5, 1.0)
+    M, gamma = _state(4)
+    M[0, 1], M[1, 0] = bad, -bad
+    with pytest.raises(ValueError, match="^M has a non-finite entry"):
+        api.energy(M, gamma, 0.5, 1.0)
+
+
+@pytest.mark.parametrize("n", [0, 1, 2])
+def test_the_api_refuses_n_below_3(n):
+    M, gamma = np.zeros((n, n)), np.ones(n)
+    for kernel in (api.angular_velocity, api.L_gamma, api.energy, api.zeta):
+        with pytest.raises(ValueError, match=r"n >= 3"):
+            kernel(M, gamma, 0.5, 1.0)
+
+
+def test_the_api_still_takes_real_lists_and_integers():
+    M = [[0, 1, 0], [-1, 0, 0], [0, 0, 0]]
+    Omega = api.angular_velocity(M, [0, 0, 1], 0.5, 1)
+    assert np.allclose(api.L_gamma(Omega, [0, 0, 1], 0.5, 1), M, rtol=0, atol=1e-14)
