@@ -32,7 +32,14 @@ from chaplygin_nd.ledger.runner import run, select, unknown_registrations
 from chaplygin_nd.symbolic.points import DEFAULT_SEED
 
 from chaplygin_nd.cli import commit, version_line
-from chaplygin_nd.console import OneLineParser, fail, interruptible, path_argument, say
+from chaplygin_nd.console import (
+    OneLineParser,
+    fail,
+    interruptible,
+    path_argument,
+    positive_int,
+    say,
+)
 
 #: command -> its one-line description (``-h``).
 _DESCRIPTIONS = {
@@ -81,7 +88,7 @@ def _main(argv: list[str] | None, command: str) -> int:
         "prove": "ledger ids to decide (--list lists them)",
         "verify": argparse.SUPPRESS}.get(command, "ledger ids to run (default: all)"))
     parser.add_argument("--version", action="version", version=version_line())
-    parser.add_argument("--jobs", "-j", type=int, default=None,
+    parser.add_argument("--jobs", "-j", type=positive_int, default=None,
                         help="worker processes (default: one per core)")
     parser.add_argument("--check-generated", action="store_true",
                         help="also regenerate generated/ into a temporary folder and fail on a difference")

@@ -109,3 +109,36 @@ def test_the_api_still_takes_real_lists_and_integers():
     M = [[0, 1, 0], [-1, 0, 0], [0, 0, 0]]
     Omega = api.angular_velocity(M, [0, 0, 1], 0.5, 1)
     assert np.allclose(api.L_gamma(Omega, [0, 0, 1], 0.5, 1), M, rtol=0, atol=1e-14)
+
+
+# mutate --compare: a file that cannot be read is refused before the (long) run, not after it
+def test_mutate_reads_compare_before_the_run(tmp_path, monkeypatch, capsys):
+    from chaplygin_nd.ledger import mutate
+
+    monkeypatch.setattr(mutate, "baseline", lambda *a, **k: pytest.fail("the run started"))
+    out = tmp_path / "m.json"
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"summary": "x"}')
+    for compare, why in [(tmp_path / "missing.json", "cannot read it"),
+                         (bad, "not a mutation.json")]:
+        argv = ["mutate", "--function", "section3.H_nd", "--compare", str(compare), "--out", str(out)]
+        assert _exit_code(cli.main, argv) == 2
+        line = _one_error_line(capsys)
+        assert f"--compare {compare}" in line and why in line, line
+    assert not out.exists() and bad.read_text() == '{"summary": "x"}'
+    good = tmp_path / "good.json"
+    good.write_text(json.dumps({"mutants": [{"function": "f", "mutation": "m", "outcome": "killed"}]}))
+    theirs = mutate.compared_outcomes(good)
+    assert mutate._compare([{"function": "f", "mutation": "m", "outcome": "survived"}], theirs) \
+        == ["f m: killed there, survived here"]
+
+
+# counts must be positive: --jobs 0 meant "one per core" and --jobs -3 one worker, silently
+@pytest.mark.parametrize("argv", [
+    ["verify", "--jobs", "0"], ["prove", "eq:invL3D", "--jobs", "-3"], ["verify", "-j", "two"],
+    ["mutate", "--jobs", "0"], ["mutate", "--per-function", "0"], ["mutate", "--sample", "-1"],
+])
+def test_counts_must_be_positive(argv, capsys):
+    assert _exit_code(cli.main, argv) == 2
+    line = _one_error_line(capsys)
+    assert any(o in line for o in ("--jobs", "-j", "--per-function", "--sample")), line
