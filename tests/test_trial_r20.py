@@ -142,3 +142,28 @@ def test_counts_must_be_positive(argv, capsys):
     assert _exit_code(cli.main, argv) == 2
     line = _one_error_line(capsys)
     assert any(o in line for o in ("--jobs", "-j", "--per-function", "--sample")), line
+
+
+# chaplygin docs: -h is help (it was taken for a report path), a bad report is one line
+def test_docs_help_and_extra_arguments(capsys):
+    assert _exit_code(cli.main, ["docs", "-h"]) == 0
+    assert capsys.readouterr().out.startswith("usage: chaplygin docs")
+    assert _exit_code(cli.main, ["docs", "a.json", "b.json"]) == 2
+    assert "unrecognized arguments" in _one_error_line(capsys)
+
+
+@pytest.mark.parametrize("text", ["not json", "{}", '{"rows": 3}', "[]"])
+def test_docs_pages_refuse_a_report_that_is_not_ours(tmp_path, monkeypatch, capsys, text):
+    import importlib
+
+    from chaplygin_nd.ledger.catalog import ROOT
+
+    monkeypatch.syspath_prepend(str(ROOT / "docs"))
+    build_pages = importlib.import_module("build_pages")
+    report = tmp_path / "verification.json"
+    report.write_text(text)
+    out = tmp_path / "src"
+    assert build_pages.main(["--report", str(report), "--out", str(out)]) == 2
+    line = _one_error_line(capsys)
+    assert "is not a verification.json" in line, line
+    assert not out.exists()
