@@ -167,3 +167,17 @@ def test_docs_pages_refuse_a_report_that_is_not_ours(tmp_path, monkeypatch, caps
     line = _one_error_line(capsys)
     assert "is not a verification.json" in line, line
     assert not out.exists()
+
+
+# an empty scene name is not the current folder
+@pytest.mark.parametrize("name", ["", "  "])
+def test_an_empty_scene_name_is_refused(name, tmp_path, monkeypatch, capsys):
+    from chaplygin_nd.simulate.scene import SceneError
+
+    monkeypatch.chdir(tmp_path)
+    assert _exit_code(cli.main, ["simulate", name, "--out", str(tmp_path / "o")]) == 2
+    line = _one_error_line(capsys)
+    assert "an empty scene name" in line and "steady4d" in line, line
+    assert list(tmp_path.iterdir()) == []
+    with pytest.raises(SceneError, match="an empty scene name"):
+        api.simulate(name)
