@@ -39,7 +39,8 @@ def decide(claim_id: str, *, seed: int | None = None) -> Result:
     ``result.verdict`` (method, ``n_values``, the exact counterexample of a corrected row, kind),
     ``result.seconds``, ``result.uses``. ``seed`` is the seed of the seeded checks (default: the
     ledger's, :data:`chaplygin_nd.symbolic.points.DEFAULT_SEED`). An unknown id raises
-    ``KeyError``. Domain: every row of ``chaplygin prove --list``.
+    ``KeyError`` naming the nearest ids, as ``chaplygin prove`` does. Domain: every row of
+    ``chaplygin prove --list``.
 
     P:inversion, $\Omega = \tfrac12 M + K/(2\Delta)$ with the printed $K$, is decided by two
     parts (the derived inverse solves $L_\gamma(\Omega) = M$; the printed formula equals it),
@@ -52,10 +53,13 @@ def decide(claim_id: str, *, seed: int | None = None) -> Result:
     >>> {3, 4, 5} <= set(r.verdict.n_values) and r.verdict.counterexample is None
     True
     """
+    from chaplygin_nd.ledger.catalog import resolve
     from chaplygin_nd.ledger.runner import run, select
     from chaplygin_nd.symbolic import points
 
-    (result,) = run(select([claim_id]), jobs=1,
+    if not isinstance(claim_id, str):
+        raise TypeError(f"claim_id must be one ledger id (a str), not {type(claim_id).__name__}")
+    (result,) = run(select(resolve([claim_id])), jobs=1,
                     seed=points.DEFAULT_SEED if seed is None else seed)
     return result
 

@@ -65,6 +65,9 @@ def _verdict(results, rerun, *, measured: str, contradiction: str, method: str, 
     control, control_text = _control()
     on_megno, on_freq = dc.separates(results, control)
     ok = dc.supported(results) and extra_support
+    # an open row says first which part of the rule fixed beforehand failed
+    unmet = dc.unmet(results) + ([] if extra_support else ["the row's own condition (see the "
+                                                           "contradiction) fails"])
     return Verdict.numerical(
         ok, measured=(measured + "; " + dc.describe(results, "drawn orbits")
                       + f"; the first {len(rerun)} unresolved again at {er.LONGER:g} T: "
@@ -76,6 +79,7 @@ def _verdict(results, rerun, *, measured: str, contradiction: str, method: str, 
         control=(control_text + f"; separates on MEGNO: {on_megno}, on the frequency diffusion: "
                  f"{on_freq}"),
         control_separates=on_megno and on_freq, method=method, n_values=n_values, notes=notes,
+        unmet=unmet,
         data={"orbits": dc.record(results), "rerun": dc.record(rerun),
               "control_orbits": dc.record(control), **(data or {})})
 

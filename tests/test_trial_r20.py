@@ -181,3 +181,41 @@ def test_an_empty_scene_name_is_refused(name, tmp_path, monkeypatch, capsys):
     assert list(tmp_path.iterdir()) == []
     with pytest.raises(SceneError, match="an empty scene name"):
         api.simulate(name)
+
+
+# an open evidence row names the part of the rule fixed beforehand that failed, with its numbers
+def _orbits(spec: dict):
+    from chaplygin_nd.simulate.drawn_evidence import OrbitResult
+
+    out = []
+    for (cls, mcls), k in spec.items():
+        out += [OrbitResult(0.5, 0.5, 1.0, 2, [0.1, 0.3], 1e-9, 2.0, 0.0, cls, mcls)] * k
+    return out
+
+
+def test_unmet_names_each_failed_part_of_the_rule():
+    from chaplygin_nd.proofs import drawn_common as dc
+
+    good = _orbits({("predicted", "regular"): 150, ("unresolved", "regular"): 50})
+    assert dc.supported(good) and dc.unmet(good) == []
+    edge = _orbits({("predicted", "regular"): 196, ("excess", "regular"): 4})  # exactly 2 %
+    assert dc.supported(edge) and dc.unmet(edge) == []
+    excess = _orbits({("predicted", "regular"): 195, ("excess", "regular"): 5})
+    assert dc.unmet(excess) == ["5 of 200 orbits are chaotic or excess (contradict): 2.5 %, more "
+                                "than the rule's 2 %"]
+    undecided = _orbits({("predicted", "regular"): 138, ("unresolved", "undecided"): 62})
+    assert dc.unmet(undecided) == ["138 of 200 orbits are MEGNO-regular: 69 %, fewer than the "
+                                   "rule's 90 %"]
+    few = _orbits({("predicted", "regular"): 30, ("unresolved", "regular"): 170})
+    assert dc.unmet(few) == ["30 of 200 orbits show exactly the predicted count: 15 %, fewer than "
+                             "the rule's 20 %"]
+    for results in (excess, undecided, few):
+        assert not dc.supported(results)
+
+
+# cn.decide: the same "did you mean" as chaplygin prove; a list is a TypeError that says so
+def test_decide_names_the_nearest_id():
+    with pytest.raises(KeyError, match="did you mean P:inversion"):
+        api.decide("p:inversion")
+    with pytest.raises(TypeError, match="one ledger id"):
+        api.decide(["P:inversion"])
