@@ -54,7 +54,7 @@ from pathlib import Path
 from types import FunctionType
 
 import sympy as sp
-from chaplygin_nd.ledger.catalog import ROOT
+from chaplygin_nd.ledger.catalog import ROOT, is_checkout
 from chaplygin_nd.ledger.reach import load as load_reach
 from chaplygin_nd.ledger.reach import (
     printed_functions,
@@ -619,6 +619,12 @@ def main(argv: list[str] | None = None) -> int:
     theirs = compared_outcomes(args.compare) if args.compare else {}
     if isinstance(theirs, str):
         return fail(theirs)
+    if args.out is None and not is_checkout():
+        return fail("chaplygin mutate: give --out FILE (an installed package is never written into)")
+    if args.out is not None and (args.out.exists() or args.out.is_symlink()) and (
+            args.out.is_symlink() or isinstance(compared_outcomes(args.out), str)):
+        return fail(f"--out {args.out}: exists and is not a mutation.json this program wrote; give "
+                    "a new file name (nothing else is replaced)")
     os.environ[ENGINES_ENV] = args.engines
     if args.out is None:
         args.out = OUT_PATH if args.engines == "both" else ROOT / "mutation-flint.json"
@@ -638,7 +644,7 @@ def main(argv: list[str] | None = None) -> int:
     base = baseline(sample_rows, jobs=args.jobs)
     reach = {row: info[2] for row, info in base.items()}
     missing = unreached(reach) if not args.sample else []
-    if not args.function and args.engines == "both" and not args.sample:
+    if not args.function and args.engines == "both" and not args.sample and is_checkout():
         save_reach(reach, {row: info[1] for row, info in base.items()})
     selection = [m for m in select_all(args.per_function)
                  if not args.function or m.function in args.function]

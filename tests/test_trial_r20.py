@@ -219,3 +219,18 @@ def test_decide_names_the_nearest_id():
         api.decide("p:inversion")
     with pytest.raises(TypeError, match="one ledger id"):
         api.decide(["P:inversion"])
+
+
+# mutate --out: never replaces a file it did not write, never writes into an installed package
+def test_mutate_out_refuses_a_foreign_file_and_an_installed_package(tmp_path, monkeypatch, capsys):
+    from chaplygin_nd.ledger import mutate
+
+    monkeypatch.setattr(mutate, "baseline", lambda *a, **k: pytest.fail("the run started"))
+    mine = tmp_path / "notes.json"
+    mine.write_text('{"my": "notes"}')
+    assert _exit_code(cli.main, ["mutate", "--function", "section3.H_nd", "--out", str(mine)]) == 2
+    assert "is not a mutation.json this program wrote" in _one_error_line(capsys)
+    assert mine.read_text() == '{"my": "notes"}'
+    monkeypatch.setattr(mutate, "is_checkout", lambda: False)
+    assert _exit_code(cli.main, ["mutate", "--function", "section3.H_nd"]) == 2
+    assert "give --out FILE" in _one_error_line(capsys)
