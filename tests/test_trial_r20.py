@@ -234,3 +234,20 @@ def test_mutate_out_refuses_a_foreign_file_and_an_installed_package(tmp_path, mo
     monkeypatch.setattr(mutate, "is_checkout", lambda: False)
     assert _exit_code(cli.main, ["mutate", "--function", "section3.H_nd"]) == 2
     assert "give --out FILE" in _one_error_line(capsys)
+
+
+# without heyoka (a wheel installed without the `fast` extra) the evidence rows are open with a
+# reason, and they still read the printed predictions: `verify` then exits 0 (it exited 1 with
+# "printed function section5.so3_rank is reached by no ledger row", four times)
+def test_evidence_rows_without_heyoka_still_reach_their_printed_functions(monkeypatch):
+    from chaplygin_nd.ledger.runner import run, select
+    from chaplygin_nd.simulate.integrators import heyoka_taylor
+
+    monkeypatch.setattr(heyoka_taylor, "available", lambda: False)
+    ids = ["S5:EJ-tori", "S5:reconstruction", "Th:Re-tori:frequencies", "S6:open-reduced-n5"]
+    results = run(select(ids), jobs=1)
+    assert [r.status for r in results] == ["open"] * 4
+    assert all("heyoka, which is not installed" in r.verdict.notes for r in results)
+    reached = {f for r in results for f in r.printed}
+    assert {"section5.euler_jacobi_torus_dimension", "section5.reconstruction_statement",
+            "section5.so3_rank", "section4.vertical_torus_dimension"} <= reached, reached
