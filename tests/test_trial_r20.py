@@ -6,6 +6,7 @@ non-finite and n < 3 input, and ``chaplygin docs -h`` is help, not a report path
 from __future__ import annotations
 
 import json
+import os
 
 import numpy as np
 import pytest
@@ -251,3 +252,27 @@ def test_evidence_rows_without_heyoka_still_reach_their_printed_functions(monkey
     reached = {f for r in results for f in r.printed}
     assert {"section5.euler_jacobi_torus_dimension", "section5.reconstruction_statement",
             "section5.so3_rank", "section4.vertical_torus_dimension"} <= reached, reached
+
+
+# bench --out: an existing file is one line (it was a FileExistsError traceback); a folder of
+# someone else's files is refused (throughput.md was replaced, --cold emptied cache/ folders)
+def test_bench_out_refuses_files_it_did_not_write(tmp_path, monkeypatch, capsys):
+    import importlib
+
+    bench_main = importlib.import_module("chaplygin_nd.bench.__main__")
+    monkeypatch.setattr(bench_main, "_run", lambda names, args: 0)
+    monkeypatch.setattr(bench_main, "_own_caches", lambda root, cold: None)
+    a_file = tmp_path / "a_file"
+    a_file.write_text("mine")
+    theirs = tmp_path / "theirs"
+    theirs.mkdir()
+    (theirs / "throughput.md").write_text("mine")
+    for out, why in [(a_file, "exists and is not a folder"), (theirs, "did not write")]:
+        assert _exit_code(cli.main, ["bench", "throughput", "--out", str(out)]) == 2
+        assert why in _one_error_line(capsys)
+    assert a_file.read_text() == "mine" and sorted(os.listdir(theirs)) == ["throughput.md"]
+    new = tmp_path / "new"
+    assert _exit_code(cli.main, ["bench", "throughput", "--out", str(new)]) == 0
+    assert (new / bench_main.MARKER).is_file()
+    (new / "throughput.md").write_text("an earlier run")   # its own folder is taken again
+    assert _exit_code(cli.main, ["bench", "throughput", "--out", str(new)]) == 0
