@@ -276,3 +276,12 @@ def test_bench_out_refuses_files_it_did_not_write(tmp_path, monkeypatch, capsys)
     assert (new / bench_main.MARKER).is_file()
     (new / "throughput.md").write_text("an earlier run")   # its own folder is taken again
     assert _exit_code(cli.main, ["bench", "throughput", "--out", str(new)]) == 0
+
+
+def test_simulate_workers_must_be_positive(tmp_path, capsys):
+    for bad in ("0", "-2"):
+        argv = ["simulate", "fma4d", "--workers", bad, "--out", str(tmp_path / "o")]
+        assert _exit_code(cli.main, argv) == 2
+        line = _one_error_line(capsys)
+        assert line.count("--workers") == 1 and "not a positive integer" in line, line
+    assert not (tmp_path / "o").exists()
