@@ -588,7 +588,9 @@ def unknown_functions(names: list[str], known, list_option: str) -> str | None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = OneLineParser(prog="chaplygin mutate", description=__doc__.splitlines()[0])
+    parser = OneLineParser(prog="chaplygin mutate", description=(
+        "Mutation testing of every printed formula: one-symbol mutants, each run against the "
+        "ledger rows that reach it; writes mutation.json (make mutate)."))
     parser.add_argument("--jobs", "-j", type=positive_int, default=2)
     parser.add_argument("--per-function", type=positive_int, default=PER_FUNCTION)
     parser.add_argument("--function", action="append", default=[],

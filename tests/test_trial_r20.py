@@ -285,3 +285,9 @@ def test_simulate_workers_must_be_positive(tmp_path, capsys):
         line = _one_error_line(capsys)
         assert line.count("--workers") == 1 and "not a positive integer" in line, line
     assert not (tmp_path / "o").exists()
+
+
+def test_mutate_help_is_plain_text(capsys):
+    assert _exit_code(cli.main, ["mutate", "-h"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("usage: chaplygin mutate") and "``" not in out and "ledger.mutate" not in out
