@@ -88,9 +88,17 @@ class Simulation:
 def _scene(scene: str | Path, force: bool) -> Scene:
     from chaplygin_nd.simulate.scene import find, loads
 
-    if isinstance(scene, str) and ("\n" in scene or "=" in scene):
+    if isinstance(scene, str) and ("\n" in scene or "=" in scene) and not _is_file(scene):
         return loads(scene, source="<TOML text>", force=force)
     return find(str(scene), force=force)
+
+
+def _is_file(text: str) -> bool:
+    """True when ``text`` names an existing file (a path may contain ``=``: ``runs/a=1.toml``)."""
+    try:
+        return Path(text).is_file()
+    except (OSError, ValueError):  # too long a name, or a NUL byte: TOML text
+        return False
 
 
 def simulate(scene: str | Path, *, force: bool = False, progress: bool = False) -> Simulation:

@@ -291,3 +291,12 @@ def test_mutate_help_is_plain_text(capsys):
     assert _exit_code(cli.main, ["mutate", "-h"]) == 0
     out = capsys.readouterr().out
     assert out.startswith("usage: chaplygin mutate") and "``" not in out and "ledger.mutate" not in out
+
+
+def test_simulate_takes_a_scene_file_whose_name_has_an_equals_sign(tmp_path):
+    from chaplygin_nd.ledger.catalog import ROOT
+
+    path = tmp_path / "a=0.5.toml"
+    path.write_text((ROOT / "scenes" / "steady4d.toml").read_text())
+    run = api.simulate(str(path))     # it was read as TOML text: "not valid TOML"
+    assert run.plan.model == "constant-Omega"
