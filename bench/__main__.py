@@ -19,6 +19,10 @@ from chaplygin_nd.cli import version_line
 from chaplygin_nd.console import fail, interruptible, path_argument
 
 OUT = Path(__file__).resolve().parent / "out"
+#: Written into every ``--out`` folder the bench uses: a non-empty folder without it holds files
+#: this program did not write, and is refused (the bench replaces its files and, with ``--cold``,
+#: empties its cache folders).
+MARKER = ".chaplygin-bench"
 #: Run when no name is given (``make bench``). ``heyoka`` (bench_heyoka.py) repeats the heyoka
 #: measurements with fresh caches per tolerance and real128 references: run it by name.
 DEFAULT = ("throughput", "work_precision")
@@ -84,9 +88,24 @@ def _main(argv: list[str] | None) -> int:
             return fail("chaplygin bench: give --out DIR (an installed package is never written "
                         "into)")
         args.out = OUT
+    if problem := _unusable_out(args.out):
+        return fail(f"chaplygin bench: --out {args.out}: {problem}")
     args.out.mkdir(parents=True, exist_ok=True)
+    (args.out / MARKER).write_text("written by chaplygin bench\n", encoding="utf-8")
     _own_caches(args.out / "cache", args.cold)
     return _run(names, args)
+
+
+def _unusable_out(out: Path) -> str:
+    """Why ``out`` cannot take the bench's files (``""`` when it can): it must be a new folder, an
+    empty one, one with :data:`MARKER`, or the checkout's default ``bench/out``."""
+    if out.exists() and not out.is_dir():
+        return "exists and is not a folder; give a new or empty folder"
+    if (out.is_dir() and out.resolve() != OUT.resolve() and not (out / MARKER).is_file()
+            and any(out.iterdir())):
+        return ("the folder holds files this program did not write; give a new or empty folder, "
+                "or one an earlier `chaplygin bench --out` wrote")
+    return ""
 
 
 CACHES = ("references", "jit", "heyoka-llvm")

@@ -39,7 +39,8 @@ def decide(claim_id: str, *, seed: int | None = None) -> Result:
     ``result.verdict`` (method, ``n_values``, the exact counterexample of a corrected row, kind),
     ``result.seconds``, ``result.uses``. ``seed`` is the seed of the seeded checks (default: the
     ledger's, :data:`chaplygin_nd.symbolic.points.DEFAULT_SEED`). An unknown id raises
-    ``KeyError``. Domain: every row of ``chaplygin prove --list``.
+    ``KeyError`` naming the nearest ids, as ``chaplygin prove`` does. Domain: every row of
+    ``chaplygin prove --list``.
 
     P:inversion, $\Omega = \tfrac12 M + K/(2\Delta)$ with the printed $K$, is decided by two
     parts (the derived inverse solves $L_\gamma(\Omega) = M$; the printed formula equals it),
@@ -52,10 +53,13 @@ def decide(claim_id: str, *, seed: int | None = None) -> Result:
     >>> {3, 4, 5} <= set(r.verdict.n_values) and r.verdict.counterexample is None
     True
     """
+    from chaplygin_nd.ledger.catalog import resolve
     from chaplygin_nd.ledger.runner import run, select
     from chaplygin_nd.symbolic import points
 
-    (result,) = run(select([claim_id]), jobs=1,
+    if not isinstance(claim_id, str):
+        raise TypeError(f"claim_id must be one ledger id (a str), not {type(claim_id).__name__}")
+    (result,) = run(select(resolve([claim_id])), jobs=1,
                     seed=points.DEFAULT_SEED if seed is None else seed)
     return result
 
@@ -84,9 +88,17 @@ class Simulation:
 def _scene(scene: str | Path, force: bool) -> Scene:
     from chaplygin_nd.simulate.scene import find, loads
 
-    if isinstance(scene, str) and ("\n" in scene or "=" in scene):
+    if isinstance(scene, str) and ("\n" in scene or "=" in scene) and not _is_file(scene):
         return loads(scene, source="<TOML text>", force=force)
     return find(str(scene), force=force)
+
+
+def _is_file(text: str) -> bool:
+    """True when ``text`` names an existing file (a path may contain ``=``: ``runs/a=1.toml``)."""
+    try:
+        return Path(text).is_file()
+    except (OSError, ValueError):  # too long a name, or a NUL byte: TOML text
+        return False
 
 
 def simulate(scene: str | Path, *, force: bool = False, progress: bool = False) -> Simulation:
@@ -136,21 +148,30 @@ TOLERANCE = 1e-10
 def _checked(name: str, X: Any, gamma: Any, a: Any, b: Any, *, vertical: bool = False):
     r"""``(X, gamma)`` as float arrays after the domain checks of the kernels below, or
     ``ValueError`` naming the argument and its domain: ``X`` (``M``, ``Omega`` or ``M0``)
-    ``(..., n, n)`` skew-symmetric ($\mathfrak{so}(n)$, eq:M-O) within :data:`TOLERANCE`
-    relative to $\max(1, \lVert XVert)$, ``gamma`` ``(..., n)``, $a \ge -1$ (eq:axisymm:
+    ``(..., n, n)``, $n \ge 3$, real, finite and skew-symmetric ($\mathfrak{so}(n)$, eq:M-O)
+    within :data:`TOLERANCE` relative to $\max(1, \lVert X\rVert)$, ``gamma`` ``(..., n)`` real
+    and finite, $a \ge -1$ (eq:axisymm:
     $\mathbb{J} = \mathrm{Id} + aE_nE_n^T$ is a mass tensor; the paper assumes $-1 \le a \le 1$,
     $a > 1$ is a prolate body and allowed), $b > 0$ ($b = mr^2$, eq:M-O); with ``vertical``,
     $X\gamma = 0$ (the set $\mathcal{V}$ of Th:Re). These hypotheses give $\Delta(x) > 0$ and
     $2 + a + b > 0$ for $|x| \le 1$ (eq:Delta), so $L_\gamma$ is invertible."""
     import numpy as np
 
+    for label, value in ((name, X), ("gamma", gamma), ("a", a), ("b", b)):
+        if np.iscomplexobj(value):  # float() would drop the imaginary part without a word
+            raise ValueError(f"{label} is complex: the domain is real (its imaginary part would be "
+                             "dropped)")
     X, gamma = np.asarray(X, dtype=float), np.asarray(gamma, dtype=float)
-    if X.ndim < 2 or X.shape[-1] != X.shape[-2]:
+    if X.ndim < 2 or X.shape[-1] != X.shape[-2] or X.shape[-1] < 3:
         raise ValueError(f"{name} has shape {X.shape}: the domain is (..., n, n) skew-symmetric "
-                         "matrices (so(n), eq:M-O)")
+                         "matrices with n >= 3 (so(n), eq:M-O)")
     if gamma.ndim < 1 or gamma.shape[-1] != X.shape[-1]:
         raise ValueError(f"gamma has shape {gamma.shape}: the domain is (..., n) vectors with "
                          f"n = {X.shape[-1]} (the size of {name})")
+    for label, value in ((name, X), ("gamma", gamma)):
+        if not np.all(np.isfinite(value)):
+            raise ValueError(f"{label} has a non-finite entry (inf or nan): the domain is finite "
+                             f"real {label}")
     scale = np.maximum(1.0, np.linalg.norm(X, axis=(-2, -1)))
     skew = np.linalg.norm(X + np.swapaxes(X, -1, -2), axis=(-2, -1)) / scale
     if not np.all(skew <= TOLERANCE):  # also catches nan

@@ -40,15 +40,29 @@ def docs(argv: list[str]) -> int:
     (default ``verification.json``, written by ``chaplygin verify``), Sphinx with warnings as
     errors, the internal link check. Only in a source checkout (the site's sources are not
     installed)."""
+    import importlib.util
+
+    from chaplygin_nd.console import OneLineParser, path_argument
+
+    parser = OneLineParser(prog="chaplygin docs", description="Build the reading site into "
+                           "docs/_build/html (make docs-html) from a verification.json.")
+    parser.add_argument("report", nargs="?", metavar="REPORT", type=path_argument,
+                        help="the verification.json to build from (default: the checkout's, "
+                             "written by `chaplygin verify`)")
+    args = parser.parse_args(argv)
     root = Path(__file__).resolve().parent.parent
     if not (root / "docs" / "build_pages.py").is_file():
         print("chaplygin docs: the reading site is built from a source checkout (make docs); "
               "this installation has no docs/ folder", file=sys.stderr)
         return 2
-    report = Path(argv[0]) if argv else root / "verification.json"
+    report = args.report or root / "verification.json"
     if not report.is_file():
         print(f"chaplygin docs: no report {report}: run `chaplygin verify` first "
               "(or give the path of a verification.json)", file=sys.stderr)
+        return 2
+    if importlib.util.find_spec("sphinx") is None:
+        print("chaplygin docs: Sphinx is not installed: pip install -e '.[docs]' (or make docs)",
+              file=sys.stderr)
         return 2
     steps = [[sys.executable, str(root / "docs" / "build_pages.py"), "--report", str(report)],
              [sys.executable, "-m", "sphinx", "-b", "html", "-W", "--keep-going", "-q", "-c",

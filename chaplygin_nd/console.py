@@ -139,6 +139,18 @@ def path_argument(text: str) -> Path:
     return Path(text)
 
 
+def positive_int(text: str) -> int:
+    """The ``type`` of a count option (``--jobs``, ``--per-function``): an integer >= 1; 0 or a
+    negative count is refused (``--jobs -3`` silently ran one worker, ``--jobs 0`` one per core)."""
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"not a positive integer: {text!r}")
+    return value
+
+
 class OneLineWarning(UserWarning):
     """A warning of this project, shown as one line ``warning: MESSAGE`` on stderr."""
 

@@ -117,13 +117,19 @@ def main(argv: list[str] | None = None) -> int:
     if not report_path.is_file():
         print(f"error: {report_path} is missing: run `chaplygin verify` first", file=sys.stderr)
         return 2
-    report = json.loads(report_path.read_text(encoding="utf-8"))
+    try:
+        report = json.loads(report_path.read_text(encoding="utf-8"))
+        report_ids = [r["id"] for r in report["rows"]]
+    except (OSError, UnicodeDecodeError, ValueError, KeyError, TypeError) as exc:
+        print(f"error: {report_path} is not a verification.json of `chaplygin verify` "
+              f"({type(exc).__name__}: {exc})", file=sys.stderr)
+        return 2
 
     from chaplygin_nd.ledger.catalog import PAPER_PATH, all_rows, discover
     from chaplygin_nd.ledger.registry import registry
 
     discover()
-    if [r.id for r in all_rows()] != [r["id"] for r in report["rows"]]:
+    if [r.id for r in all_rows()] != report_ids:
         print(f"error: {report_path} is not the ledger of this checkout: run `chaplygin verify`",
               file=sys.stderr)
         return 2

@@ -32,7 +32,14 @@ from chaplygin_nd.ledger.runner import run, select, unknown_registrations
 from chaplygin_nd.symbolic.points import DEFAULT_SEED
 
 from chaplygin_nd.cli import commit, version_line
-from chaplygin_nd.console import OneLineParser, fail, interruptible, path_argument, say
+from chaplygin_nd.console import (
+    OneLineParser,
+    fail,
+    interruptible,
+    path_argument,
+    positive_int,
+    say,
+)
 
 #: command -> its one-line description (``-h``).
 _DESCRIPTIONS = {
@@ -81,7 +88,7 @@ def _main(argv: list[str] | None, command: str) -> int:
         "prove": "ledger ids to decide (--list lists them)",
         "verify": argparse.SUPPRESS}.get(command, "ledger ids to run (default: all)"))
     parser.add_argument("--version", action="version", version=version_line())
-    parser.add_argument("--jobs", "-j", type=int, default=None,
+    parser.add_argument("--jobs", "-j", type=positive_int, default=None,
                         help="worker processes (default: one per core)")
     parser.add_argument("--check-generated", action="store_true",
                         help="also regenerate generated/ into a temporary folder and fail on a difference")
@@ -191,7 +198,41 @@ def _report_paths(report_dir: str | Path | None, whole: bool):
         return fail(f"--report-dir {report_dir}: cannot create it ({exc.strerror or exc})")
     if not os.access(folder, os.W_OK | os.X_OK):
         return fail(f"--report-dir {report_dir}: the folder is not writable")
-    return folder / "VERIFICATION.md", folder / "verification.json", folder / "claim-graph.svg"
+    targets = folder / "VERIFICATION.md", folder / "verification.json", folder / "claim-graph.svg"
+    foreign = _foreign_reports(*targets)
+    if foreign:
+        return fail(f"--report-dir {report_dir}: {', '.join(foreign)} "
+                    f"{'was' if len(foreign) == 1 else 'were'} not written by `chaplygin verify` "
+                    "and would be replaced; give a new or empty folder, or one an earlier "
+                    "`chaplygin verify --report-dir` wrote")
+    return targets
+
+
+def _foreign_reports(markdown: Path, json_path: Path, svg: Path) -> list[str]:
+    """The names of the report files in a ``--report-dir`` folder that exist but were not written
+    by ``chaplygin verify`` (so must not be replaced): VERIFICATION.md is ours when it starts with
+    the report's heading, verification.json when it is a JSON object with the report's
+    ``generation`` and ``rows``, the graph when it is a file beside our verification.json."""
+    import json
+
+    def read(path: Path) -> str | None:
+        try:
+            return path.read_text(encoding="utf-8") if path.is_file() else None
+        except (OSError, UnicodeDecodeError):
+            return None
+
+    def ours_json() -> bool:
+        try:
+            data = json.loads(read(json_path) or "null")
+        except ValueError:
+            return False
+        return isinstance(data, dict) and {"generation", "rows"} <= data.keys()
+
+    ours = {markdown: lambda: (read(markdown) or "").startswith(report.HEADING),
+            json_path: ours_json,
+            svg: lambda: svg.is_file() and ours_json()}
+    return [path.name for path, check in ours.items()
+            if (path.exists() or path.is_symlink()) and (path.is_symlink() or not check())]
 
 
 if __name__ == "__main__":

@@ -54,7 +54,7 @@ from pathlib import Path
 from types import FunctionType
 
 import sympy as sp
-from chaplygin_nd.ledger.catalog import ROOT
+from chaplygin_nd.ledger.catalog import ROOT, is_checkout
 from chaplygin_nd.ledger.reach import load as load_reach
 from chaplygin_nd.ledger.reach import (
     printed_functions,
@@ -65,7 +65,7 @@ from chaplygin_nd.ledger.reach import (
 from chaplygin_nd.ledger.reach import save as save_reach
 from chaplygin_nd.symbolic.flint_engine import ENGINES_ENV, active_engines, engine_label
 
-from chaplygin_nd.console import OneLineParser, fail, path_argument, say
+from chaplygin_nd.console import OneLineParser, fail, path_argument, positive_int, say
 
 OUT_PATH = ROOT / "mutation.json"
 #: Name pairs swapped by the ``swap`` operator (each direction).
@@ -547,12 +547,25 @@ def summary(records: list[dict], functions: int, seconds: float) -> str:
             f"{len(records) - count['equivalent']} non-equivalent killed; {seconds:.0f} s")
 
 
-def _compare(records: list[dict], other: Path) -> list[str]:
-    """Mutants run in both ``records`` and the run saved at ``other`` whose outcome differs."""
+def compared_outcomes(other: Path) -> dict[tuple[str, str], str] | str:
+    """``(function, mutation) -> outcome`` of the run saved at ``other`` (a mutation.json), or the
+    one-line error saying why it cannot be read: checked before the run, so a wrong ``--compare``
+    never costs a whole mutation run and its results."""
     import json
 
-    theirs = {(r["function"], r["mutation"]): r["outcome"]
-              for r in json.loads(other.read_text())["mutants"]}
+    try:
+        mutants = json.loads(Path(other).read_text(encoding="utf-8"))["mutants"]
+        return {(r["function"], r["mutation"]): r["outcome"] for r in mutants}
+    except OSError as exc:
+        return f"--compare {other}: cannot read it ({exc.strerror or exc})"
+    except (ValueError, KeyError, TypeError) as exc:
+        return (f"--compare {other}: not a mutation.json of `chaplygin mutate` ({type(exc).__name__}:"
+                f" {exc})")
+
+
+def _compare(records: list[dict], theirs: dict[tuple[str, str], str]) -> list[str]:
+    """Mutants run in both ``records`` and ``theirs`` (:func:`compared_outcomes`) whose outcome
+    differs."""
     return [f"{r['function']} {r['mutation']}: {theirs[(r['function'], r['mutation'])]} there, "
             f"{r['outcome']} here" for r in records
             if (r["function"], r["mutation"]) in theirs
@@ -575,9 +588,11 @@ def unknown_functions(names: list[str], known, list_option: str) -> str | None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = OneLineParser(prog="chaplygin mutate", description=__doc__.splitlines()[0])
-    parser.add_argument("--jobs", "-j", type=int, default=2)
-    parser.add_argument("--per-function", type=int, default=PER_FUNCTION)
+    parser = OneLineParser(prog="chaplygin mutate", description=(
+        "Mutation testing of every printed formula: one-symbol mutants, each run against the "
+        "ledger rows that reach it; writes mutation.json (make mutate)."))
+    parser.add_argument("--jobs", "-j", type=positive_int, default=2)
+    parser.add_argument("--per-function", type=positive_int, default=PER_FUNCTION)
     parser.add_argument("--function", action="append", default=[],
                         help="only these printed functions (e.g. section4.K; --list lists them)")
     parser.add_argument("--list", action="store_true",
@@ -599,8 +614,19 @@ def main(argv: list[str] | None = None) -> int:
         say("\n".join(printed_functions()))
         return 0
     problem = unknown_functions(args.function, printed_functions(), "chaplygin mutate --list")
+    if args.sample < 0:
+        problem = f"--sample: {args.sample} is negative; give a number of mutants (0: all)"
     if problem:
         return fail(problem)
+    theirs = compared_outcomes(args.compare) if args.compare else {}
+    if isinstance(theirs, str):
+        return fail(theirs)
+    if args.out is None and not is_checkout():
+        return fail("chaplygin mutate: give --out FILE (an installed package is never written into)")
+    if args.out is not None and (args.out.exists() or args.out.is_symlink()) and (
+            args.out.is_symlink() or isinstance(compared_outcomes(args.out), str)):
+        return fail(f"--out {args.out}: exists and is not a mutation.json this program wrote; give "
+                    "a new file name (nothing else is replaced)")
     os.environ[ENGINES_ENV] = args.engines
     if args.out is None:
         args.out = OUT_PATH if args.engines == "both" else ROOT / "mutation-flint.json"
@@ -620,7 +646,7 @@ def main(argv: list[str] | None = None) -> int:
     base = baseline(sample_rows, jobs=args.jobs)
     reach = {row: info[2] for row, info in base.items()}
     missing = unreached(reach) if not args.sample else []
-    if not args.function and args.engines == "both" and not args.sample:
+    if not args.function and args.engines == "both" and not args.sample and is_checkout():
         save_reach(reach, {row: info[1] for row, info in base.items()})
     selection = [m for m in select_all(args.per_function)
                  if not args.function or m.function in args.function]
@@ -641,7 +667,7 @@ def main(argv: list[str] | None = None) -> int:
     line = f"engines {engine_label(active_engines())}: {line}"
     if args.sample:
         line += f" (seeded sample of {len(selection)} mutants)"
-    differ = _compare(records, args.compare) if args.compare else []
+    differ = _compare(records, theirs) if args.compare else []
     write_json_atomic({"summary": line, "engines": args.engines, "mutants": records,
                        "differs_from_compared": differ}, args.out)
     print(line)

@@ -182,20 +182,22 @@ class Verdict:
     def numerical(cls, supported: bool, *, measured: str, initial_conditions: int,
                   tolerance: str, contradiction: str, control: str, control_separates: bool,
                   method: str, n_values: Sequence[int] = (), notes: str = "",
-                  data: dict | None = None) -> Verdict:
+                  data: dict | None = None, unmet: Sequence[str] = ()) -> Verdict:
         """Numerical evidence for a qualitative statement. ``evidence`` only when the measurement
         supports the statement *and* the control (a system where the statement should fail)
         shows the method can tell the difference; otherwise ``open`` with the numbers as reason.
         Never ``holds``: a measurement is not a proof. The row records what was measured, on how
         many initial conditions, with which tolerance, what would have contradicted the
-        statement, and the control."""
+        statement, and the control. ``unmet``: the parts of the rule that failed, named first in
+        an ``open`` row's reason."""
         record = {"measured": measured, "initial_conditions": initial_conditions,
                   "tolerance": tolerance, "contradiction": contradiction, "control": control,
                   "control_separates": control_separates, **(data or {})}
         if supported and control_separates:
             return cls("evidence", method, tuple(n_values), notes=notes, evidence=record)
         why = ("the control does not separate from the regular orbits" if not control_separates
-               else "the measurement does not support the statement")
+               else "the measurement does not support the statement"
+               + (f" ({'; '.join(unmet)})" if unmet else ""))
         return cls("open", method, tuple(n_values),
                    notes=f"{why}: {measured}; {notes}".strip("; "), evidence=record)
 

@@ -47,6 +47,8 @@ KIND_TEXT = {
 
 #: Where the claim graph is written (relative to the repository root; tracked, so links work).
 GRAPH_PATH = "docs/claim-graph.svg"
+#: The first line of VERIFICATION.md (how ``chaplygin verify --report-dir`` knows its own file).
+HEADING = "# Verification ledger"
 
 
 @dataclass(frozen=True)
@@ -225,7 +227,7 @@ def _findings(r: Result):
 
 def markdown_text(results: Sequence[Result], info: RunInfo) -> str:
     """VERIFICATION.md: run facts, errata, remarks, the full table, then each finding in LaTeX."""
-    out = ["# Verification ledger", ""]
+    out = [HEADING, ""]
     if info.generated == "STALE":
         out += ["> **STALE — do not rely on this report.** `generated/` differs from what "
                 "`symbolic/` emits now (run `make generate`, then `make verify`).", ""]

@@ -52,6 +52,22 @@ def supported(results) -> bool:
             and fraction(results, lambda r: r.cls == "predicted") >= PREDICTED_MIN)
 
 
+def unmet(results) -> list[str]:
+    """The parts of the support rule (module docstring) that ``results`` fail, each with its
+    numbers (``[]`` iff :func:`supported`): what an ``open`` row names as its reason."""
+    n = len(results)
+    if not n:
+        return ["no drawn orbits"]
+    counts = [(sum(contradicting(r) for r in results), "are chaotic or excess (contradict)",
+               lambda k: k / n <= CONTRADICTING_MAX, "more than", CONTRADICTING_MAX),
+              (sum(r.megno_cls == "regular" for r in results), "are MEGNO-regular",
+               lambda k: k / n >= MEGNO_REGULAR_MIN, "fewer than", MEGNO_REGULAR_MIN),
+              (sum(r.cls == "predicted" for r in results), "show exactly the predicted count",
+               lambda k: k / n >= PREDICTED_MIN, "fewer than", PREDICTED_MIN)]
+    return [f"{k} of {n} orbits {what}: {100 * k / n:g} %, {side} the rule's {100 * bound:g} %"
+            for k, what, ok, side, bound in counts if not ok(k)]
+
+
 def separates(results, control) -> tuple[bool, bool]:
     """(on MEGNO, on the frequency diffusion): the separation rule of the module docstring."""
     chaotic = lambda r: r.megno_cls == "chaotic"  # noqa: E731

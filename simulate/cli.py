@@ -30,6 +30,7 @@ from chaplygin_nd.console import (
     fail,
     interruptible,
     path_argument,
+    positive_int,
     say,
     usable_backend,
 )
@@ -82,7 +83,7 @@ def main(argv: list[str] | None = None) -> int:
                     help="run even when the predicted time or memory is past the limit")
     ap.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
     ap.add_argument("--list", action="store_true", help="list the built-in scenes and exit")
-    ap.add_argument("--workers", type=int, default=None, metavar="N",
+    ap.add_argument("--workers", type=positive_int, default=None, metavar="N",
                     help="frequency-map scenes: worker processes (default: the CPU count)")
     ap.add_argument("--scheduler", default=None, metavar="ADDRESS",
                     help="frequency-map scenes: run on this Dask scheduler ('local' starts a "
