@@ -15,7 +15,7 @@ from chaplygin_nd.ledger.catalog import Row, all_rows, discover, pending_reason
 from chaplygin_nd.ledger.reach import Recorder
 from chaplygin_nd.ledger.registry import Verdict, registry
 from chaplygin_nd.symbolic import points
-from chaplygin_nd.symbolic.exact import engine_note, engine_tally, reset_engine_tally
+from chaplygin_nd.symbolic.exact import engine_note, engine_tally, point_timings, reset_engine_tally
 
 
 @dataclass(frozen=True)
@@ -62,11 +62,17 @@ def _run_one(claim_id: str, seed: int = points.DEFAULT_SEED, fresh: bool = False
     start = time.perf_counter()
     recorder = Recorder()
     reset_engine_tally()
+    point_timings(clear=True)
     try:
         with recorder:
             verdict = spec.run()
         if not isinstance(verdict, Verdict):
             raise TypeError(f"proof of {claim_id} returned {type(verdict).__name__}, not Verdict")
+        checked = {size for kind, _label, size, _engine, _s in point_timings(clear=True)
+                   if kind == "points" and size is not None}
+        if checked - set(verdict.n_values):
+            # the [n] column: the n the proof names, and every n its seeded points were checked at
+            verdict = replace(verdict, n_values=tuple(sorted(set(verdict.n_values) | checked)))
         tally = engine_tally()
         if tally or verdict.verdict in ("holds", "corrected", "fails"):
             # which engines decided the row's zero tests (symbolic.exact): said in its method
