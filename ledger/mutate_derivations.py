@@ -108,14 +108,34 @@ def clear_caches() -> None:
 
 
 def _run_tests(files) -> tuple[bool, str]:
+    """Run ``files`` with ``pytest -x`` in this process, with empty caches: the compiled heyoka
+    objects and evidence live in memory and on disk keyed by the source files' hashes, which an
+    in-memory mutant does not change, so a warm cache would hand the tests the original's
+    objects (a mutant of ``runtime.expressions`` then looked untested)."""
     import contextlib
     import io
+    import os
+    import tempfile
 
     import pytest
+    from chaplygin_nd.runtime import jit_cache
+
+    from chaplygin_nd.cache import ENV
 
     buffer = io.StringIO()
-    with contextlib.redirect_stdout(buffer), contextlib.redirect_stderr(buffer):
-        code = pytest.main(["-q", "-x", "-p", "no:cacheprovider", "--no-header", *files])
+    saved = os.environ.get(ENV)
+    with tempfile.TemporaryDirectory(prefix="chaplygin-mutant-") as empty:
+        os.environ[ENV] = empty
+        jit_cache.forget_memory()
+        try:
+            with contextlib.redirect_stdout(buffer), contextlib.redirect_stderr(buffer):
+                code = pytest.main(["-q", "-x", "-p", "no:cacheprovider", "--no-header", *files])
+        finally:
+            jit_cache.forget_memory()
+            if saved is None:
+                os.environ.pop(ENV, None)
+            else:
+                os.environ[ENV] = saved
     lines = [ln for ln in buffer.getvalue().splitlines() if ln.startswith(("FAILED", "ERROR"))]
     return code == 0, (lines[0] if lines else f"pytest exit {code}")[:200]
 

@@ -76,6 +76,19 @@ def test_token_lookup(cache_root):
     assert jit_cache.memory_hit(("toy", 3)) is None
     obj, _, _ = jit_cache.load_or_build(KEY, Builder(), token=("toy", 3))
     assert jit_cache.memory_hit(("toy", 3)) is obj
+    # a later lookup with another token that finds the object in memory records that token too
+    again, _, how = jit_cache.load_or_build(KEY, Builder(), token=("toy", "alias"))
+    assert how == "in memory" and again is obj and jit_cache.memory_hit(("toy", "alias")) is obj
+
+
+def test_cache_state_cold_on_disk_in_memory(cache_root):
+    """What the planner's cost model is told: cold, then in memory, then (memory dropped) on disk."""
+    assert jit_cache.cache_state(KEY) == "cold"
+    jit_cache.load_or_build(KEY, Builder())
+    assert jit_cache.cache_state(KEY) == "in memory"
+    jit_cache.forget_memory()
+    assert jit_cache.cache_state(KEY) == "on disk"
+    assert jit_cache.cache_state(KEY, use_disk=False) == "cold"
 
 
 @pytest.mark.parametrize("damage", ["truncated", "garbage", "wrong type", "stale key"])

@@ -175,3 +175,25 @@ def test_vec_and_unvec_are_inverse_on_skew_matrices(n):
     gamma /= np.linalg.norm(gamma)
     Omega = axisym.angular_velocity(M, gamma, 0.3, 1.2)
     assert np.array_equal(Omega, -Omega.T)  # the result is a skew matrix, not only its upper half
+
+
+@pytest.mark.parametrize("n", [3, 5])
+def test_expression_builder_angular_velocity_is_the_whole_skew_matrix(n):
+    """runtime.expressions.angular_velocity (the builder the compiled cfunc is made from), called
+    with float arithmetic, returns the whole skew Omega = L^{-1} M (zero diagonal, lower triangle
+    the negated upper): the cfunc reads only i < j, so a mutant filling the diagonal with 1, or
+    writing the lower triangle into M, had passed every test. Compared with the NumPy runtime."""
+    from chaplygin_nd.runtime import expressions as rx
+
+    rng = np.random.default_rng([n, 5])
+    A = rng.standard_normal((n, n))
+    M = A - A.T
+    gamma = rng.standard_normal(n)
+    gamma /= np.linalg.norm(gamma)
+    M_list = [list(map(float, row)) for row in M]
+    Omega = np.array(rx.angular_velocity(M_list, list(map(float, gamma)), 0.4, 1.6,
+                                         axisym._NumpyOps), dtype=float)
+    assert np.array_equal(np.array(M_list), M)  # the input is not written to
+    assert np.array_equal(Omega, -Omega.T)
+    want = axisym.angular_velocity(M, gamma, 0.4, 1.6, method="matrix")
+    assert np.max(np.abs(Omega - want)) <= 64 * EPS * np.max(np.abs(want))
