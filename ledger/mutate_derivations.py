@@ -40,7 +40,7 @@ from dataclasses import dataclass
 from types import FunctionType
 
 from chaplygin_nd.ledger import mutate as mu
-from chaplygin_nd.ledger.catalog import ROOT
+from chaplygin_nd.ledger.catalog import ROOT, is_checkout
 from chaplygin_nd.ledger.reach import derivation_functions, load_derived, write_json_atomic
 
 from chaplygin_nd.console import OneLineParser, fail, path_argument, say
@@ -326,7 +326,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--rerun", type=path_argument, default=None,
                         help="re-run only the survivors and errors recorded in this JSON file")
     parser.add_argument("--jobs", "-j", type=int, default=2)
-    parser.add_argument("--out", type=path_argument, default=OUT_PATH)
+    parser.add_argument("--out", type=path_argument, default=None,
+                        help="where to write (default mutation-derivations.json in the checkout)")
     args = parser.parse_args(argv)
     known = [name for target in args.target or ["derivations", "runtime"]
              for name in functions(target)]
@@ -337,6 +338,17 @@ def main(argv: list[str] | None = None) -> int:
     problem = mu.unknown_functions(args.function, known, lister)
     if problem:
         return fail(problem)
+    if args.rerun is not None:  # read before the run: a wrong file never costs a whole run
+        earlier = mu.compared_outcomes(args.rerun)
+        if isinstance(earlier, str):
+            return fail(earlier.replace("--compare", "--rerun", 1))
+    if args.out is None and not is_checkout():
+        return fail(f"{parser.prog}: give --out FILE (an installed package is never written into)")
+    if args.out is not None and (args.out.exists() or args.out.is_symlink()) and (
+            args.out.is_symlink() or isinstance(mu.compared_outcomes(args.out), str)):
+        return fail(f"--out {args.out}: exists and is not a mutation JSON this program wrote; give "
+                    "a new file name (nothing else is replaced)")
+    args.out = args.out or OUT_PATH
     start = time.perf_counter()
     _init_worker()
     records, lines = [], []

@@ -152,6 +152,21 @@ def test_mutate_derivations_refuses_an_unknown_function(tmp_path, capsys):
     assert not out.exists()
 
 
+
+def test_mutate_derivations_never_replaces_a_foreign_file_and_reads_rerun_first(tmp_path, capsys):
+    mine = tmp_path / "mine.json"
+    mine.write_text('{"mine": 1}')
+    argv = ["--target", "runtime", "--function", "runtime.axisym.vec", "--out", str(mine)]
+    assert mutate_derivations.main(argv) == 2
+    assert "exists and is not a mutation JSON" in _one_error_line(capsys)
+    assert mine.read_text() == '{"mine": 1}'
+    out = tmp_path / "m.json"
+    argv = ["--target", "runtime", "--function", "runtime.axisym.vec", "--out", str(out),
+            "--rerun", str(tmp_path / "missing.json")]
+    assert mutate_derivations.main(argv) == 2
+    assert _one_error_line(capsys).startswith("error: --rerun ")
+    assert not out.exists()
+
 # 7. the notebook API checks the domain it documents
 def _state(n=4, seed=5):
     rng = np.random.default_rng(seed)
