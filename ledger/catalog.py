@@ -129,8 +129,8 @@ def _declared_ids() -> set[str]:
 
 
 def resolve(ids: list[str]) -> list[str]:
-    """The ledger ids named by ``ids`` (surrounding blanks stripped), checked before any proof is
-    imported; an unknown one raises ``KeyError`` with one line naming the nearest ids
+    """The ledger ids named by ``ids`` (surrounding blanks stripped; each once, in the order first
+    named), checked before any proof is imported; an unknown one raises ``KeyError`` with one line naming the nearest ids
     ("did you mean"), case-insensitively."""
     import difflib
 
@@ -142,7 +142,8 @@ def resolve(ids: list[str]) -> list[str]:
     for raw in ids:
         name = raw.strip()
         if name in known:
-            out.append(name)
+            if name not in out:
+                out.append(name)
             continue
         near = lower.get(name.lower(), []) or [
             i for k in difflib.get_close_matches(name.lower(), list(lower), n=3, cutoff=0.6)

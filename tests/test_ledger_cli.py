@@ -21,6 +21,7 @@ from chaplygin_nd.ledger.catalog import resolve
 
 def test_ids_are_stripped_and_near_misses_suggested():
     assert resolve([" eq:invL3D "]) == ["eq:invL3D"]
+    assert resolve(["K:Delta", "eq:invL3D", " K:Delta"]) == ["K:Delta", "eq:invL3D"]  # each row once
     for wrong in ("EQ:INVL3D", "eq:invl3d", "eq:invL3"):
         with pytest.raises(KeyError, match="did you mean eq:invL3D"):
             resolve([wrong])
