@@ -184,7 +184,8 @@ def s6_open_reduced_n5() -> Verdict:
                   f"integral, Euler-Jacobi), at most {full_bound} on P ({full_bound - 1})")
     measured = (f"{prediction}. Measured: SO(4)-invariant observables resolved (D < 1e-5) on "
                 f"{sum(inv.values())} of {len(res)} orbits: "
-                + ", ".join(f"{c} frequencies on {k}" for c, k in sorted(inv.items()))
+                + ", ".join(f"{c} frequenc{'y' if c == 1 else 'ies'} on {k} orbit{'' if k == 1 else 's'}"
+                           for c, k in sorted(inv.items()))
                 + "; " + dc.describe(res, "on P") + f"; the first {len(rerun)} unresolved again at "
                 f"{er.LONGER:g} T: {dc.tally(rerun) or 'none'}, counts on P "
                 + str(sorted(r.count for r in rerun)) + ", invariant counts "
