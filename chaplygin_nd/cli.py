@@ -42,7 +42,7 @@ def docs(argv: list[str]) -> int:
     installed)."""
     import importlib.util
 
-    from chaplygin_nd.console import OneLineParser, path_argument
+    from chaplygin_nd.console import OneLineParser, fail, path_argument
 
     parser = OneLineParser(prog="chaplygin docs", description="Build the reading site into "
                            "docs/_build/html (make docs-html) from a verification.json.")
@@ -52,18 +52,14 @@ def docs(argv: list[str]) -> int:
     args = parser.parse_args(argv)
     root = Path(__file__).resolve().parent.parent
     if not (root / "docs" / "build_pages.py").is_file():
-        print("chaplygin docs: the reading site is built from a source checkout (make docs); "
-              "this installation has no docs/ folder", file=sys.stderr)
-        return 2
+        return fail("chaplygin docs: the reading site is built from a source checkout (make docs); "
+                    "this installation has no docs/ folder")
     report = args.report or root / "verification.json"
     if not report.is_file():
-        print(f"chaplygin docs: no report {report}: run `chaplygin verify` first "
-              "(or give the path of a verification.json)", file=sys.stderr)
-        return 2
+        return fail(f"chaplygin docs: no report {report}: run `chaplygin verify` first "
+                    "(or give the path of a verification.json)")
     if importlib.util.find_spec("sphinx") is None:
-        print("chaplygin docs: Sphinx is not installed: pip install -e '.[docs]' (or make docs)",
-              file=sys.stderr)
-        return 2
+        return fail("chaplygin docs: Sphinx is not installed: pip install -e '.[docs]' (or make docs)")
     steps = [[sys.executable, str(root / "docs" / "build_pages.py"), "--report", str(report)],
              [sys.executable, "-m", "sphinx", "-b", "html", "-W", "--keep-going", "-q", "-c",
               str(root / "docs"), str(root / "docs/_build/src"), str(root / "docs/_build/html")],
@@ -131,18 +127,18 @@ def _main(argv: list[str] | None) -> int:
     if args[0] in ("-V", "--version"):
         print(version_line())
         return 0
+    from chaplygin_nd.console import fail
+
     name, rest = args[0], args[1:]
     if name not in COMMANDS:
         print(f"chaplygin: unknown command {name!r}\n\n{_usage()}", file=sys.stderr)
         return 2
     if name == "prove" and not [a for a in rest if not a.startswith("-")] \
             and not {"--list", "-h", "--help"} & set(rest):
-        print("chaplygin prove: name at least one ledger id (`chaplygin prove --list` lists them; "
-              "`chaplygin verify` runs them all)", file=sys.stderr)
-        return 2
+        return fail("chaplygin prove: name at least one ledger id (`chaplygin prove --list` lists "
+                    "them; `chaplygin verify` runs them all)")
     if name == "verify" and [a for a in rest if not a.startswith("-") and not _is_option_value(rest, a)]:
-        print("chaplygin verify: takes no ids (use `chaplygin prove ID ...`)", file=sys.stderr)
-        return 2
+        return fail("chaplygin verify: takes no ids (use `chaplygin prove ID ...`)")
     module, function, _ = COMMANDS[name]
     run = getattr(importlib.import_module(module), function)  # Ctrl-C here: one line too (see main)
     return int(run(rest) or 0)
