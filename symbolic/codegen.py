@@ -303,8 +303,8 @@ def main(argv: Sequence[str] | None = None) -> int:
                     "the same as `make generate`.")
     parser.parse_args(argv)
     if not (ROOT / "pyproject.toml").is_file():
-        print("chaplygin generate: rewrites generated/ of a source checkout (make generate); an "
-              "installed package is never written into", file=sys.stderr)
+        print("error: chaplygin generate: rewrites generated/ of a source checkout (make "
+              "generate); an installed package is never written into", file=sys.stderr)
         return 2
     for path in write():
         print(f"wrote {path.relative_to(ROOT)}")
