@@ -3,9 +3,9 @@
 import sys
 
 try:
-    from chaplygin_nd.cli import main
+    from chaplygin_nd.cli import entry
 except KeyboardInterrupt:  # Ctrl-C while the command is still being imported
     print("interrupted", file=sys.stderr)
     sys.exit(130)
 
-sys.exit(main())
+entry()

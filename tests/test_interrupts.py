@@ -112,13 +112,14 @@ def test_interrupted_runs_leave_a_whole_result_or_an_incomplete_mark(tmp_path):
 
 
 def test_a_second_run_into_a_locked_folder_is_refused(tmp_path):
-    scene, out = tmp_path / "s.toml", tmp_path / "result"
+    scene, out, log = tmp_path / "s.toml", tmp_path / "result", tmp_path / "first.err"
     # a first run that lasts (the mpmath Taylor method, forced past the time limit) holds the lock
     scene.write_text(SCENE.format(tag="0-1", seed=1).replace("t_end = 4.0", "t_end = 40000.0")
                      .replace('method = "dop853"', 'method = "reference"'))
-    first = subprocess.Popen([sys.executable, "-m", "chaplygin_nd", "simulate", str(scene), "--out",
-                              str(out), "--force"], stdout=subprocess.DEVNULL,
-                             stderr=subprocess.PIPE, text=True, env=dict(os.environ))
+    with open(log, "w") as err_file:
+        first = subprocess.Popen([sys.executable, "-m", "chaplygin_nd", "simulate", str(scene),
+                                  "--out", str(out), "--force"], stdout=subprocess.DEVNULL,
+                                 stderr=err_file, text=True, env=dict(os.environ))
     try:
         lock, expected = lock_file(out), f"{first.pid} {os.path.realpath(out)}"
         deadline = time.time() + 240
@@ -126,7 +127,7 @@ def test_a_second_run_into_a_locked_folder_is_refused(tmp_path):
             if lock.exists() and lock.read_text().strip() == expected:
                 break
             time.sleep(0.05)
-        assert first.poll() is None, first.stderr.read()
+        assert first.poll() is None, log.read_text()
         assert lock.read_text().strip() == expected, "the first run never took the lock"
         second = subprocess.run([sys.executable, "-m", "chaplygin_nd", "simulate", str(scene),
                                  "--out", str(out), "--no-plots"], capture_output=True, text=True,
@@ -134,8 +135,12 @@ def test_a_second_run_into_a_locked_folder_is_refused(tmp_path):
         assert second.returncode == 2, second.stderr
         lines = second.stderr.strip().splitlines()
         assert len(lines) == 1 and "another run is writing into this folder" in lines[0]
+        # interrupt the first run while it integrates (after its cost line), as a user would
+        while time.time() < deadline and first.poll() is None and "cost:" not in log.read_text():
+            time.sleep(0.05)
     finally:
         first.send_signal(signal.SIGINT)
-        _, err = first.communicate(timeout=300)
+        first.wait(timeout=300)
+    err = log.read_text()
     assert first.returncode == 130 and err.strip().splitlines()[-1] == "interrupted", err
     assert not out.exists()  # interrupted before writing: nothing, not half a result
