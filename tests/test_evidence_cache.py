@@ -66,7 +66,10 @@ def _copy_package(dest: Path) -> Path:
 def _run(pkg: Path, cache: Path) -> dict:
     env = {k: v for k, v in os.environ.items() if not k.startswith("PYTHON")}
     env[rc.project_cache.ENV] = str(cache)
-    r = subprocess.run([sys.executable, "-I", "-c", _RUN.format(pkg=str(pkg))], env=env,
+    # -B: no .pyc is written. The edit below keeps so.py's size, and Python trusts a .pyc whose
+    # source has the same size and mtime second; on a fast machine the restored original ran the
+    # edited bytecode (the CI run of 2026-11-24 saw it), while the cache key hashes the source.
+    r = subprocess.run([sys.executable, "-I", "-B", "-c", _RUN.format(pkg=str(pkg))], env=env,
                        capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr
     return json.loads(r.stdout.strip().splitlines()[-1])
