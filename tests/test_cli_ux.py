@@ -17,30 +17,17 @@ from chaplygin_nd.ledger.__main__ import _report_paths
 from chaplygin_nd.runtime import jit_cache
 from chaplygin_nd.simulate import cli as simulate_cli
 from chaplygin_nd.simulate import result_cache
+from cli_helpers import exit_code, one_error_line
 
 import chaplygin_nd
 from chaplygin_nd import api, cli, console
 from chaplygin_nd import cache as project_cache
 
 
-def _exit_code(call, argv) -> int:
-    """The exit status of ``call(argv)``, whether it returns it or argparse exits with it."""
-    try:
-        return call(argv)
-    except SystemExit as exc:
-        return exc.code
-
-
-def _one_error_line(capsys) -> str:
-    err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and err[0].startswith("error: "), err
-    return err[0]
-
-
 # 1. the usage line names the command the user typed
 @pytest.mark.parametrize("command", ["prove", "verify"])
 def test_help_names_the_command(command, capsys):
-    assert _exit_code(cli.main, [command, "-h"]) == 0
+    assert exit_code(cli.main, [command, "-h"]) == 0
     out = capsys.readouterr().out
     assert out.startswith(f"usage: chaplygin {command} "), out
     other = {"prove": "verify", "verify": "prove"}[command]
@@ -48,7 +35,7 @@ def test_help_names_the_command(command, capsys):
 
 
 def test_prove_help_does_not_offer_report_dir(capsys):
-    assert _exit_code(cli.main, ["prove", "-h"]) == 0
+    assert exit_code(cli.main, ["prove", "-h"]) == 0
     assert "--report-dir" not in capsys.readouterr().out
 
 
@@ -61,15 +48,15 @@ def test_prove_help_does_not_offer_report_dir(capsys):
 ])
 def test_an_empty_path_option_is_one_line_and_writes_nothing(argv, tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
-    assert _exit_code(cli.main, argv) == 2
-    line = _one_error_line(capsys)
+    assert exit_code(cli.main, argv) == 2
+    line = one_error_line(capsys)
     assert f"{argv[-2]}: an empty path" in line, line
     assert list(tmp_path.iterdir()) == []
 
 
 def test_bench_refuses_an_empty_out(tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
-    assert _exit_code(cli.main, ["bench", "--quick", "--out", ""]) == 2
+    assert exit_code(cli.main, ["bench", "--quick", "--out", ""]) == 2
     assert "--out: an empty path" in capsys.readouterr().err
     assert list(tmp_path.iterdir()) == []
 
@@ -78,8 +65,8 @@ def test_bench_refuses_an_empty_out(tmp_path, monkeypatch, capsys):
 def test_report_dir_with_ids_is_refused(tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
     target = tmp_path / "reports"
-    assert _exit_code(cli.main, ["prove", "eq:invL3D", "--report-dir", str(target)]) == 2
-    line = _one_error_line(capsys)
+    assert exit_code(cli.main, ["prove", "eq:invL3D", "--report-dir", str(target)]) == 2
+    line = one_error_line(capsys)
     assert "--report-dir" in line and "chaplygin verify --report-dir DIR" in line, line
     assert not target.exists()
     # a folder holding a whole report keeps it byte for byte
@@ -134,7 +121,7 @@ def test_only_the_projects_warnings_change_format():
 def test_mutate_refuses_an_unknown_function(tmp_path, capsys):
     out = tmp_path / "m.json"
     assert mutate.main(["--function", "section4.k", "--function", "nope", "--out", str(out)]) == 2
-    line = _one_error_line(capsys)
+    line = one_error_line(capsys)
     assert "'section4.k' (did you mean section4.K?)" in line and "'nope'" in line, line
     assert "`chaplygin mutate --list`" in line
     assert not out.exists()
@@ -147,10 +134,9 @@ def test_mutate_derivations_refuses_an_unknown_function(tmp_path, capsys):
     out = tmp_path / "m.json"
     argv = ["--target", "runtime", "--function", "runtime.axisym.zetaa", "--out", str(out)]
     assert mutate_derivations.main(argv) == 2
-    line = _one_error_line(capsys)
+    line = one_error_line(capsys)
     assert "did you mean runtime.axisym.zeta?" in line and "--target runtime --list" in line, line
     assert not out.exists()
-
 
 
 def test_mutate_derivations_never_replaces_a_foreign_file_and_reads_rerun_first(tmp_path, capsys):
@@ -158,13 +144,13 @@ def test_mutate_derivations_never_replaces_a_foreign_file_and_reads_rerun_first(
     mine.write_text('{"mine": 1}')
     argv = ["--target", "runtime", "--function", "runtime.axisym.vec", "--out", str(mine)]
     assert mutate_derivations.main(argv) == 2
-    assert "exists and is not a mutation JSON" in _one_error_line(capsys)
+    assert "exists and is not a mutation JSON" in one_error_line(capsys)
     assert mine.read_text() == '{"mine": 1}'
     out = tmp_path / "m.json"
     argv = ["--target", "runtime", "--function", "runtime.axisym.vec", "--out", str(out),
             "--rerun", str(tmp_path / "missing.json")]
     assert mutate_derivations.main(argv) == 2
-    assert _one_error_line(capsys).startswith("error: --rerun ")
+    assert one_error_line(capsys).startswith("error: --rerun ")
     assert not out.exists()
 
 # 7. the notebook API checks the domain it documents

@@ -11,22 +11,9 @@ import os
 import numpy as np
 import pytest
 from chaplygin_nd.ledger.__main__ import _report_paths
+from cli_helpers import exit_code, one_error_line
 
 from chaplygin_nd import api, cli
-
-
-def _exit_code(call, argv) -> int:
-    """The exit status of ``call(argv)``, whether it returns it or argparse exits with it."""
-    try:
-        return call(argv)
-    except SystemExit as exc:
-        return exc.code
-
-
-def _one_error_line(capsys) -> str:
-    err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and err[0].startswith("error: "), err
-    return err[0]
 
 
 # verify --report-dir: a file the program did not write is refused before any proof runs
@@ -38,8 +25,8 @@ def _one_error_line(capsys) -> str:
 ])
 def test_report_dir_refuses_files_it_did_not_write(tmp_path, capsys, name, text):
     (tmp_path / name).write_text(text)
-    assert _exit_code(cli.main, ["verify", "--report-dir", str(tmp_path)]) == 2
-    line = _one_error_line(capsys)
+    assert exit_code(cli.main, ["verify", "--report-dir", str(tmp_path)]) == 2
+    line = one_error_line(capsys)
     assert name in line and "not written by `chaplygin verify`" in line, line
     assert (tmp_path / name).read_text() == text
     assert sorted(p.name for p in tmp_path.iterdir()) == [name]
@@ -52,7 +39,7 @@ def test_report_dir_refuses_a_symlink(tmp_path, capsys):
     folder.mkdir()
     (folder / "VERIFICATION.md").symlink_to(other)
     assert _report_paths(str(folder), whole=True) == 2
-    assert "VERIFICATION.md" in _one_error_line(capsys)
+    assert "VERIFICATION.md" in one_error_line(capsys)
     assert (folder / "VERIFICATION.md").is_symlink() and other.read_text() == "keep"
 
 
@@ -123,8 +110,8 @@ def test_mutate_reads_compare_before_the_run(tmp_path, monkeypatch, capsys):
     for compare, why in [(tmp_path / "missing.json", "cannot read it"),
                          (bad, "not a mutation.json")]:
         argv = ["mutate", "--function", "section3.H_nd", "--compare", str(compare), "--out", str(out)]
-        assert _exit_code(cli.main, argv) == 2
-        line = _one_error_line(capsys)
+        assert exit_code(cli.main, argv) == 2
+        line = one_error_line(capsys)
         assert f"--compare {compare}" in line and why in line, line
     assert not out.exists() and bad.read_text() == '{"summary": "x"}'
     good = tmp_path / "good.json"
@@ -140,17 +127,17 @@ def test_mutate_reads_compare_before_the_run(tmp_path, monkeypatch, capsys):
     ["mutate", "--jobs", "0"], ["mutate", "--per-function", "0"], ["mutate", "--sample", "-1"],
 ])
 def test_counts_must_be_positive(argv, capsys):
-    assert _exit_code(cli.main, argv) == 2
-    line = _one_error_line(capsys)
+    assert exit_code(cli.main, argv) == 2
+    line = one_error_line(capsys)
     assert any(o in line for o in ("--jobs", "-j", "--per-function", "--sample")), line
 
 
 # chaplygin docs: -h is help (it was taken for a report path), a bad report is one line
 def test_docs_help_and_extra_arguments(capsys):
-    assert _exit_code(cli.main, ["docs", "-h"]) == 0
+    assert exit_code(cli.main, ["docs", "-h"]) == 0
     assert capsys.readouterr().out.startswith("usage: chaplygin docs")
-    assert _exit_code(cli.main, ["docs", "a.json", "b.json"]) == 2
-    assert "unrecognized arguments" in _one_error_line(capsys)
+    assert exit_code(cli.main, ["docs", "a.json", "b.json"]) == 2
+    assert "unrecognized arguments" in one_error_line(capsys)
 
 
 @pytest.mark.parametrize("text", ["not json", "{}", '{"rows": 3}', "[]"])
@@ -165,7 +152,7 @@ def test_docs_pages_refuse_a_report_that_is_not_ours(tmp_path, monkeypatch, caps
     report.write_text(text)
     out = tmp_path / "src"
     assert build_pages.main(["--report", str(report), "--out", str(out)]) == 2
-    line = _one_error_line(capsys)
+    line = one_error_line(capsys)
     assert "is not a verification.json" in line, line
     assert not out.exists()
 
@@ -176,8 +163,8 @@ def test_an_empty_scene_name_is_refused(name, tmp_path, monkeypatch, capsys):
     from chaplygin_nd.simulate.scene import SceneError
 
     monkeypatch.chdir(tmp_path)
-    assert _exit_code(cli.main, ["simulate", name, "--out", str(tmp_path / "o")]) == 2
-    line = _one_error_line(capsys)
+    assert exit_code(cli.main, ["simulate", name, "--out", str(tmp_path / "o")]) == 2
+    line = one_error_line(capsys)
     assert "an empty scene name" in line and "steady4d" in line, line
     assert list(tmp_path.iterdir()) == []
     with pytest.raises(SceneError, match="an empty scene name"):
@@ -229,12 +216,12 @@ def test_mutate_out_refuses_a_foreign_file_and_an_installed_package(tmp_path, mo
     monkeypatch.setattr(mutate, "baseline", lambda *a, **k: pytest.fail("the run started"))
     mine = tmp_path / "notes.json"
     mine.write_text('{"my": "notes"}')
-    assert _exit_code(cli.main, ["mutate", "--function", "section3.H_nd", "--out", str(mine)]) == 2
-    assert "is not a mutation.json this program wrote" in _one_error_line(capsys)
+    assert exit_code(cli.main, ["mutate", "--function", "section3.H_nd", "--out", str(mine)]) == 2
+    assert "is not a mutation.json this program wrote" in one_error_line(capsys)
     assert mine.read_text() == '{"my": "notes"}'
     monkeypatch.setattr(mutate, "is_checkout", lambda: False)
-    assert _exit_code(cli.main, ["mutate", "--function", "section3.H_nd"]) == 2
-    assert "give --out FILE" in _one_error_line(capsys)
+    assert exit_code(cli.main, ["mutate", "--function", "section3.H_nd"]) == 2
+    assert "give --out FILE" in one_error_line(capsys)
 
 
 # without heyoka (a wheel installed without the `fast` extra) the evidence rows are open with a
@@ -268,27 +255,27 @@ def test_bench_out_refuses_files_it_did_not_write(tmp_path, monkeypatch, capsys)
     theirs.mkdir()
     (theirs / "throughput.md").write_text("mine")
     for out, why in [(a_file, "exists and is not a folder"), (theirs, "did not write")]:
-        assert _exit_code(cli.main, ["bench", "throughput", "--out", str(out)]) == 2
-        assert why in _one_error_line(capsys)
+        assert exit_code(cli.main, ["bench", "throughput", "--out", str(out)]) == 2
+        assert why in one_error_line(capsys)
     assert a_file.read_text() == "mine" and sorted(os.listdir(theirs)) == ["throughput.md"]
     new = tmp_path / "new"
-    assert _exit_code(cli.main, ["bench", "throughput", "--out", str(new)]) == 0
+    assert exit_code(cli.main, ["bench", "throughput", "--out", str(new)]) == 0
     assert (new / bench_main.MARKER).is_file()
     (new / "throughput.md").write_text("an earlier run")   # its own folder is taken again
-    assert _exit_code(cli.main, ["bench", "throughput", "--out", str(new)]) == 0
+    assert exit_code(cli.main, ["bench", "throughput", "--out", str(new)]) == 0
 
 
 def test_simulate_workers_must_be_positive(tmp_path, capsys):
     for bad in ("0", "-2"):
         argv = ["simulate", "fma4d", "--workers", bad, "--out", str(tmp_path / "o")]
-        assert _exit_code(cli.main, argv) == 2
-        line = _one_error_line(capsys)
+        assert exit_code(cli.main, argv) == 2
+        line = one_error_line(capsys)
         assert line.count("--workers") == 1 and "not a positive integer" in line, line
     assert not (tmp_path / "o").exists()
 
 
 def test_mutate_help_is_plain_text(capsys):
-    assert _exit_code(cli.main, ["mutate", "-h"]) == 0
+    assert exit_code(cli.main, ["mutate", "-h"]) == 0
     out = capsys.readouterr().out
     assert out.startswith("usage: chaplygin mutate") and "``" not in out and "ledger.mutate" not in out
 
