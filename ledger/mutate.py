@@ -402,6 +402,31 @@ def _equivalence(fn, mutant_code, claim_id: str, budget: float, key: str = "",
     return bool(kind) and state["calls"] > 0, state["calls"], kind
 
 
+def settle(record: dict, fn, code, rows, tried: list[str], key: str = "") -> dict:
+    """A mutant that changed no row: ``equivalent`` only if its value equals the original's (or
+    differs by an invariance registered for ``key``) at every call the cheapest row makes, else
+    ``survived``; fills and returns ``record`` (also used by ``mutate_derivations``)."""
+    claim_id, _base, seconds = rows[0]
+    equal, calls, kind = _equivalence(fn, code, claim_id,
+                                      max(MIN_BUDGET, BUDGET_FACTOR * seconds), key)
+    if equal:
+        what = {"exact": "exactly the original value",
+                "scale": "a non-zero constant times the original value ("
+                         + SCALE_INVARIANT.get(key, "") + ")",
+                "positive scale": "a positive constant times the original value ("
+                                  + POSITIVE_SCALE_INVARIANT.get(key, "") + ")",
+                "sign": "the original value with its argument negated ("
+                        + ARGUMENT_SIGN_INVARIANT.get(key, ("", ""))[1] + ")"}[kind]
+        record.update(outcome="equivalent", row=claim_id, reason=(
+            f"the mutant returns {what} (exact SymPy comparison) at all {calls} calls made by "
+            f"row {claim_id}; no row ({', '.join(tried)}) changed"))
+    else:
+        record.update(outcome="survived", row=", ".join(tried), reason=(
+            f"value differs from the original but no row changed "
+            f"({', '.join(tried)}; compared {calls} calls)"))
+    return record
+
+
 def evaluate(task: tuple[Mutant, list[tuple[str, tuple, float]]]) -> dict:
     """Decide one mutant (in a worker): apply it, run its rows, compare, restore."""
     mutant, rows = task
@@ -430,27 +455,7 @@ def evaluate(task: tuple[Mutant, list[tuple[str, tuple, float]]]) -> dict:
                 why = note or _difference(base, got)
                 record.update(outcome="killed", row=claim_id, reason=why)
                 return record
-        # Nothing changed: equivalent only if the mutant's value equals the original's exactly
-        # at every call the cheapest row makes.
-        claim_id, _base, seconds = rows[0]
-        equal, calls, kind = _equivalence(fn, code, claim_id,
-                                          max(MIN_BUDGET, BUDGET_FACTOR * seconds), mutant.function)
-        if equal:
-            what = {"exact": "exactly the original value",
-                    "scale": "a non-zero constant times the original value ("
-                             + SCALE_INVARIANT.get(mutant.function, "") + ")",
-                    "positive scale": "a positive constant times the original value ("
-                                      + POSITIVE_SCALE_INVARIANT.get(mutant.function, "") + ")",
-                    "sign": "the original value with its argument negated ("
-                            + ARGUMENT_SIGN_INVARIANT.get(mutant.function, ("", ""))[1] + ")"}[kind]
-            record.update(outcome="equivalent", row=claim_id, reason=(
-                f"the mutant returns {what} (exact SymPy comparison) at all {calls} calls made by "
-                f"row {claim_id}; no row ({', '.join(tried)}) changed"))
-        else:
-            record.update(outcome="survived", row=", ".join(tried), reason=(
-                f"value differs from the original but no row changed "
-                f"({', '.join(tried)}; compared {calls} calls)"))
-        return record
+        return settle(record, fn, code, rows, tried, mutant.function)
     except Exception:  # noqa: BLE001
         record.update(outcome="error", reason=traceback.format_exc(limit=3))
         return record

@@ -250,17 +250,7 @@ def evaluate(task: Task) -> dict:
                               reason="no row changed, but the regenerated kernels differ: make "
                                      "verify's stale check of generated/ fails")
                 return record
-        claim_id, _base, seconds = task.rows[0]
-        equal, calls, _kind = mu._equivalence(fn, code, claim_id,
-                                              max(mu.MIN_BUDGET, mu.BUDGET_FACTOR * seconds))
-        if equal:
-            record.update(outcome="equivalent", row=claim_id, reason=(
-                f"returns exactly the original value (exact SymPy comparison) at all {calls} "
-                f"calls made by row {claim_id}; no row ({', '.join(tried)}) changed"))
-        else:
-            record.update(outcome="survived", row=", ".join(tried), reason=(
-                f"value differs but no row changed ({', '.join(tried)}; compared {calls} calls)"))
-        return record
+        return mu.settle(record, fn, code, task.rows, tried)
     except Exception:  # noqa: BLE001
         record.update(outcome="error", reason=traceback.format_exc(limit=3))
         return record
