@@ -1,4 +1,4 @@
-r"""Calibration of ``accuracy.target`` -> integrator settings (:mod:`simulate.accuracy`).
+r"""Calibration of ``accuracy.target`` -> integrator settings (:mod:`simulate.scene.accuracy`).
 
 For every method the planner may run (DOP853, RK45, heyoka in double, RKMK4) and a few settings
 each, on every built-in scene that integrates (long ones cut to a shorter horizon, said in the
@@ -9,7 +9,7 @@ rows) and on a seeded set of generic initial conditions (n = 3, 4, 5; a = -0.9, 
 
 is measured against heyoka in ``real128`` at tolerance $10^{-28}$ (or, without heyoka, the
 mpmath Taylor method at 32 digits), and the ratio $e/\text{setting}$ (for RKMK4 $e/(h^4\,T)$)
-recorded. ``worst`` per method is what :data:`simulate.accuracy.MEASURED` must be at least; the
+recorded. ``worst`` per method is what :data:`simulate.scene.accuracy.MEASURED` must be at least; the
 run uses ``setting = target / (worst x SAFETY)``. Writes ``calibration.json`` (rows) and
 ``calibration.md`` (the table, and MET / NOT MET: the constants in the code are >= the measured
 worst). Reproduce: ``chaplygin bench calibration`` (``--quick``: fewer cases).
@@ -23,11 +23,11 @@ from pathlib import Path
 
 import numpy as np
 from chaplygin_nd.bench.report import machine, write_atomic, write_rows
-from chaplygin_nd.simulate import accuracy
-from chaplygin_nd.simulate.outputs import collect
-from chaplygin_nd.simulate.planner import plan
-from chaplygin_nd.simulate.run import execute
-from chaplygin_nd.simulate.scene import find, loads
+from chaplygin_nd.simulate.scene import accuracy
+from chaplygin_nd.simulate.scene.outputs import collect
+from chaplygin_nd.simulate.scene.planner import plan
+from chaplygin_nd.simulate.scene.run import execute
+from chaplygin_nd.simulate.scene.spec import find, loads
 
 SETTINGS = {"dop853": (1e-7, 1e-10, 1e-12, accuracy.FLOORS["dop853"]),
             "rk45": (1e-7, 1e-9),
@@ -132,7 +132,7 @@ def main(out: Path, quick: bool = False) -> int:
     lines = ["# Calibration: accuracy.target -> settings", "",
              f"Reference: {ref_settings.describe()}. Ratio = error/setting (RKMK4: error/(h^4 T)). "
              f"A run uses setting = (target/{accuracy.SAFETY:g} - E)/K (RKMK4: h = "
-             f"(target/({accuracy.SAFETY:g} C T))^(1/4)), K and E from simulate/accuracy.py.", "",
+             f"(target/({accuracy.SAFETY:g} C T))^(1/4)), K and E from simulate/scene/accuracy.py.", "",
              "| method | cases | worst K (above the floor) | K in accuracy.py | worst E (at the floor) "
              "| E in accuracy.py | |", "|---|---|---|---|---|---|---|"]
     ok_all = True

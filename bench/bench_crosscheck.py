@@ -13,13 +13,14 @@ import time
 from pathlib import Path
 
 from chaplygin_nd.bench.report import machine, target, write_atomic, write_rows
-from chaplygin_nd.simulate import accuracy, tori_scene
-from chaplygin_nd.simulate.crosscheck import cross_check
 from chaplygin_nd.simulate.integrators import heyoka_taylor
-from chaplygin_nd.simulate.outputs import collect
-from chaplygin_nd.simulate.planner import plan
-from chaplygin_nd.simulate.run import execute
-from chaplygin_nd.simulate.scene import builtin_scenes, find
+from chaplygin_nd.simulate.scene import accuracy
+from chaplygin_nd.simulate.scene import tori as tori_scene
+from chaplygin_nd.simulate.scene.crosscheck import cross_check
+from chaplygin_nd.simulate.scene.outputs import collect
+from chaplygin_nd.simulate.scene.planner import plan
+from chaplygin_nd.simulate.scene.run import execute
+from chaplygin_nd.simulate.scene.spec import builtin_scenes, find
 
 LONGEST = ("long4d", "tori4d")
 

@@ -31,10 +31,10 @@ from pathlib import Path
 import mpmath
 import numpy as np
 from chaplygin_nd.runtime import jit_cache
-from chaplygin_nd.simulate import families
-from chaplygin_nd.simulate.field import FullField, ReducedField
+from chaplygin_nd.simulate.dynamics import families
+from chaplygin_nd.simulate.dynamics.field import FullField, ReducedField
+from chaplygin_nd.simulate.dynamics.so import reduced_invariants
 from chaplygin_nd.simulate.integrators import dop853, heyoka_taylor, taylor
-from chaplygin_nd.simulate.run import reduced_invariants
 
 REPEATS = 5
 

@@ -25,12 +25,12 @@ from pathlib import Path
 import mpmath
 import numpy as np
 from chaplygin_nd.bench.runs import timed
-from chaplygin_nd.simulate import families
-from chaplygin_nd.simulate.closed_forms import horizontal_invariants, horizontal_nd
-from chaplygin_nd.simulate.dispatch import active
-from chaplygin_nd.simulate.field import FullField
+from chaplygin_nd.simulate.dynamics import families
+from chaplygin_nd.simulate.dynamics.closed_forms import horizontal_invariants, horizontal_nd
+from chaplygin_nd.simulate.dynamics.field import FullField
 from chaplygin_nd.simulate.integrators import dop853
 from chaplygin_nd.simulate.integrators.taylor import L_matrix_mp
+from chaplygin_nd.simulate.kernels import active
 
 QUICK = os.environ.get("BENCH_QUICK") == "1"
 #: (scene name, n, a, b, seed) — seeded horizontal initial conditions.

@@ -52,8 +52,8 @@ def _cpu(fn, repeat: int = 3) -> tuple[float, float, object]:
 
 def scaling_rows(ns) -> tuple[list[dict], list[dict]]:
     """(rows of scaling.json, rows of the fixed-cost measurement)."""
-    from chaplygin_nd.simulate import families
-    from chaplygin_nd.simulate.field import FullField
+    from chaplygin_nd.simulate.dynamics import families
+    from chaplygin_nd.simulate.dynamics.field import FullField
     from chaplygin_nd.simulate.integrators import dop853, heyoka_systems, heyoka_taylor
 
     rows, fixed = [], []

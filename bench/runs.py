@@ -18,11 +18,11 @@ from pathlib import Path
 
 import numpy as np
 from chaplygin_nd.bench.report import write_atomic
-from chaplygin_nd.simulate import families, so
-from chaplygin_nd.simulate.dispatch import active
-from chaplygin_nd.simulate.field import FullField
+from chaplygin_nd.simulate.dynamics import families, so
+from chaplygin_nd.simulate.dynamics.field import FullField
 from chaplygin_nd.simulate.integrators import dop853, lie, taylor
-from chaplygin_nd.simulate.outputs import p_coefficients
+from chaplygin_nd.simulate.kernels import active
+from chaplygin_nd.simulate.scene.outputs import p_coefficients
 
 
 @dataclasses.dataclass
@@ -71,7 +71,7 @@ class Point:
 
     @classmethod
     def draw(cls, family: str, n: int, a: float, b: float, seed: int) -> Point:
-        """A seeded point of ``family`` (simulate.families)."""
+        """A seeded point of ``family`` (simulate.dynamics.families)."""
         return cls(n, a, b, *families.draw(family, n, a, b, seed))
 
     def field(self) -> FullField:

@@ -22,10 +22,10 @@ from chaplygin_nd.bench.runs import (
     rkmk4_rows,
     timed,
 )
-from chaplygin_nd.simulate import families, so
-from chaplygin_nd.simulate.closed_forms import relative_equilibrium
-from chaplygin_nd.simulate.dispatch import active
+from chaplygin_nd.simulate.dynamics import families, so
+from chaplygin_nd.simulate.dynamics.closed_forms import relative_equilibrium
 from chaplygin_nd.simulate.integrators import taylor
+from chaplygin_nd.simulate.kernels import active
 
 RTOLS = (1e-6, 1e-8, 1e-10, 1e-11, 1e-12, 1e-13, 2.3e-14)
 STEPS = (0.2, 0.1, 0.05, 0.025)

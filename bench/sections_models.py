@@ -8,13 +8,13 @@ from chaplygin_nd.bench.figures import drift_figure, figure
 from chaplygin_nd.bench.report import target
 from chaplygin_nd.bench.runs import Point, Row, best, drift, heyoka_rows, reference, timed
 from chaplygin_nd.bench.sections import Context, cheapest, versus
-from chaplygin_nd.simulate import families, so
-from chaplygin_nd.simulate.closed_forms import horizontal
-from chaplygin_nd.simulate.dispatch import active
-from chaplygin_nd.simulate.field import FullField, ReducedField
+from chaplygin_nd.simulate.dynamics import families, so
+from chaplygin_nd.simulate.dynamics.closed_forms import horizontal
+from chaplygin_nd.simulate.dynamics.field import FullField, ReducedField
+from chaplygin_nd.simulate.dynamics.so import reduced_invariants
 from chaplygin_nd.simulate.integrators import dop853, lie
-from chaplygin_nd.simulate.outputs import p_coefficients
-from chaplygin_nd.simulate.run import reduced_invariants
+from chaplygin_nd.simulate.kernels import active
+from chaplygin_nd.simulate.scene.outputs import p_coefficients
 
 LONG_T, LONG_SAMPLES, LONG_H = 1000.0, 101, 0.05
 ROUNDING = 1e-12  # "at rounding level": the isospectral invariants stay below this
@@ -164,8 +164,8 @@ def _planner_line(rows) -> str:
     measured run that meets its accuracy target?"""
     from pathlib import Path
 
-    from chaplygin_nd.simulate import planner
-    from chaplygin_nd.simulate.scene import load
+    from chaplygin_nd.simulate.scene import planner
+    from chaplygin_nd.simulate.scene.spec import load
 
     scene = load(Path(__file__).resolve().parent.parent / "scenes" / "reduced4d.toml")
     chosen = planner.plan(scene)

@@ -24,9 +24,9 @@ if TYPE_CHECKING:  # pragma: no cover
     import numpy as np
 
     from chaplygin_nd.ledger.runner import Result
-    from chaplygin_nd.simulate.planner import Plan
-    from chaplygin_nd.simulate.run import Trajectory
-    from chaplygin_nd.simulate.scene import Scene
+    from chaplygin_nd.simulate.scene.planner import Plan
+    from chaplygin_nd.simulate.scene.run import Trajectory
+    from chaplygin_nd.simulate.scene.spec import Scene
 
 __all__ = ["decide", "simulate", "Simulation", "angular_velocity", "L_gamma", "vector_field",
            "energy", "zeta"]
@@ -79,14 +79,14 @@ class Simulation:
 
     def summary(self) -> str:
         """The one-screen summary ``chaplygin simulate`` prints (scene, model, cost, drift)."""
-        from chaplygin_nd.simulate.cli import summary
+        from chaplygin_nd.simulate.scene.cli import summary
 
         return summary(self.scene, self.plan, self.trajectory, self.outputs,
                        self.trajectory.seconds + self.trajectory.compile_seconds)
 
 
 def _scene(scene: str | Path, force: bool) -> Scene:
-    from chaplygin_nd.simulate.scene import find, loads
+    from chaplygin_nd.simulate.scene.spec import find, loads
 
     if isinstance(scene, str) and ("\n" in scene or "=" in scene) and not _is_file(scene):
         return loads(scene, source="<TOML text>", force=force)
@@ -108,8 +108,8 @@ def simulate(scene: str | Path, *, force: bool = False, progress: bool = False) 
     planner finds (closed forms of P:steady-rot, Th:Re, S5:H-linear-nD before integration of
     eq:motion-general). ``force`` lifts the time and memory limits; ``progress`` shows progress on
     stderr for long runs. A scene that cannot give a right answer raises
-    :class:`~chaplygin_nd.simulate.scene.SceneError` or
-    :class:`~chaplygin_nd.simulate.stops.RunStopped` (nothing is returned).
+    :class:`~chaplygin_nd.simulate.scene.spec.SceneError` or
+    :class:`~chaplygin_nd.simulate.integrators.stops.RunStopped` (nothing is returned).
 
     A steady rotation (P:steady-rot) keeps $\Omega$ constant and conserves the energy
     (S2.2:energy):
@@ -125,10 +125,10 @@ def simulate(scene: str | Path, *, force: bool = False, progress: bool = False) 
     """
     import numpy as np
 
-    from chaplygin_nd.simulate.outputs import collect
-    from chaplygin_nd.simulate.planner import plan
-    from chaplygin_nd.simulate.run import execute
-    from chaplygin_nd.simulate.stops import check_finite
+    from chaplygin_nd.simulate.integrators.stops import check_finite
+    from chaplygin_nd.simulate.scene.outputs import collect
+    from chaplygin_nd.simulate.scene.planner import plan
+    from chaplygin_nd.simulate.scene.run import execute
 
     sc = _scene(scene, force)
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # checked below

@@ -5,7 +5,7 @@
 ``~/Library/Caches/chaplygin-nd`` on macOS, ``%LOCALAPPDATA%\\chaplygin-nd\\Cache`` on Windows. Never
 inside the installed package. Each user of the cache has its own subfolder
 (:func:`cache_dir`): ``heyoka/`` (compiled integrators, :mod:`chaplygin_nd.runtime.jit_cache`),
-``evidence/`` (orbits and spectra of the evidence rows, :mod:`chaplygin_nd.simulate.evidence`).
+``evidence/`` (orbits and spectra of the evidence rows, :mod:`chaplygin_nd.simulate.analysis.evidence`).
 A cache only saves time: deleting the folder is always safe. When a cache cannot be used, the run
 goes on and says why once, as a :class:`CacheWarning`: one line ``warning: ...`` on stderr.
 """

@@ -27,7 +27,7 @@ from chaplygin_nd import __version__
 COMMANDS = {
     "verify": ("chaplygin_nd.ledger.__main__", "main", "decide every ledger row and write the reports"),
     "prove": ("chaplygin_nd.ledger.__main__", "prove", "decide the ledger rows named"),
-    "simulate": ("chaplygin_nd.simulate.cli", "main", "plan and run a scene"),
+    "simulate": ("chaplygin_nd.simulate.scene.cli", "main", "plan and run a scene"),
     "bench": ("chaplygin_nd.bench.__main__", "main", "run the benchmarks"),
     "generate": ("chaplygin_nd.symbolic.codegen", "main", "rewrite generated/ from the proofs"),
     "mutate": ("chaplygin_nd.ledger.mutate", "main", "mutation testing of the printed formulas"),

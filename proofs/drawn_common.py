@@ -2,8 +2,8 @@ r"""The verdict rule of the drawn evidence rows (issue 16), shared by proofs/s5_
 proofs/s6_open_reduced_n5.py. Fixed before the drawn ensembles were run (a timing pilot of 8
 orbits each of the $n = 4$ and $n = 5$ spheres had been seen; it is reported in notes/i16b.md).
 
-Per orbit (simulate/drawn_evidence.py): frequency class ``predicted`` / ``resonant`` / ``excess`` /
-``unresolved`` and MEGNO class ``regular`` / ``chaotic`` / ``undecided`` (simulate/chaos.py).
+Per orbit (simulate/analysis/drawn_evidence.py): frequency class ``predicted`` / ``resonant`` / ``excess`` /
+``unresolved`` and MEGNO class ``regular`` / ``chaotic`` / ``undecided`` (simulate/analysis/chaos.py).
 
 * **contradicting** orbit: MEGNO ``chaotic`` or frequency class ``excess`` (a regular orbit with
   more independent frequencies than the torus allows).

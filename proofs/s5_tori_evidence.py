@@ -4,9 +4,9 @@ S5:reconstruction and Th:Re-tori:frequencies, each on at least 200 drawn orbits.
 No identity can decide these statements; a measurement can support them, and a control shows
 that the measurement could have come out otherwise. Verdict ``evidence`` (never ``holds``), or
 ``open`` with the numbers. Every row rests on initial conditions drawn by the ledger's seed
-(simulate/draws.py: $a \in \{-0.9, -0.5, 0.5, 2\}$, $b \in \{0.5, 2\}$, energy scales $0.5, 1, 2$),
-integrated in heyoka's batch mode with a MEGNO tangent vector (simulate/chaos.py), analysed by NAFF
-(simulate/naff.py) and classified by the rule of proofs/drawn_common.py, fixed beforehand.
+(simulate/analysis/draws.py: $a \in \{-0.9, -0.5, 0.5, 2\}$, $b \in \{0.5, 2\}$, energy scales $0.5, 1, 2$),
+integrated in heyoka's batch mode with a MEGNO tangent vector (simulate/analysis/chaos.py), analysed by NAFF
+(simulate/analysis/naff.py) and classified by the rule of proofs/drawn_common.py, fixed beforehand.
 
 * **S5:EJ-tori** (lines 884-885). "The regular compact level sets of the integrals which have no
   equilibrium points are 2-tori where the flow is quasi-periodic after a time reparametrisation."
@@ -26,7 +26,7 @@ integrated in heyoka's batch mode with a MEGNO tangent vector (simulate/chaos.py
   independent frequencies for $a \ne 0$, none (an equilibrium) at $a = 0$.
 
 Control (all three rows): the $n = 4$ sphere with the generic mass tensor ``CHAOTIC_J[4]`` =
-diag(1, 2, 0.5, 0.25), chosen by a MEGNO-only rule (simulate/control.py), 100 drawn orbits, the same
+diag(1, 2, 0.5, 0.25), chosen by a MEGNO-only rule (simulate/analysis/control.py), 100 drawn orbits, the same
 analysis.
 """
 
@@ -35,11 +35,11 @@ from __future__ import annotations
 import numpy as np
 from chaplygin_nd.ledger.registry import Verdict, claim
 from chaplygin_nd.proofs import drawn_common as dc
-from chaplygin_nd.simulate import evidence_rows as er
-from chaplygin_nd.simulate.chaos import MEGNO_CHAOTIC, MEGNO_REGULAR
-from chaplygin_nd.simulate.control import CHAOTIC_J
-from chaplygin_nd.simulate.drawn_evidence import BATCH
-from chaplygin_nd.simulate.frequencies import REGULAR
+from chaplygin_nd.simulate.analysis import evidence_rows as er
+from chaplygin_nd.simulate.analysis.chaos import MEGNO_CHAOTIC, MEGNO_REGULAR
+from chaplygin_nd.simulate.analysis.control import CHAOTIC_J
+from chaplygin_nd.simulate.analysis.drawn_evidence import BATCH
+from chaplygin_nd.simulate.analysis.frequencies import REGULAR
 from chaplygin_nd.symbolic.points import ledger_seed
 from chaplygin_nd.symbolic.printed import section4 as printed4
 from chaplygin_nd.symbolic.printed import section5 as printed5

@@ -21,7 +21,7 @@ reduced orbit would show **at most 3** independent frequencies (a 3-torus fillin
 on $P$ the reconstruction adds at most rank $SO(4) = 2$: **at most 5**, 4 with a sixth integral.
 Chaos (a positive Lyapunov exponent on a set of positive measure) would show that it is not.
 
-**Measured** on 100 drawn orbits of the axisymmetric $n = 5$ sphere (simulate/evidence_rows.py
+**Measured** on 100 drawn orbits of the axisymmetric $n = 5$ sphere (simulate/analysis/evidence_rows.py
 ``n5_row``; $a \in \{-0.9, -0.5, 0.5, 2\}$, $b \in \{0.5, 2\}$, three energies): the count on the two
 $SO(4)$-invariant observables (reduced frequencies) and on $P$, the frequency diffusion, MEGNO.
 
@@ -41,10 +41,10 @@ import numpy as np
 import sympy as sp
 from chaplygin_nd.ledger.registry import Verdict, claim
 from chaplygin_nd.proofs import drawn_common as dc
-from chaplygin_nd.simulate import evidence_rows as er
-from chaplygin_nd.simulate.control import CHAOTIC_J
-from chaplygin_nd.simulate.drawn_evidence import BATCH
-from chaplygin_nd.simulate.frequencies import REGULAR
+from chaplygin_nd.simulate.analysis import evidence_rows as er
+from chaplygin_nd.simulate.analysis.control import CHAOTIC_J
+from chaplygin_nd.simulate.analysis.drawn_evidence import BATCH
+from chaplygin_nd.simulate.analysis.frequencies import REGULAR
 from chaplygin_nd.symbolic import algebra, model, points
 from chaplygin_nd.symbolic.points import ledger_seed
 

@@ -1,10 +1,17 @@
 r"""Simulation of the axisymmetric $n$-dimensional Chaplygin sphere with the cheapest exact model.
 
-Modules, one idea each: :mod:`~simulate.scene` (TOML scenes, validation), :mod:`~simulate.families`
-(initial conditions), :mod:`~simulate.dispatch` / :mod:`~simulate.generated_adapter` (the binding to
-:mod:`generated`), :mod:`~simulate.field` (vector fields), :mod:`~simulate.integrators` (DOP853,
-RKMK4 Lie-group, Taylor reference), :mod:`~simulate.closed_forms` (relative equilibria and their
-reconstruction), :mod:`~simulate.planner` (model choice), :mod:`~simulate.run` (execution),
-:mod:`~simulate.outputs` (arrays, files, plots), :mod:`~simulate.crosscheck`, :mod:`~simulate.cli`.
+Four subpackages and one binding, arrows one way (scene → analysis → integrators → dynamics →
+kernels → :mod:`generated`):
+
+* :mod:`~simulate.kernels` — the one binding to the verified kernels of :mod:`generated`.
+* :mod:`~simulate.dynamics` — the model: so(n) algebra and the SO(n) invariants, vector fields,
+  initial-condition families, closed forms (relative equilibria, horizontal motion), the ball.
+* :mod:`~simulate.integrators` — DOP853, RKMK4 Lie-group, Taylor reference, heyoka; why a run stops.
+* :mod:`~simulate.analysis` — the dynamics analysis that the evidence rows of :mod:`proofs` and
+  the frequency maps share: NAFF, chaos indicators, drawn ensembles, controls, the result cache,
+  frequency maps, Poincaré sections.
+* :mod:`~simulate.scene` — the scene product: scene files, planner and cost model, run, outputs
+  and figures, output folders, cross-check, the ``chaplygin simulate`` command.
+
 Imports no SymPy.
 """

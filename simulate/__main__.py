@@ -1,7 +1,7 @@
-"""``python -m chaplygin_nd.simulate`` (``chaplygin simulate``): see :mod:`chaplygin_nd.simulate.cli`."""
+"""``python -m chaplygin_nd.simulate`` (``chaplygin simulate``): see :mod:`chaplygin_nd.simulate.scene.cli`."""
 
 import sys
 
-from chaplygin_nd.simulate.cli import main
+from chaplygin_nd.simulate.scene.cli import main
 
 sys.exit(main())

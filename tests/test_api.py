@@ -9,7 +9,7 @@ import sys
 
 import numpy as np
 import pytest
-from chaplygin_nd.simulate.scene import builtin_scenes
+from chaplygin_nd.simulate.scene.spec import builtin_scenes
 
 import chaplygin_nd
 import chaplygin_nd.api as api
@@ -36,9 +36,9 @@ def test_the_api_is_reexported():
 
 
 def test_simulate_is_the_subpackage_and_the_function():
-    import chaplygin_nd.simulate.scene as scene_module  # the subpackage is imported first
+    import chaplygin_nd.simulate.scene.spec as scene_module  # the subpackage is imported first
 
-    assert chaplygin_nd.simulate.scene is scene_module
+    assert chaplygin_nd.simulate.scene.spec is scene_module
     by_name = chaplygin_nd.simulate("steady4d")
     assert isinstance(by_name, api.Simulation)
 

@@ -1,4 +1,4 @@
-"""The chaos indicator (simulate/chaos.py), the general-J heyoka control, the drawn initial
+"""The chaos indicator (simulate/analysis/chaos.py), the general-J heyoka control, the drawn initial
 conditions and the vectorised NAFF (issue 16).
 
 MEGNO is checked where it is known in closed form (a shear flow: <Y> -> 2; a saddle:
@@ -9,9 +9,14 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from chaplygin_nd.simulate import chaos, draws, naff, so
-from chaplygin_nd.simulate.control import CHAOTIC_J, general_inertia_kernels, general_system
-from chaplygin_nd.simulate.drawn_evidence import Setting, classify, measure
+from chaplygin_nd.simulate.analysis import chaos, draws, naff
+from chaplygin_nd.simulate.analysis.control import (
+    CHAOTIC_J,
+    general_inertia_kernels,
+    general_system,
+)
+from chaplygin_nd.simulate.analysis.drawn_evidence import Setting, classify, measure
+from chaplygin_nd.simulate.dynamics import so
 from chaplygin_nd.simulate.integrators.heyoka_systems import System
 
 hy = pytest.importorskip("heyoka")
@@ -72,7 +77,7 @@ def test_megno_rule_classes():
 
 def test_general_J_system_matches_the_linear_solve():
     """control.general_system (LDL^T as heyoka expressions) against DOP853 on the NumPy solve."""
-    from chaplygin_nd.simulate.field import FullField
+    from chaplygin_nd.simulate.dynamics.field import FullField
     from chaplygin_nd.simulate.integrators import dop853, heyoka_taylor
 
     J, a, b = CHAOTIC_J[4], -0.5, 2.0

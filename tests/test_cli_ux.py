@@ -15,8 +15,8 @@ import pytest
 from chaplygin_nd.ledger import mutate, mutate_derivations
 from chaplygin_nd.ledger.__main__ import _report_paths
 from chaplygin_nd.runtime import jit_cache
-from chaplygin_nd.simulate import cli as simulate_cli
-from chaplygin_nd.simulate import result_cache
+from chaplygin_nd.simulate.analysis import result_cache
+from chaplygin_nd.simulate.scene import cli as simulate_cli
 from cli_helpers import exit_code, one_error_line
 
 import chaplygin_nd
@@ -93,7 +93,7 @@ def test_cache_warnings_are_one_line_and_still_warnings(tmp_path):
     shared = tmp_path / "shared"
     shared.mkdir()
     shared.chmod(0o777)
-    code = ("from chaplygin_nd.simulate import result_cache as rc\n"
+    code = ("from chaplygin_nd.simulate.analysis import result_cache as rc\n"
             "assert rc.private_folder('evidence') is None\n")
     env = {**os.environ, project_cache.ENV: str(shared)}
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env,

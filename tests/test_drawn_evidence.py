@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 from chaplygin_nd.proofs import drawn_common as dc
-from chaplygin_nd.simulate.drawn_evidence import OrbitResult
+from chaplygin_nd.simulate.analysis.drawn_evidence import OrbitResult
 
 
 def _orbits(spec: dict) -> list[OrbitResult]:

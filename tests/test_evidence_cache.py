@@ -1,11 +1,11 @@
-"""The evidence cache (simulate/result_cache.py, simulate/evidence.py, simulate/frequencies.py):
+"""The evidence cache (simulate/analysis/result_cache.py, simulate/analysis/evidence.py, simulate/analysis/frequencies.py):
 a cached orbit is keyed by the code that computed it (issue 16), and the cache is an
 optimisation, never a failure and never a way in (issue 19, item 5).
 
 The first test copies the project's packages into a temporary folder (laid out as the installed
 package ``chaplygin_nd``, following pyproject's ``package-dir``), runs a short evidence
 computation there in isolated subprocesses (``python -I``, the copy first on ``sys.path``),
-flips the sign of the commutator of the field in the copy's ``simulate/so.py`` and shows the hit
+flips the sign of the commutator of the field in the copy's ``simulate/dynamics/so.py`` and shows the hit
 becomes a miss and the orbit changes.
 """
 
@@ -24,9 +24,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from chaplygin_nd.simulate import frequencies as fq
-from chaplygin_nd.simulate import result_cache as rc
-from chaplygin_nd.simulate.evidence import orbits
+from chaplygin_nd.simulate.analysis import frequencies as fq
+from chaplygin_nd.simulate.analysis import result_cache as rc
+from chaplygin_nd.simulate.analysis.evidence import orbits
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -34,8 +34,8 @@ _RUN = """
 import json, sys
 sys.path.insert(0, {pkg!r})
 from dataclasses import replace
-from chaplygin_nd.simulate import evidence, naff
-from chaplygin_nd.simulate import frequencies as fq
+from chaplygin_nd.simulate.analysis import evidence, naff
+from chaplygin_nd.simulate.analysis import frequencies as fq
 calls = [0]
 analyse = naff.analyse
 def counted(*a, **k):
@@ -83,7 +83,7 @@ def test_editing_the_field_in_a_copy_of_the_project_invalidates_the_cache(tmp_pa
     assert not cold["cached"] and cold["analysed"] == 1
     assert warm["cached"] and warm["analysed"] == 0          # orbits and spectra from the cache
     assert warm["y"] == cold["y"] and warm["lines"] == cold["lines"]
-    so = pkg / "chaplygin_nd" / "simulate" / "so.py"
+    so = pkg / "chaplygin_nd" / "simulate" / "dynamics" / "so.py"
     text = so.read_text()
     assert text.count("return A @ B - B @ A") == 1
     so.write_text(text.replace("return A @ B - B @ A", "return B @ A - A @ B"))  # another system
@@ -100,11 +100,11 @@ def test_editing_the_field_in_a_copy_of_the_project_invalidates_the_cache(tmp_pa
 
 def test_manifest_names_the_field_and_rejects_changed_or_missing_modules():
     manifest = rc.code_manifest()
-    assert "chaplygin_nd.simulate.so" in manifest
+    assert "chaplygin_nd.simulate.dynamics.so" in manifest
     assert rc.code_unchanged(manifest)
-    assert not rc.code_unchanged({**manifest, "chaplygin_nd.simulate.so": "0" * 64})
+    assert not rc.code_unchanged({**manifest, "chaplygin_nd.simulate.dynamics.so": "0" * 64})
     assert not rc.code_unchanged({**manifest, "chaplygin_nd.simulate.no_such_module": "0" * 64})
-    assert not rc.code_unchanged({"os": manifest["chaplygin_nd.simulate.so"]})  # not the project
+    assert not rc.code_unchanged({"os": manifest["chaplygin_nd.simulate.dynamics.so"]})  # not the project
     assert not rc.code_unchanged({}) and not rc.code_unchanged(["x"])
 
 

@@ -1,4 +1,4 @@
-"""Frequency maps (simulate/fma.py, simulate/fma_scene.py; issue 16): the control's compiled field
+"""Frequency maps (simulate/analysis/fma.py, simulate/scene/frequency_map.py; issue 16): the control's compiled field
 solves the definition, the axisymmetric case of it is the derived field, the vectorised NAFF
 finds the lines PyNAFF finds, a 2-worker local Dask cluster gives the same map as one process,
 and the scene runs end to end (small grids, short orbits: seconds)."""
@@ -10,8 +10,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from chaplygin_nd.simulate import families, fma, naff, so
-from chaplygin_nd.simulate.control import general_inertia_kernels
+from chaplygin_nd.simulate.analysis import fma, naff
+from chaplygin_nd.simulate.analysis.control import general_inertia_kernels
+from chaplygin_nd.simulate.dynamics import families, so
 from chaplygin_nd.simulate.integrators import heyoka_systems, heyoka_taylor
 
 pytest.importorskip("heyoka")
@@ -85,9 +86,9 @@ def test_the_symmetric_map_is_regular_where_the_control_diffuses():
 
 
 def test_the_scene_validates_and_runs(tmp_path):
-    from chaplygin_nd.simulate.cli import main
-    from chaplygin_nd.simulate.fma_scene import FrequencyMapScene
-    from chaplygin_nd.simulate.scene import SceneError, load, loads
+    from chaplygin_nd.simulate.scene.cli import main
+    from chaplygin_nd.simulate.scene.frequency_map import FrequencyMapScene
+    from chaplygin_nd.simulate.scene.spec import SceneError, load, loads
 
     scene = load(ROOT / "scenes" / "fma4d.toml")
     assert isinstance(scene, FrequencyMapScene) and scene.spec.size >= 200

@@ -10,11 +10,17 @@ from pathlib import Path
 import numpy as np
 import pytest
 from chaplygin_nd.ledger.registry import Verdict
-from chaplygin_nd.simulate import families, naff
-from chaplygin_nd.simulate import frequencies as fq
-from chaplygin_nd.simulate.control import L_gamma_general, general_inertia_kernels
-from chaplygin_nd.simulate.dispatch import active
-from chaplygin_nd.simulate.evidence import _reduced_constraints, level_set_points, orbits, signals
+from chaplygin_nd.simulate.analysis import frequencies as fq
+from chaplygin_nd.simulate.analysis import naff
+from chaplygin_nd.simulate.analysis.control import L_gamma_general, general_inertia_kernels
+from chaplygin_nd.simulate.analysis.evidence import (
+    _reduced_constraints,
+    level_set_points,
+    orbits,
+    signals,
+)
+from chaplygin_nd.simulate.dynamics import families
+from chaplygin_nd.simulate.kernels import active
 
 W1, W2 = 0.7310412, 0.1892347   # rad per unit time, rationally independent (to the tolerance)
 
@@ -75,7 +81,7 @@ def test_control_kernel_solves_the_definition_and_matches_the_axisymmetric_one()
 
 def test_level_set_points_share_the_integrals():
     M, g = families.draw("generic", 4, fq.A, fq.B, seed=fq.SEED, count=4)
-    from chaplygin_nd.simulate.run import reduced_invariants
+    from chaplygin_nd.simulate.dynamics.so import reduced_invariants
 
     r0 = reduced_invariants(M, g)[3]
     pts = level_set_points(r0, (0.05, 0.1), fq.A, fq.B)
@@ -86,7 +92,7 @@ def test_level_set_points_share_the_integrals():
 
 
 def test_control_separates_on_short_orbits(tmp_path, monkeypatch):
-    """Threshold fixed beforehand (simulate/frequencies.py): control D >= 100 x regular D."""
+    """Threshold fixed beforehand (simulate/analysis/frequencies.py): control D >= 100 x regular D."""
     monkeypatch.setenv("CHAPLYGIN_ND_CACHE", str(tmp_path))
     reg = replace(fq.reduced_experiment(t_end=1024.0, rtol=1e-9), members=(3,), level_shifts=())
     ctl = replace(fq.control_experiment(t_end=1024.0, rtol=1e-9), members=(3,))
@@ -111,8 +117,8 @@ def test_evidence_verdict_needs_its_fields_and_a_separating_control():
 
 
 def test_tori_scene_plans_the_full_system_for_frequencies_only():
-    from chaplygin_nd.simulate.planner import plan
-    from chaplygin_nd.simulate.scene import SceneError, load, loads
+    from chaplygin_nd.simulate.scene.planner import plan
+    from chaplygin_nd.simulate.scene.spec import SceneError, load, loads
 
     scene = load(Path(__file__).resolve().parent.parent / "scenes" / "tori4d.toml")
     assert scene.count == 4

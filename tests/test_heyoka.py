@@ -20,8 +20,8 @@ from chaplygin_nd.generated import sphere3d as g3
 from chaplygin_nd.runtime import axisym
 from chaplygin_nd.runtime import expressions as rx
 from chaplygin_nd.runtime import jit_cache as heyoka_cache
-from chaplygin_nd.simulate import families, so
-from chaplygin_nd.simulate.field import FullField, ReducedField
+from chaplygin_nd.simulate.dynamics import families, so
+from chaplygin_nd.simulate.dynamics.field import FullField, ReducedField
 from chaplygin_nd.simulate.integrators import dop853, heyoka_systems, heyoka_taylor, taylor
 
 heyoka_only = pytest.mark.skipif(not heyoka_taylor.available(),
@@ -130,7 +130,7 @@ def test_batch_mode_equals_single_runs():
 
 @heyoka_only
 def test_reduced_field_with_heyoka_matches_dop853():
-    from chaplygin_nd.simulate.run import reduced_invariants
+    from chaplygin_nd.simulate.dynamics.so import reduced_invariants
 
     M0, g0 = families.draw("generic", 4, -0.4, 0.7, seed=21)
     r0 = reduced_invariants(M0, g0)

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from chaplygin_nd.simulate.outdir import MANIFEST, SIBLING, lock_file
+from chaplygin_nd.simulate.scene.outdir import MANIFEST, SIBLING, lock_file
 
 SCENE = """title = "run {tag}"
 n = 3
@@ -62,7 +62,7 @@ def _check_invariant(out: Path) -> str:
     summary = (out / "summary.txt").read_text()
     tag = summary.split("scene   run ", 1)[1].split()[0]
     seed = int(tag.split("-")[1])
-    from chaplygin_nd.simulate.scene import loads
+    from chaplygin_nd.simulate.scene.spec import loads
 
     expect = loads(SCENE.format(tag=tag, seed=seed)).gamma0[:, -1]
     assert np.array_equal(x[0], expect), "the outputs are not those of the run the summary names"

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from chaplygin_nd.simulate import naff
+from chaplygin_nd.simulate.analysis import naff
 
 
 def _einsum_projections(X, nu, dt, L, derivatives):
@@ -109,8 +109,9 @@ def test_lines_equal_the_einsum_formulation_on_random_signals(N, dt):
 
 def test_the_batch_schedule_and_width_change_no_orbit(tmp_path, monkeypatch):
     pytest.importorskip("heyoka")
-    from chaplygin_nd.simulate import drawn_evidence as de
-    from chaplygin_nd.simulate import draws, so
+    from chaplygin_nd.simulate.analysis import drawn_evidence as de
+    from chaplygin_nd.simulate.analysis import draws
+    from chaplygin_nd.simulate.dynamics import so
 
     monkeypatch.setenv("CHAPLYGIN_ND_CACHE", str(tmp_path))
     ens = draws.draw("schedule test", "generic", 4, 11, 5)  # 11 orbits: padded last batches

@@ -8,8 +8,8 @@ import mpmath
 import numpy as np
 import pytest
 from chaplygin_nd.runtime.axisym import p_coefficients
-from chaplygin_nd.simulate import families
-from chaplygin_nd.simulate.outputs import p_coefficients as output_p
+from chaplygin_nd.simulate.dynamics import families
+from chaplygin_nd.simulate.scene.outputs import p_coefficients as output_p
 
 
 def _reference(M, g):

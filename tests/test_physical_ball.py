@@ -1,4 +1,4 @@
-"""Physical balls (S4:physical-ball): the numeric map of simulate.ball equals the derived one, the
+"""Physical balls (S4:physical-ball): the numeric map of simulate.dynamics.ball equals the derived one, the
 scene syntax [ball], realisability errors and notes, and a run in the ball's own units."""
 
 from __future__ import annotations
@@ -8,10 +8,10 @@ from fractions import Fraction
 import numpy as np
 import pytest
 import sympy as sp
-from chaplygin_nd.simulate import ball as B
-from chaplygin_nd.simulate.planner import plan
-from chaplygin_nd.simulate.run import execute
-from chaplygin_nd.simulate.scene import SceneError, loads
+from chaplygin_nd.simulate.dynamics import ball as B
+from chaplygin_nd.simulate.scene.planner import plan
+from chaplygin_nd.simulate.scene.run import execute
+from chaplygin_nd.simulate.scene.spec import SceneError, loads
 from chaplygin_nd.symbolic import physical_ball as P
 from scipy.integrate import solve_ivp
 

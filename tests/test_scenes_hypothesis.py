@@ -3,7 +3,7 @@ never a traceback, a hang or a write outside ``--out`` (issue 19, item 7).
 
 Scene files are generated from a small valid scene by replacing, deleting or adding keys with wrong
 types, NaN/inf, extreme magnitudes, empty or mismatched arrays, deep nesting and unicode. The CLI
-runs in-process (with the memory and time limits of simulate.budget lowered so that a costly scene
+runs in-process (with the memory and time limits of simulate.scene.budget lowered so that a costly scene
 is refused at once, which is the path under test); a few cases run as a subprocess for the real
 exit status and stderr. Fixed CI profile: derandomized, no deadline.
 """
@@ -22,7 +22,7 @@ import tempfile
 from pathlib import Path
 
 import pytest
-from chaplygin_nd.simulate import budget, cli
+from chaplygin_nd.simulate.scene import budget, cli
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 

@@ -7,8 +7,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from chaplygin_nd.simulate import cli
-from chaplygin_nd.simulate.scene import OUTPUTS, SceneError, load, loads
+from chaplygin_nd.simulate.scene import cli
+from chaplygin_nd.simulate.scene.spec import OUTPUTS, SceneError, load, loads
 
 # trajectory scenes; frequency-map scenes ([fma], tests/test_fma.py) have no initial condition
 SCENES = sorted(p for p in Path(__file__).resolve().parent.parent.glob("scenes/*.toml")

@@ -1,4 +1,4 @@
-"""Targets are kept or refused (simulate/accuracy.py), and the cross-check can judge every built-in
+"""Targets are kept or refused (simulate/scene/accuracy.py), and the cross-check can judge every built-in
 scene on both installs: with heyoka and without it (CHAPLYGIN_ND_WITHOUT_HEYOKA=1, the base install).
 
 The longest cross-checks (long4d, tori4d; and on the base install the scenes whose reference is the
@@ -11,14 +11,14 @@ import dataclasses
 
 import numpy as np
 import pytest
-from chaplygin_nd.simulate import accuracy, cli
-from chaplygin_nd.simulate.crosscheck import MARGIN, cross_check, reference_settings
-from chaplygin_nd.simulate.fma_scene import FrequencyMapScene
 from chaplygin_nd.simulate.integrators import heyoka_taylor
-from chaplygin_nd.simulate.outputs import collect
-from chaplygin_nd.simulate.planner import plan
-from chaplygin_nd.simulate.run import execute
-from chaplygin_nd.simulate.scene import builtin_scenes, find, loads
+from chaplygin_nd.simulate.scene import accuracy, cli
+from chaplygin_nd.simulate.scene.crosscheck import MARGIN, cross_check, reference_settings
+from chaplygin_nd.simulate.scene.frequency_map import FrequencyMapScene
+from chaplygin_nd.simulate.scene.outputs import collect
+from chaplygin_nd.simulate.scene.planner import plan
+from chaplygin_nd.simulate.scene.run import execute
+from chaplygin_nd.simulate.scene.spec import builtin_scenes, find, loads
 
 #: minutes: cross-checked by ``chaplygin bench calibration`` (bench/out/calibration.md)
 LONGEST = {"long4d", "tori4d"}

@@ -8,7 +8,7 @@ import subprocess
 import sys
 
 import pytest
-from chaplygin_nd.simulate import cli
+from chaplygin_nd.simulate.scene import cli
 
 SMALL = """n = 3
 a = 0.5

@@ -1,4 +1,4 @@
-"""The cost model of the planner (simulate/cost.py) and the run budget (simulate/budget.py):
+"""The cost model of the planner (simulate/scene/cost.py) and the run budget (simulate/scene/budget.py):
 the cheapest predicted candidate is chosen, a scene may still name its method, and on a fresh
 machine (empty caches) a long scene is not refused because of the compile time before its run."""
 
@@ -8,11 +8,11 @@ from pathlib import Path
 
 import pytest
 from chaplygin_nd.runtime import jit_cache
-from chaplygin_nd.simulate import budget, cost
 from chaplygin_nd.simulate.integrators import heyoka_taylor
-from chaplygin_nd.simulate.planner import plan
-from chaplygin_nd.simulate.run import execute
-from chaplygin_nd.simulate.scene import load, loads
+from chaplygin_nd.simulate.scene import budget, cost
+from chaplygin_nd.simulate.scene.planner import plan
+from chaplygin_nd.simulate.scene.run import execute
+from chaplygin_nd.simulate.scene.spec import load, loads
 
 ROOT = Path(__file__).resolve().parents[1]
 heyoka_only = pytest.mark.skipif(not heyoka_taylor.available(), reason="heyoka not installed")

@@ -8,13 +8,14 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from chaplygin_nd.simulate import cli, so
-from chaplygin_nd.simulate.crosscheck import cross_check
-from chaplygin_nd.simulate.outdir import MANIFEST, claim
-from chaplygin_nd.simulate.outputs import collect, write
-from chaplygin_nd.simulate.planner import plan
-from chaplygin_nd.simulate.run import execute
-from chaplygin_nd.simulate.scene import load
+from chaplygin_nd.simulate.dynamics import so
+from chaplygin_nd.simulate.scene import cli
+from chaplygin_nd.simulate.scene.crosscheck import cross_check
+from chaplygin_nd.simulate.scene.outdir import MANIFEST, claim
+from chaplygin_nd.simulate.scene.outputs import collect, write
+from chaplygin_nd.simulate.scene.planner import plan
+from chaplygin_nd.simulate.scene.run import execute
+from chaplygin_nd.simulate.scene.spec import load
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -127,8 +128,8 @@ def test_rotation_to_maps_E_n_to_gamma():
 def test_reduced_invariants_are_SO3_invariant_and_satisfy_the_syzygy():
     """r = (A, B, E, G, F1, x, delta) (Section 5, eq:red-system order) is unchanged by
     h.(k, u, q, x) = (hk, hu, hq, x), and delta^2 = det Lambda."""
-    from chaplygin_nd.simulate import families
-    from chaplygin_nd.simulate.run import reduced_invariants
+    from chaplygin_nd.simulate.dynamics import families
+    from chaplygin_nd.simulate.dynamics.so import reduced_invariants
 
     M, gamma = families.draw("generic", 4, 0.5, 1.0, seed=8, count=6)
     r = reduced_invariants(M, gamma)

@@ -10,8 +10,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
-from chaplygin_nd.simulate import cli  # noqa: E402
-from chaplygin_nd.simulate.figures import REDUCED_NAMES, figure  # noqa: E402
+from chaplygin_nd.simulate.scene import cli  # noqa: E402
+from chaplygin_nd.simulate.scene.figures import REDUCED_NAMES, figure  # noqa: E402
 from matplotlib.collections import LineCollection, PolyCollection  # noqa: E402
 
 T = np.linspace(0.0, 5.0, 41)

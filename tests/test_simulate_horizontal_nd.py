@@ -9,12 +9,12 @@ from pathlib import Path
 import mpmath
 import numpy as np
 import pytest
-from chaplygin_nd.simulate.closed_forms import horizontal_invariants
-from chaplygin_nd.simulate.dispatch import active
-from chaplygin_nd.simulate.outputs import collect
-from chaplygin_nd.simulate.planner import plan
-from chaplygin_nd.simulate.run import execute
-from chaplygin_nd.simulate.scene import load, loads
+from chaplygin_nd.simulate.dynamics.closed_forms import horizontal_invariants
+from chaplygin_nd.simulate.kernels import active
+from chaplygin_nd.simulate.scene.outputs import collect
+from chaplygin_nd.simulate.scene.planner import plan
+from chaplygin_nd.simulate.scene.run import execute
+from chaplygin_nd.simulate.scene.spec import load, loads
 
 ROOT = Path(__file__).resolve().parent.parent
 

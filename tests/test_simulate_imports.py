@@ -8,20 +8,21 @@ import subprocess
 import sys
 from pathlib import Path
 
-from chaplygin_nd.simulate.run import Progress
+from chaplygin_nd.simulate.scene.run import Progress
 
 ROOT = Path(__file__).resolve().parent.parent
 
 
 def test_simulate_imports_no_sympy():
-    modules = sorted(p.stem for p in (ROOT / "simulate").glob("*.py") if p.stem != "__main__")
+    modules = sorted(".".join(p.relative_to(ROOT / "simulate").with_suffix("").parts)
+                     for p in (ROOT / "simulate").rglob("*.py") if p.stem not in ("__main__", "__init__"))
     code = ("import sys\n" + "".join(f"import chaplygin_nd.simulate.{m}\n" for m in modules)
             + "import chaplygin_nd.simulate.integrators.dop853, chaplygin_nd.simulate.integrators.lie, "
               "chaplygin_nd.simulate.integrators.taylor, chaplygin_nd.simulate.integrators.heyoka_taylor, "
               "chaplygin_nd.simulate.integrators.heyoka_systems, chaplygin_nd.runtime.compiled, "
               "chaplygin_nd.runtime.expressions\n"
             + "assert 'heyoka' not in sys.modules  # imported only when a heyoka run starts\n"
-            + "from chaplygin_nd.simulate.dispatch import active\nactive()\n"
+            + "from chaplygin_nd.simulate.kernels import active\nactive()\n"
             + "assert 'sympy' not in sys.modules, sorted(m for m in sys.modules if 'sympy' in m)\n"
             + "print('ok')\n")
     out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True)

@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 import numpy as np
-from chaplygin_nd.simulate import families
-from chaplygin_nd.simulate.field import FullField
+from chaplygin_nd.simulate.dynamics import families
+from chaplygin_nd.simulate.dynamics.field import FullField
 from chaplygin_nd.simulate.integrators import dop853, lie, taylor
-from chaplygin_nd.simulate.outputs import p_coefficients
+from chaplygin_nd.simulate.scene.outputs import p_coefficients
 
 N, A, B = 4, 0.5, 1.0
 
@@ -55,7 +55,7 @@ def test_taylor_reference_converges_in_precision():
 def test_taylor_reconstruction_matches_dop853():
     M0, g0 = families.draw("generic", N, A, B, 3)
     f = FullField(N, A, B, reconstruct=True, radius=0.7)
-    from chaplygin_nd.simulate.so import rotation_to
+    from chaplygin_nd.simulate.dynamics.so import rotation_to
     y0 = f.pack(M0, g0, rotation_to(g0[0])[None], np.zeros((1, N)))
     t = np.array([0.0, 3.0])
     r = taylor.integrate(f, y0, t, dps=20)

@@ -8,8 +8,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import sympy as sp
-from chaplygin_nd.simulate import so
-from chaplygin_nd.simulate.dispatch import Kernels, active
+from chaplygin_nd.simulate.dynamics import so
+from chaplygin_nd.simulate.kernels import Kernels, active
 from chaplygin_nd.symbolic.algebra import vector_symbols
 from chaplygin_nd.symbolic.model import L_matrix
 
@@ -75,8 +75,8 @@ def test_one_point_fast_path_equals_the_public_kernels():
 
     import chaplygin_nd.generated.axisym as g
     import chaplygin_nd.generated.reduced as red
-    from chaplygin_nd.simulate import families
-    from chaplygin_nd.simulate.run import reduced_invariants
+    from chaplygin_nd.simulate.dynamics import families
+    from chaplygin_nd.simulate.dynamics.so import reduced_invariants
 
     k = active()
     for n in (3, 4):

@@ -12,8 +12,8 @@ import tempfile
 from pathlib import Path
 
 import pytest
-from chaplygin_nd.simulate import cli
-from chaplygin_nd.simulate.outdir import MANIFEST, OutputError, claim
+from chaplygin_nd.simulate.scene import cli
+from chaplygin_nd.simulate.scene.outdir import MANIFEST, OutputError, claim
 
 ROOT = Path(__file__).resolve().parent.parent
 SCENE = """title = "small"

@@ -5,9 +5,9 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from chaplygin_nd.simulate.dispatch import active
-from chaplygin_nd.simulate.planner import MODELS, plan
-from chaplygin_nd.simulate.scene import load, loads
+from chaplygin_nd.simulate.kernels import active
+from chaplygin_nd.simulate.scene.planner import MODELS, plan
+from chaplygin_nd.simulate.scene.spec import load, loads
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -60,7 +60,7 @@ def test_method_of_example_scenes():
 
     generic = plan(load(ROOT / "scenes/generic4d.toml"))
     if heyoka_taylor.available():  # auto: the honouring candidate of least predicted cost
-        assert generic.method == "heyoka"  # DOP853 cannot honour 1e-12 (simulate/accuracy.py)
+        assert generic.method == "heyoka"  # DOP853 cannot honour 1e-12 (simulate/scene/accuracy.py)
         assert "cost: predicted" in generic.describe()  # every prediction in the plan line
         tol = generic.accuracy.value  # calibrated for target 1e-12
         assert f"heyoka Taylor, tol {tol:.3g}; calibrated for relative error <= 1e-12" \
@@ -78,7 +78,7 @@ def _scene(initial, n=4, a=0.5, want='["M", "gamma"]'):
 def test_unclaimed_vertical_point_is_detected():
     """An explicit initial condition in V (not a steady rotation) gets the closed form of Th:Re
     without being labelled; a point in V that is also a steady rotation gets the cheaper one."""
-    from chaplygin_nd.simulate import families
+    from chaplygin_nd.simulate.dynamics import families
     M0, g0 = families.draw("vertical", 4, 0.5, 1.0, seed=12)
     s = _scene(f"M = {M0[0].tolist()}\ngamma = {g0[0].tolist()}")
     assert s.family == "explicit"

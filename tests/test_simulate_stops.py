@@ -10,7 +10,7 @@ import time
 from pathlib import Path
 
 import pytest
-from chaplygin_nd.simulate import cli
+from chaplygin_nd.simulate.scene import cli
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -58,7 +58,7 @@ def test_scale_1e300_stops_within_seconds(capsys, tmp_path):
 
 def test_non_finite_sample_names_field_and_time():
     import numpy as np
-    from chaplygin_nd.simulate.stops import NonFinite, check_finite
+    from chaplygin_nd.simulate.integrators.stops import NonFinite, check_finite
 
     values = np.ones((5, 2))
     values[3, 1] = np.inf
@@ -83,8 +83,8 @@ def test_huge_arrays_are_refused_before_they_are_made(capsys, tmp_path, times, i
 
 
 def test_force_lifts_the_memory_limit(monkeypatch):
-    from chaplygin_nd.simulate import budget
-    from chaplygin_nd.simulate.scene import SceneError, loads
+    from chaplygin_nd.simulate.scene import budget
+    from chaplygin_nd.simulate.scene.spec import SceneError, loads
 
     text = _scene(times="t_end = 1.0\nsamples = 1000")
     need = budget.memory_bytes(4, 1, 1000, ["M", "gamma"])
@@ -149,8 +149,8 @@ def test_codegen_help_prints_usage_and_writes_nothing():
 def test_progress_counts_from_t0_and_stops_on_a_nan_time():
     import io
 
-    from chaplygin_nd.simulate.run import Progress
-    from chaplygin_nd.simulate.stops import NonFinite
+    from chaplygin_nd.simulate.integrators.stops import NonFinite
+    from chaplygin_nd.simulate.scene.run import Progress
 
     stream = io.StringIO()
     bar = Progress(5.0, "late", after=0.0, stream=stream, t0=3.0)

@@ -7,13 +7,14 @@ import dataclasses
 
 import numpy as np
 import pytest
-from chaplygin_nd.simulate import cli
-from chaplygin_nd.simulate.crosscheck import cross_check
-from chaplygin_nd.simulate.field import FullField
-from chaplygin_nd.simulate.outputs import collect
-from chaplygin_nd.simulate.planner import APPLIES, plan
-from chaplygin_nd.simulate.run import execute, reduced_invariants
-from chaplygin_nd.simulate.scene import find, loads
+from chaplygin_nd.simulate.dynamics.field import FullField
+from chaplygin_nd.simulate.dynamics.so import reduced_invariants
+from chaplygin_nd.simulate.scene import cli
+from chaplygin_nd.simulate.scene.crosscheck import cross_check
+from chaplygin_nd.simulate.scene.outputs import collect
+from chaplygin_nd.simulate.scene.planner import APPLIES, plan
+from chaplygin_nd.simulate.scene.run import execute
+from chaplygin_nd.simulate.scene.spec import find, loads
 from scipy.integrate import solve_ivp
 
 T = np.linspace(3.0, 5.0, 9)  # t[0] = 3
@@ -29,7 +30,7 @@ def _late(name):
 
 def _independent(scene):
     """(M, gamma) at T by SciPy's DOP853 on eq:motion-general from (M0, gamma0) at t = 3, written
-    here without simulate.run (tight tolerance)."""
+    here without simulate.scene.run (tight tolerance)."""
     f = FullField(scene.n, scene.a, scene.b)
     y0 = f.pack(scene.M0, scene.gamma0)
     shape = y0.shape
@@ -66,7 +67,7 @@ def test_cross_check_passes_with_t0_3(name):
     check = cross_check(scene, p, arrays, progress=False)
     assert check.passed, check.describe()
     assert check.describe().endswith("cross-check: pass")
-    # the reference is another integrator or precision (simulate/crosscheck.py)
+    # the reference is another integrator or precision (simulate/scene/crosscheck.py)
     assert p.accuracy is None or p.accuracy.describe() not in check.against
 
 
@@ -102,7 +103,7 @@ want = ["M", "gamma"]
 def test_cli_cross_check_fail_exits_1(tmp_path, capsys, monkeypatch):
     """A Lie-group run at a step too coarse for target = 1e-12 (the calibration is falsified here
     so that the step stays 0.5) is judged off: FAIL naming the run, exit 1."""
-    from chaplygin_nd.simulate import accuracy
+    from chaplygin_nd.simulate.scene import accuracy
 
     monkeypatch.setitem(accuracy.MEASURED, "lie", 1e-30)
     path = tmp_path / "coarse.toml"

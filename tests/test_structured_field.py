@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 from chaplygin_nd.runtime import axisym
 from chaplygin_nd.runtime import expressions as rx
-from chaplygin_nd.simulate import families, so
+from chaplygin_nd.simulate.dynamics import families, so
 
 DPS = 40
 

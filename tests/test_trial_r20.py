@@ -160,7 +160,7 @@ def test_docs_pages_refuse_a_report_that_is_not_ours(tmp_path, monkeypatch, caps
 # an empty scene name is not the current folder
 @pytest.mark.parametrize("name", ["", "  "])
 def test_an_empty_scene_name_is_refused(name, tmp_path, monkeypatch, capsys):
-    from chaplygin_nd.simulate.scene import SceneError
+    from chaplygin_nd.simulate.scene.spec import SceneError
 
     monkeypatch.chdir(tmp_path)
     assert exit_code(cli.main, ["simulate", name, "--out", str(tmp_path / "o")]) == 2
@@ -173,7 +173,7 @@ def test_an_empty_scene_name_is_refused(name, tmp_path, monkeypatch, capsys):
 
 # an open evidence row names the part of the rule fixed beforehand that failed, with its numbers
 def _orbits(spec: dict):
-    from chaplygin_nd.simulate.drawn_evidence import OrbitResult
+    from chaplygin_nd.simulate.analysis.drawn_evidence import OrbitResult
 
     out = []
     for (cls, mcls), k in spec.items():

@@ -12,7 +12,7 @@ import time
 
 import numpy as np
 from chaplygin_nd.simulate.integrators.base import Solution
-from chaplygin_nd.simulate.stops import RunStopped
+from chaplygin_nd.simulate.integrators.stops import RunStopped
 from scipy.integrate import solve_ivp
 
 __all__ = ["integrate"]
@@ -23,7 +23,7 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, rtol: float = 1e-10,
     r"""Integrate $\dot y = f(t, y)$ with DOP853 from ``t[0]``, sampling at ``t`` (dense output is
     not used: SciPy steps onto every sample). Domain: any smooth field; ``rtol`` $\ge 2.2\cdot10^{-14}$.
     ``scheme = "RK45"`` uses SciPy's Dormand–Prince 5(4) instead (the independent run of
-    ``--cross-check``, :mod:`simulate.crosscheck`)."""
+    ``--cross-check``, :mod:`simulate.scene.crosscheck`)."""
     y0 = np.asarray(y0, dtype=float)
     shape = y0.shape
     atol = rtol if atol is None else atol

@@ -57,7 +57,7 @@ class System:
 
 @cache
 def full(n: int, reconstruct: bool = False) -> System:
-    r"""eq:motion-general (axisymmetric, any $n \ge 3$), state of :class:`simulate.field.FullField`;
+    r"""eq:motion-general (axisymmetric, any $n \ge 3$), state of :class:`simulate.dynamics.field.FullField`;
     parameters $(a, b)$, and the radius $r$ with the reconstruction (one object per $(n,$ reconstruct$)$,
     so a warm integrate call does not rebuild the names). Domain: $\gamma \in S^{n-1}$, $|a| \le 1$, $b > 0$."""
     from chaplygin_nd.runtime import expressions as rx
@@ -103,9 +103,9 @@ def sphere3d() -> System:
 
 
 def for_field(field) -> tuple[System, list[float]]:
-    """The system and parameter values of a :class:`simulate.field.FullField` or
-    :class:`simulate.field.ReducedField`."""
-    from chaplygin_nd.simulate.field import FullField, ReducedField
+    """The system and parameter values of a :class:`simulate.dynamics.field.FullField` or
+    :class:`simulate.dynamics.field.ReducedField`."""
+    from chaplygin_nd.simulate.dynamics.field import FullField, ReducedField
 
     if isinstance(field, FullField):
         values = [field.a, field.b] + ([field.radius] if field.reconstruct else [])

@@ -17,7 +17,7 @@ Compact mode (heyoka's loop-based code generation) compiles several times faster
 ``compact=None`` chooses it (:func:`default_compact`). Measured with the O(n^2) field (tol 1e-12,
 2 shared cores): unrolled compiles in 2.1 / 3.6 / 5.8 / 9.6 / 18 s at n = 3 / 4 / 5 / 6 / 8 against
 0.7–1.1 s compact, and steps about 2x faster; so unrolled pays only on long runs or when it is
-already cached — a choice the planner's cost model makes (:mod:`simulate.cost`) and passes here.
+already cached — a choice the planner's cost model makes (:mod:`simulate.scene.cost`) and passes here.
 """
 
 from __future__ import annotations
@@ -161,7 +161,7 @@ def _integrator_types(hy) -> tuple[type, ...]:
 def integrate(field, y0: np.ndarray, t: np.ndarray, tol: float | None = None,
               precision="double", compact: bool | None = None, batch: bool | int = True,
               cache: bool = True, pars=None, progress=None) -> Solution:
-    r"""Integrate ``field`` (a :class:`simulate.field.FullField`, :class:`simulate.field.ReducedField`,
+    r"""Integrate ``field`` (a :class:`simulate.dynamics.field.FullField`, :class:`simulate.dynamics.field.ReducedField`,
     or a :class:`heyoka_systems.System` with parameter values ``pars``) from ``y0`` ``(count, dim)``
     over the increasing times ``t``. ``batch``: True (SIMD width), an int, or False (one trajectory
     per integrator). Multiprecision runs return mpmath values in ``y_high``. Domain: as the field."""
@@ -273,10 +273,10 @@ def _watch(progress, t0: float, t_end: float, passes: int):
 
 def _check(hy, outcome, system, reached) -> None:
     """Raise unless the integration reached the last output time. A non-finite state is a
-    :class:`simulate.stops.NonFinite` (exit 2 in the command line), naming the time reached."""
+    :class:`simulate.integrators.stops.NonFinite` (exit 2 in the command line), naming the time reached."""
     if outcome == hy.taylor_outcome.time_limit:
         return
-    from chaplygin_nd.simulate.stops import NonFinite, fmt
+    from chaplygin_nd.simulate.integrators.stops import NonFinite, fmt
 
     if outcome == hy.taylor_outcome.err_nf_state:
         raise NonFinite(f"the state of {system.name} is not finite at t = {fmt(float(reached))} "

@@ -23,7 +23,7 @@ import math
 import time
 
 import numpy as np
-from chaplygin_nd.simulate import so
+from chaplygin_nd.simulate.dynamics import so
 from chaplygin_nd.simulate.integrators.base import Solution
 
 __all__ = ["integrate", "step"]
@@ -57,7 +57,7 @@ def step(field, M, gamma, h):
 
 
 def integrate(field, y0: np.ndarray, t: np.ndarray, h: float = 0.01, progress=None) -> Solution:
-    r"""Integrate eq:motion-general (``field``: a :class:`simulate.field.FullField`) with RKMK4 at a
+    r"""Integrate eq:motion-general (``field``: a :class:`simulate.dynamics.field.FullField`) with RKMK4 at a
     step $\le h$ chosen so that every sample time is hit exactly. Domain: as the field."""
     y = np.array(y0, dtype=float)
     parts = field.unpack(y)

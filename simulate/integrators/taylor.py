@@ -26,7 +26,7 @@ import time
 
 import mpmath
 import numpy as np
-from chaplygin_nd.simulate import so
+from chaplygin_nd.simulate.dynamics import so
 from chaplygin_nd.simulate.integrators.base import Solution
 
 __all__ = ["integrate", "default_order", "L_matrix_mp"]
@@ -132,7 +132,7 @@ def _horner(fx, series, H):
 
 def integrate(field, y0: np.ndarray, t: np.ndarray, dps: int = 30, order: int | None = None,
               progress=None) -> Solution:
-    r"""Integrate eq:motion-general (``field``: a :class:`simulate.field.FullField`, whose $n, a, b$,
+    r"""Integrate eq:motion-general (``field``: a :class:`simulate.dynamics.field.FullField`, whose $n, a, b$,
     radius and reconstruction flag are used; its kernels are *not* used) at ``dps`` digits.
     Returns float64 samples in ``y`` and mpmath samples in ``y_high``. Forward in time only."""
     n, a, b, r = field.n, field.a, field.b, field.radius
@@ -179,6 +179,6 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, dps: int = 30, order: int | 
 
 
 def so_vec_obj(M, n):
-    """vec-coordinates of an object (fixed-point) skew matrix, in the basis order of :mod:`simulate.so`."""
+    """vec-coordinates of an object (fixed-point) skew matrix, in the basis order of :mod:`simulate.dynamics.so`."""
     i, j = so.pairs(n)
     return M[i, j]

@@ -9,7 +9,7 @@ Three models of the planner are one formula with a different velocity $X \in \ma
 .. math::
     M(t) = e^{Xt}M_0e^{-Xt},\quad \gamma(t) = e^{Xt}\gamma_0,\quad \Omega(t) = e^{Xt}\Omega_0e^{-Xt}.
 
-Reconstruction (our derivation; convention and derivation in :mod:`simulate.field`: $\gamma = g^TE_n$,
+Reconstruction (our derivation; convention and derivation in :mod:`simulate.dynamics.field`: $\gamma = g^TE_n$,
 $\dot g = g\Omega$, $\dot c = r\,g\Omega\gamma$). With $W := \Omega_0 + X$,
 
 .. math::
@@ -38,8 +38,8 @@ $(x, G, A, B)$.
 from __future__ import annotations
 
 import numpy as np
-from chaplygin_nd.simulate import so
-from chaplygin_nd.simulate.dispatch import active
+from chaplygin_nd.simulate.dynamics import so
+from chaplygin_nd.simulate.kernels import active
 
 __all__ = ["relative_equilibrium", "horizontal", "horizontal_invariants", "horizontal_nd"]
 

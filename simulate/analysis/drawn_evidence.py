@@ -1,16 +1,16 @@
 r"""Drawn ensembles of the evidence rows: integrate (heyoka batch mode, with the MEGNO tangent of
-:mod:`simulate.chaos`), observe, count frequencies (:func:`simulate.naff.analyse_batch`), classify.
+:mod:`simulate.analysis.chaos`), observe, count frequencies (:func:`simulate.analysis.naff.analyse_batch`), classify.
 
 A :class:`Setting` names the system (the reduced field eq:red-system, the axisymmetric full field
-eq:motion-general for any $n$, or the general-$\mathbb{J}$ control of :mod:`simulate.control`), the
+eq:motion-general for any $n$, or the general-$\mathbb{J}$ control of :mod:`simulate.analysis.control`), the
 orbit length, the sampling, the Taylor tolerance and the observables. :func:`measure` runs an
-:class:`simulate.draws.Ensemble` through it and returns one :class:`OrbitResult` per orbit,
-cached as JSON beside the evidence orbits (:func:`simulate.evidence.cache_dir`), keyed by
-:meth:`simulate.evidence.Experiment.key` of the setting and draw and by the source of the modules
+:class:`simulate.analysis.draws.Ensemble` through it and returns one :class:`OrbitResult` per orbit,
+cached as JSON beside the evidence orbits (:func:`simulate.analysis.evidence.cache_dir`), keyed by
+:meth:`simulate.analysis.evidence.Experiment.key` of the setting and draw and by the source of the modules
 below (so a change of the analysis recomputes).
 
 Classes of an orbit (rule fixed before looking; ``expected`` = the predicted number of independent
-frequencies, ``REGULAR`` = $10^{-5}$ from :mod:`simulate.frequencies`):
+frequencies, ``REGULAR`` = $10^{-5}$ from :mod:`simulate.analysis.frequencies`):
 
 * ``predicted``  — frequency diffusion $D <$ ``REGULAR`` and exactly ``expected`` frequencies;
 * ``resonant``   — $D <$ ``REGULAR`` and fewer: the lines lie on a lower-rank lattice; the integer
@@ -18,9 +18,9 @@ frequencies, ``REGULAR`` = $10^{-5}$ from :mod:`simulate.frequencies`):
 * ``excess``     — $D <$ ``REGULAR`` and more than ``expected`` (contradicts a torus of that dimension);
 * ``unresolved`` — $D \ge$ ``REGULAR``: the lines moved between the two halves of the orbit.
 
-Beside it, MEGNO's class (``regular`` / ``chaotic`` / ``undecided``, :mod:`simulate.chaos`).
+Beside it, MEGNO's class (``regular`` / ``chaotic`` / ``undecided``, :mod:`simulate.analysis.chaos`).
 Frequencies are reported in the units of energy scale 1 (time multiplied by the orbit's scale
-$s$, :mod:`simulate.draws`): counts and diffusions do not depend on it.
+$s$, :mod:`simulate.analysis.draws`): counts and diffusions do not depend on it.
 """
 
 from __future__ import annotations
@@ -33,9 +33,10 @@ from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
 import numpy as np
-from chaplygin_nd.simulate import chaos, draws, naff, so
-from chaplygin_nd.simulate.draws import Ensemble
-from chaplygin_nd.simulate.frequencies import REGULAR
+from chaplygin_nd.simulate.analysis import chaos, draws, naff
+from chaplygin_nd.simulate.analysis.draws import Ensemble
+from chaplygin_nd.simulate.analysis.frequencies import REGULAR
+from chaplygin_nd.simulate.dynamics import so
 
 __all__ = ["Setting", "OrbitResult", "measure", "classify", "summary", "schedule", "BATCH"]
 
@@ -100,7 +101,7 @@ class OrbitResult:
 
 
 def _system(s: Setting):
-    from chaplygin_nd.simulate.control import general_system
+    from chaplygin_nd.simulate.analysis.control import general_system
     from chaplygin_nd.simulate.integrators import heyoka_systems as hs
 
     base = {"reduced": lambda: hs.reduced(), "full": lambda: hs.full(s.n),
@@ -110,7 +111,7 @@ def _system(s: Setting):
 
 def observables(s: Setting, Y: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     r"""Complex signals ``(lanes, signals, samples)`` from states ``Y`` ``(samples, lanes, dim)``.
-    ``reduced``: $x + iG/(a+b+2)$, $E + i\delta$ (see :func:`simulate.evidence.signals`); ``four``
+    ``reduced``: $x + iG/(a+b+2)$, $E + i\delta$ (see :func:`simulate.analysis.evidence.signals`); ``four``
     ($n = 4$ on $P$): those two from $(k, u, q)$ and $q_1 + iq_2$, $k_1 + ik_2$, $u_1 + iu_2$;
     ``general``: $\gamma_j + i\gamma_{j+1}$ ($j < n-1$), $M_{1j} + iM_{1,j+1}$; ``invariant+general``:
     first two $SO(n-1)$-invariant signals (they see only the reduced motion), $x + i(M\gamma)_n$ and
@@ -123,7 +124,7 @@ def observables(s: Setting, Y: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.n
         n, N = s.n, so.so_dim(s.n)
         M, g = so.unvec(Y[..., :N], n), Y[..., N:N + n]
         if s.observables == "four":
-            from chaplygin_nd.simulate.run import reduced_invariants
+            from chaplygin_nd.simulate.dynamics.so import reduced_invariants
 
             r = reduced_invariants(M, g)
             k, u = so.split4(M)
@@ -225,16 +226,17 @@ def classify(spec: naff.Spectrum, expected: int | None) -> str:
 
 
 def _key(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int) -> str:
-    from chaplygin_nd.simulate import evidence
+    from chaplygin_nd.simulate.analysis import evidence
 
     exp = evidence.Experiment(f"drawn-{s.name}", s.system, s.n, 0.0, 0.0, ens.family, int(seed),
                               (ens.count,), s.dt, int(round(s.T / s.dt)), s.tol, J=tuple(s.J))
     h = hashlib.sha256(exp.key().encode())
     h.update(json.dumps({"setting": asdict(s), "draw": ens.describe()}, sort_keys=True).encode())
     h.update(np.ascontiguousarray(y0).tobytes())
-    here = Path(__file__).resolve().parent
-    for name in ("drawn_evidence.py", "chaos.py", "draws.py", "naff.py", "control.py",
-                 "integrators/heyoka_systems.py", "integrators/heyoka_taylor.py", "run.py"):
+    here = Path(__file__).resolve().parent.parent  # simulate/
+    for name in ("analysis/drawn_evidence.py", "analysis/chaos.py", "analysis/draws.py",
+                 "analysis/naff.py", "analysis/control.py", "integrators/heyoka_systems.py",
+                 "integrators/heyoka_taylor.py", "dynamics/so.py"):
         h.update((here / name).read_bytes())
     for name in ("runtime/expressions.py", "generated/expression_builders.py"):
         h.update((here.parent / name).read_bytes())
@@ -247,7 +249,7 @@ def measure(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int,
     MEGNO, Lyapunov estimate, NAFF count, diffusion, class. Cached (module docstring)."""
     import fcntl
 
-    from chaplygin_nd.simulate import evidence
+    from chaplygin_nd.simulate.analysis import evidence
 
     path = evidence.cache_dir() / f"drawn-{s.name}-{_key(s, ens, y0, seed)}.json"
     if not use_cache:

@@ -1,18 +1,18 @@
 r"""The drawn experiments behind the evidence rows (issue 16): which ensembles, which settings,
 the re-run of unresolved orbits at a longer $T$, and the rules, all fixed before the runs.
 
-Ensembles (:mod:`simulate.draws`, the ledger's seed; $(a, b)$ over $\{-0.9, -0.5, 0.5, 2\}\times\{0.5, 2\}$,
+Ensembles (:mod:`simulate.analysis.draws`, the ledger's seed; $(a, b)$ over $\{-0.9, -0.5, 0.5, 2\}\times\{0.5, 2\}$,
 energy scales $0.5, 1, 2$):
 
 * ``reduced``  — S5:EJ-tori: ``LEVEL_SETS`` = 50 generic $n = 4$ points, each with ``len(SHIFTS)`` = 3
-  more orbits on its level set of $(F_1, F_2, F_3, H)$ (:func:`simulate.evidence.level_set_points`):
+  more orbits on its level set of $(F_1, F_2, F_3, H)$ (:func:`simulate.analysis.evidence.level_set_points`):
   200 orbits of eq:red-system, expected 2 frequencies;
 * ``full4``    — S5:reconstruction: 200 generic $n = 4$ orbits of eq:motion-general, expected 3 on $P$
   (2 reduced + rank $SO(3)$), and 2 from the $SO(3)$-invariant observables alone;
 * ``vertical`` — Th:Re-tori:frequencies: 50 points of $\mathcal V$ for each $n = 4..7$ with
   $a \in \{-0.9, -0.5, 0, 0.5, 2\}$; expected $\lfloor(n-1)/2\rfloor$, 0 at $a = 0$;
 * ``control4`` — 100 generic $n = 4$ orbits of the general-$\mathbb{J}$ sphere, $\mathbb{J}$ =
-  ``CHAOTIC_J[4]`` (:mod:`simulate.control`), the same analysis: the control of the three rows.
+  ``CHAOTIC_J[4]`` (:mod:`simulate.analysis.control`), the same analysis: the control of the three rows.
 
 Orbits: $T = 4096$, $dt = 1/2$ at energy scale 1 (reduced and $P$), $T = 3000$, $dt = 5/4$ ($\mathcal V$,
 $n \le 6$; 6000 for $n = 7$); heyoka tolerance $10^{-10}$. The first ``RERUN`` = 4 unresolved orbits of
@@ -23,9 +23,10 @@ an ensemble (in draw order; for $\mathcal V$ the first of each $n$) are integrat
 from __future__ import annotations
 
 import numpy as np
-from chaplygin_nd.simulate import draws, so
-from chaplygin_nd.simulate.control import CHAOTIC_J
-from chaplygin_nd.simulate.drawn_evidence import Setting, measure, subset
+from chaplygin_nd.simulate.analysis import draws
+from chaplygin_nd.simulate.analysis.control import CHAOTIC_J
+from chaplygin_nd.simulate.analysis.drawn_evidence import Setting, measure, subset
+from chaplygin_nd.simulate.dynamics import so
 
 __all__ = ["LEVEL_SETS", "SHIFTS", "RERUN", "LONGER", "reduced_row", "full4_row", "vertical_row",
            "control4_row", "run_with_rerun", "SETTINGS"]
@@ -62,8 +63,8 @@ def run_with_rerun(setting: Setting, ens, y0: np.ndarray, seed: int, rerun: int 
 def reduced_row(seed: int) -> dict:
     """The S5:EJ-tori ensemble (module docstring); also ``groups``: the orbit indices of each level
     set and ``failed``: level-set points Newton did not reach (reported, not replaced)."""
-    from chaplygin_nd.simulate.evidence import level_set_points
-    from chaplygin_nd.simulate.run import reduced_invariants
+    from chaplygin_nd.simulate.analysis.evidence import level_set_points
+    from chaplygin_nd.simulate.dynamics.so import reduced_invariants
 
     base = draws.draw("S5:EJ-tori", "generic", 4, LEVEL_SETS, seed)
     r0 = reduced_invariants(base.M0, base.gamma0)

@@ -93,7 +93,7 @@ def megno_class(value: float) -> str:
 
 
 def for_field_tangent(field) -> tuple[System, list[float]]:
-    """The tangent system of a :class:`simulate.field.FullField` / ``ReducedField`` and its
+    """The tangent system of a :class:`simulate.dynamics.field.FullField` / ``ReducedField`` and its
     parameter values (:func:`simulate.integrators.heyoka_systems.for_field`)."""
     system, values = heyoka_systems.for_field(field)
     return tangent_system(system), values

@@ -5,7 +5,7 @@ NumPy, SciPy, PyNAFF and heyoka) and trusted only if the *code* that computed it
 after the computation, :func:`code_manifest` records the SHA-256 of the source file of every
 module of the project (``chaplygin_nd.*``) loaded in the process — a superset of what the
 computation imported, so an edit anywhere in the code it ran (the field of
-:mod:`simulate.so`, a generated kernel, the integrator, the analysis) invalidates the entry. On a
+:mod:`simulate.dynamics.so`, a generated kernel, the integrator, the analysis) invalidates the entry. On a
 lookup, :func:`code_unchanged` hashes the current source of each recorded module again (the
 module in ``sys.modules``, else where the import system would find it); a module that changed,
 or that can no longer be found, makes the lookup a miss, and the recomputed entry replaces it.

@@ -40,7 +40,7 @@ r"""Scenes: TOML files that name a sphere, an initial condition, times, outputs 
 
     [accuracy]
     target = 1e-10        # wanted error of every output, relative to its largest value; each
-                          # method's settings come from a calibration (simulate/accuracy.py)
+                          # method's settings come from a calibration (simulate/scene/accuracy.py)
     method = "auto"       # auto (heyoka if installed, else DOP853, else the mpmath Taylor method:
                           # the first that honours target) | heyoka | dop853 | lie | reference
     dps = 30              # digits of the reference method (at least what target needs)
@@ -49,7 +49,7 @@ r"""Scenes: TOML files that name a sphere, an initial condition, times, outputs 
 :func:`load` reads only a regular file of at most 1 MiB (not a device or FIFO) and
 validates everything before anything runs and raises one :class:`SceneError`
 naming the field and the fix; that includes a memory or drawing cost past the limits of
-:mod:`simulate.budget` (lifted by ``force``, the command line's ``--force``), and a cost worth
+:mod:`simulate.scene.budget` (lifted by ``force``, the command line's ``--force``), and a cost worth
 mentioning is said on stderr. :func:`find` also accepts the name of a built-in scene.
 """
 
@@ -64,14 +64,15 @@ from importlib import resources
 from pathlib import Path
 
 import numpy as np
-from chaplygin_nd.simulate import budget, families
-from chaplygin_nd.simulate.ball import (
+from chaplygin_nd.simulate.dynamics import families
+from chaplygin_nd.simulate.dynamics.ball import (
     Ball,
     ball_violations,
     from_mass_tensor,
     from_moments,
     parameter_violations,
 )
+from chaplygin_nd.simulate.scene import budget
 
 __all__ = ["Scene", "SceneError", "OUTPUTS", "METHODS", "load", "loads", "find", "builtin_scenes"]
 
@@ -170,7 +171,7 @@ def find(arg: str, force: bool = False) -> Scene:
 
 def load(path: str | Path, force: bool = False) -> Scene:
     """Read and validate a scene file (see the module docstring); ``force`` lifts the memory
-    limit of :mod:`simulate.budget`."""
+    limit of :mod:`simulate.scene.budget`."""
     path = Path(path)
     try:
         text = _read_limited(path).decode("utf-8")
@@ -186,7 +187,7 @@ def load(path: str | Path, force: bool = False) -> Scene:
     return scene
 
 
-#: Fewest samples a ``frequencies``/``poincare`` run accepts (simulate/naff.py: >= 14 samples).
+#: Fewest samples a ``frequencies``/``poincare`` run accepts (simulate/analysis/naff.py: >= 14 samples).
 MIN_SPECTRAL_SAMPLES = 64
 #: Largest scene file read (a scene is a few hundred bytes; /dev/zero or a FIFO is refused).
 MAX_BYTES = 1 << 20
@@ -213,7 +214,7 @@ def _read_limited(path: Path) -> bytes:
 
 def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
     """Validate a scene given as TOML text; raises :class:`SceneError` (also when the predicted
-    memory is past the limit of :mod:`simulate.budget` and ``force`` is not given)."""
+    memory is past the limit of :mod:`simulate.scene.budget` and ``force`` is not given)."""
     def fail(where, problem, fix):
         raise SceneError(source, where, problem, fix)
 
@@ -223,8 +224,8 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
         fail("TOML", f"not valid TOML ({exc})", "correct the syntax at the position given")
     except RecursionError:
         fail("TOML", "arrays or tables nested too deeply", "write plain arrays of numbers")
-    if "fma" in raw:  # a frequency map (issue 16): its own keys, validated by simulate/fma_scene.py
-        from chaplygin_nd.simulate.fma_scene import load_map
+    if "fma" in raw:  # a frequency map (issue 16): its own keys, validated by simulate/scene/frequency_map.py
+        from chaplygin_nd.simulate.scene.frequency_map import load_map
         return load_map(raw, source, fail)
     _unknown(raw, _TOP, "", fail)
     for table in ("ball", "initial", "times", "outputs", "accuracy"):
@@ -317,7 +318,7 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
         if name == "M" and ball is not None:
             X = X / ball.s  # the ball's M about the contact point -> the paper's M
         if name == "Omega":
-            from chaplygin_nd.simulate.dispatch import active
+            from chaplygin_nd.simulate.kernels import active
             Omega0 = X[None]
             M0 = active().require("L_gamma")(X, gamma0, a, b)[None]
         else:
@@ -385,7 +386,7 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
 
 def _body(raw, n, fail):
     """(a, b, radius, ball, notes) from either ``a, b[, radius]`` or a ``[ball]`` table
-    (S4:physical-ball); realisability as in :mod:`simulate.ball`."""
+    (S4:physical-ball); realisability as in :mod:`simulate.dynamics.ball`."""
     notes: list[str] = []
     if "ball" not in raw:
         a = _number(raw, "a", fail, required=True)
@@ -485,7 +486,7 @@ def _check_claim(family, M, gamma, a, b, tol, fail, Omega):
                  f"fix M/gamma so that {what}, or set family = \"explicit\"")
     elif family == "steady-rotation":
         if Omega is None:
-            from chaplygin_nd.simulate.dispatch import active
+            from chaplygin_nd.simulate.kernels import active
             Omega = active().require("angular_velocity")(M, gamma, a, b)
         else:
             Omega = Omega[0]

@@ -16,17 +16,22 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-from chaplygin_nd.simulate import so
-from chaplygin_nd.simulate.budget import Projection, refuse_before
-from chaplygin_nd.simulate.closed_forms import horizontal, horizontal_nd, relative_equilibrium
-from chaplygin_nd.simulate.dispatch import active
-from chaplygin_nd.simulate.field import FullField, ReducedField
+from chaplygin_nd.simulate.dynamics import so
+from chaplygin_nd.simulate.dynamics.closed_forms import (
+    horizontal,
+    horizontal_nd,
+    relative_equilibrium,
+)
+from chaplygin_nd.simulate.dynamics.field import FullField, ReducedField
+from chaplygin_nd.simulate.dynamics.so import reduced_invariants
 from chaplygin_nd.simulate.integrators import dop853, heyoka_taylor, lie, taylor
-from chaplygin_nd.simulate.planner import Plan, settings
-from chaplygin_nd.simulate.scene import Scene
-from chaplygin_nd.simulate.stops import NonFinite, check_finite, fmt
+from chaplygin_nd.simulate.integrators.stops import NonFinite, check_finite, fmt
+from chaplygin_nd.simulate.kernels import active
+from chaplygin_nd.simulate.scene.budget import Projection, refuse_before
+from chaplygin_nd.simulate.scene.planner import Plan, settings
+from chaplygin_nd.simulate.scene.spec import Scene
 
-__all__ = ["Trajectory", "execute", "reduced_invariants", "Progress"]
+__all__ = ["Trajectory", "execute", "Progress"]
 
 
 @dataclass
@@ -46,7 +51,7 @@ class Trajectory:
 class Progress:
     """Progress on stderr for runs longer than ``after`` seconds (at most one line a second); it
     also stops a run whose time became nan and, through ``projection``
-    (:class:`simulate.budget.Projection`), one projected to cost too much."""
+    (:class:`simulate.scene.budget.Projection`), one projected to cost too much."""
 
     def __init__(self, t_end: float, label: str, after: float = 2.0, stream=sys.stderr,
                  projection=None, t0: float = 0.0):
@@ -84,22 +89,11 @@ class Progress:
             self.stream.write("\n")
 
 
-def reduced_invariants(M: np.ndarray, gamma: np.ndarray) -> np.ndarray:
-    r"""$r = (A, B, E, G, F_1, x, \delta)$ with $A = \|k\|^2$, $B = \|u\|^2$, $F_1 = \langle k, u\rangle$,
-    $E = \langle k, q\rangle$, $G = \langle u, q\rangle$, $\delta = \langle q, k\times u\rangle$ — the
-    definitions of Section 5 (Reduction by SO(3)); $n = 4$, $M$ ``(..., 4, 4)``, $\gamma = (q, x)$."""
-    k, u = so.split4(M)
-    q, x = gamma[..., :3], gamma[..., 3]
-    dot = lambda p, s: np.einsum("...i,...i->...", p, s)  # noqa: E731
-    return np.stack([dot(k, k), dot(u, u), dot(k, q), dot(u, q), dot(k, u), x,
-                     dot(q, np.cross(k, u))], axis=-1)
-
-
 def execute(scene: Scene, plan: Plan, progress: bool = True, force: bool = False) -> Trajectory:
     """Run ``plan`` on ``scene`` (see the module docstring). The initial condition is the state
     at ``t[0]`` for every model: closed forms are evaluated at ``t - t[0]``. Raises
-    :class:`simulate.stops.NonFinite` when a field leaves float64 and
-    :class:`simulate.stops.TooCostly` when the projected time is past the limit (unless ``force``)."""
+    :class:`simulate.integrators.stops.NonFinite` when a field leaves float64 and
+    :class:`simulate.integrators.stops.TooCostly` when the projected time is past the limit (unless ``force``)."""
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # checked below
         return _execute(scene, plan, progress, force)
 
@@ -181,7 +175,7 @@ def _integrate(f, y0, t, plan, scene, progress=True, force=False):
     refuse_before(plan, label, t, force)
     bar = Progress(t[-1], label, stream=sys.stderr if progress else _Null(),
                    projection=Projection(t[0], t[-1], label, force), t0=t[0])
-    acc = plan.accuracy or settings(scene, plan.method, plan.model)  # simulate.accuracy
+    acc = plan.accuracy or settings(scene, plan.method, plan.model)  # simulate.scene.accuracy
     try:
         if plan.method == "heyoka":
             _checked(f)(t[0], y0)  # a non-finite start is named here (heyoka would only say nan)

@@ -7,19 +7,19 @@ sphere: $\gamma_0 = (\sqrt{1 - x_0^2}, 0, 0, x_0)$ and $M_0 \propto \cos\varphi\
 $\varphi \in [0, \pi)$. Each orbit is integrated on the full field eq:motion-general in
 $(M, \gamma)$ (heyoka, batch mode), sampled on a uniform grid, and the fundamental frequency of the
 SO(3)-invariant observables $x + iG/(a + b + 2)$ and $E + i\delta$ (the reduced invariants of
-Section 5, the signals of :func:`simulate.evidence.signals`) is measured on the first and the
-second half of the orbit (:func:`simulate.naff.fundamental_frequencies`). The colour is the
+Section 5, the signals of :func:`simulate.analysis.evidence.signals`) is measured on the first and the
+second half of the orbit (:func:`simulate.analysis.naff.fundamental_frequencies`). The colour is the
 frequency diffusion $D = \log_{10}\max|\omega^{(1)} - \omega^{(2)}|$ over the two observables
 (of $|\omega|$: a real oscillation has lines $\pm\omega$ of nearly equal amplitude, and which of
 the two is the strongest may differ between the halves).
 
 Why the full field for both maps and not the reduced 7D one: the control (a generic mass tensor,
-:mod:`simulate.control`) has no SO(3) symmetry and so no reduced system; integrating both on the
+:mod:`simulate.analysis.control`) has no SO(3) symmetry and so no reduced system; integrating both on the
 same 9D phase space with the same observables, integrator and tolerance makes the two maps differ
 only in $\mathbb{J}$. The axisymmetric map uses the derived field (P:inversion, generated builders,
 :func:`simulate.integrators.heyoka_systems.full`); the control solves $L_\gamma(\Omega) = M$ from the
 definition (eq:M-O, eq:Inertia) by Gaussian elimination inside the compiled field
-(:func:`control_system`; tested against the NumPy linear solve of :mod:`simulate.control`).
+(:func:`control_system`; tested against the NumPy linear solve of :mod:`simulate.analysis.control`).
 
 Work is cut into chunks of ``chunk`` orbits, each integrated by one compiled batch integrator
 (per process: compiled once, then from memory) and analysed vectorised. Chunks run in this
@@ -35,10 +35,11 @@ from concurrent.futures import ProcessPoolExecutor
 from dataclasses import asdict, dataclass
 
 import numpy as np
-from chaplygin_nd.simulate import naff, so
-from chaplygin_nd.simulate.control import general_inertia_kernels
+from chaplygin_nd.simulate.analysis import naff
+from chaplygin_nd.simulate.analysis.control import general_inertia_kernels
+from chaplygin_nd.simulate.dynamics import so
+from chaplygin_nd.simulate.dynamics.so import reduced_invariants
 from chaplygin_nd.simulate.integrators import heyoka_systems
-from chaplygin_nd.simulate.run import reduced_invariants
 
 __all__ = ["MapSpec", "control_system", "control_omega", "initial_conditions", "run_map",
            "diffusion_of_chunk"]
@@ -148,7 +149,7 @@ def control_omega(m, gamma, J, b):
 def control_system(n: int = 4) -> heyoka_systems.System:
     r"""eq:motion-general, $\dot M = [M, \Omega]$, $\dot\gamma = -\Omega\gamma$, for a diagonal mass
     tensor $\mathbb{J}$ given as runtime parameters $(J_1..J_n, b)$, $\Omega$ from
-    :func:`control_omega`; the state of :class:`simulate.field.FullField`."""
+    :func:`control_omega`; the state of :class:`simulate.dynamics.field.FullField`."""
     pairs = _pairs(n)
     names = tuple([f"M{i + 1}_{j + 1}" for i, j in pairs] + [f"gamma{i + 1}" for i in range(n)])
 
@@ -230,7 +231,7 @@ def run_map(spec: MapSpec, workers: int | None = None, scheduler: str | None = N
     single-threaded processes). Requires heyoka (extra ``fast``) and, for a cluster, Dask
     (extra ``cluster``)."""
     from chaplygin_nd.simulate.integrators import heyoka_taylor
-    from chaplygin_nd.simulate.stops import RunStopped
+    from chaplygin_nd.simulate.integrators.stops import RunStopped
 
     if not heyoka_taylor.available():
         raise RunStopped("frequency maps need heyoka: pip install 'chaplygin-nd[fast]'")
@@ -250,7 +251,7 @@ def run_map(spec: MapSpec, workers: int | None = None, scheduler: str | None = N
 
 
 def _on_dask(chunks, scheduler: str, workers: int | None):
-    from chaplygin_nd.simulate.stops import RunStopped
+    from chaplygin_nd.simulate.integrators.stops import RunStopped
 
     try:
         from distributed import Client, LocalCluster

@@ -1,6 +1,6 @@
 r"""``--cross-check``: judge a run against a reference at least 100 times more accurate.
 
-The run promises a relative error ``promised`` (:mod:`simulate.accuracy`: ``accuracy.target``, or
+The run promises a relative error ``promised`` (:mod:`simulate.scene.accuracy`: ``accuracy.target``, or
 what a method the scene named reaches when it cannot honour the target; ``target`` for a closed
 form). The reference integrates the full system eq:motion-general with the first of
 
@@ -9,9 +9,9 @@ form). The reference integrates the full system eq:motion-general with the first
 
 whose calibrated settings honour ``promised / 100`` (:data:`MARGIN`) and that differs from the run
 in integrator or precision (the Taylor method judging a Taylor run uses 10 more digits). heyoka
-counts only where it is usable (:func:`simulate.accuracy.heyoka_usable`). heyoka in ``real128``
+counts only where it is usable (:func:`simulate.scene.accuracy.heyoka_usable`). heyoka in ``real128``
 is not a candidate: on prolate_ball3d (reconstruction, T = 60) its reference was projected past the
-600 s limit of simulate.budget, where the mpmath Taylor reference takes about 30 s.
+600 s limit of simulate.scene.budget, where the mpmath Taylor reference takes about 30 s.
 
 Per output: the difference $d = \max|a - b|$ over all samples, initial conditions and components,
 the bound ``promised x max|b|`` (``promised`` when the output is identically 0) and the
@@ -27,10 +27,10 @@ import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
-from chaplygin_nd.simulate import accuracy
-from chaplygin_nd.simulate.outputs import collect
-from chaplygin_nd.simulate.planner import plan
-from chaplygin_nd.simulate.run import execute
+from chaplygin_nd.simulate.scene import accuracy
+from chaplygin_nd.simulate.scene.outputs import collect
+from chaplygin_nd.simulate.scene.planner import plan
+from chaplygin_nd.simulate.scene.run import execute
 
 __all__ = ["CrossCheck", "cross_check", "reference_settings", "MARGIN"]
 
@@ -44,7 +44,7 @@ def promised(scene, main_plan) -> float:
 
 
 def reference_settings(scene, main_plan) -> accuracy.Settings:
-    """The reference's :class:`simulate.accuracy.Settings` (rules in the module docstring)."""
+    """The reference's :class:`simulate.scene.accuracy.Settings` (rules in the module docstring)."""
     need = promised(scene, main_plan) / MARGIN
     span = float(scene.t[-1] - scene.t[0])
     run = main_plan.accuracy

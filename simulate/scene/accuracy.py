@@ -2,7 +2,7 @@ r"""From ``accuracy.target`` to an integrator's settings: calibrated, with a saf
 
 What a target means: every output of the run is within ``target x max|output|`` of the exact
 solution (max over samples, initial conditions and components) — the measure the cross-check
-(:mod:`simulate.crosscheck`) judges. For each method the worst ratio
+(:mod:`simulate.scene.crosscheck`) judges. For each method the worst ratio
 
 .. math:: K = \frac{\max|y - y_\text{ref}| / \max|y_\text{ref}|}{\text{setting}}
 
@@ -38,7 +38,7 @@ import os
 from dataclasses import dataclass
 
 import numpy as np
-from chaplygin_nd.simulate.stops import RunStopped
+from chaplygin_nd.simulate.integrators.stops import RunStopped
 
 __all__ = ["SAFETY", "MEASURED", "ROUNDING", "FLOORS", "Settings", "Unattainable", "choose", "heyoka_usable",
            "estimated_error"]

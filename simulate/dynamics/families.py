@@ -15,8 +15,8 @@ scene reproduces bit for bit. The membership tests used to validate a family cla
 from __future__ import annotations
 
 import numpy as np
-from chaplygin_nd.simulate import so
-from chaplygin_nd.simulate.dispatch import active
+from chaplygin_nd.simulate.dynamics import so
+from chaplygin_nd.simulate.kernels import active
 
 __all__ = ["FAMILIES", "draw", "claim_residual", "steady_residual"]
 

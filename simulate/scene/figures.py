@@ -34,7 +34,7 @@ __all__ = ["figure", "plot", "REDUCED_NAMES", "INTEGRAL_NAMES"]
 REDUCED_NAMES = (r"$A = \|k\|^2$", r"$B = \|u\|^2$", r"$E = \langle k, q\rangle$",
                  r"$G = \langle u, q\rangle$", r"$F_1 = \langle k, u\rangle$", r"$x = \gamma_4$",
                  r"$\delta = \langle q, k\times u\rangle$")
-#: Symbols of the first integrals written by :func:`simulate.outputs.collect` (``drift.<key>``).
+#: Symbols of the first integrals written by :func:`simulate.scene.outputs.collect` (``drift.<key>``).
 INTEGRAL_NAMES = {"energy": "H", "gamma_norm2": r"\|\gamma\|^2", "F1": "F_1", "F2": "F_2",
                   "F3": "F_3"}
 _SEPARATE = 12  # at most this many panels for an ensemble of a vector output
@@ -351,8 +351,8 @@ def _zeta_figure(plt, arr):
 
 
 def figure(name: str, t: np.ndarray, arr: np.ndarray):
-    r"""The figure of output ``name`` (a key of :func:`simulate.outputs.collect`) with samples ``t``
-    and values ``arr`` (shapes as in :mod:`simulate.outputs`); see the module docstring. Returns a
+    r"""The figure of output ``name`` (a key of :func:`simulate.scene.outputs.collect`) with samples ``t``
+    and values ``arr`` (shapes as in :mod:`simulate.scene.outputs`); see the module docstring. Returns a
     :class:`matplotlib.figure.Figure`; the caller closes it."""
     plt = _pyplot()
     if name.startswith("drift."):

@@ -11,8 +11,8 @@ chaotic orbit of a 5-dimensional level set it is a cloud.
 from __future__ import annotations
 
 import numpy as np
-from chaplygin_nd.simulate import so
-from chaplygin_nd.simulate.run import reduced_invariants
+from chaplygin_nd.simulate.dynamics import so
+from chaplygin_nd.simulate.dynamics.so import reduced_invariants
 
 __all__ = ["reduced_samples", "section", "section_curve_scatter", "figure"]
 

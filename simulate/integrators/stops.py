@@ -2,7 +2,7 @@
 
 Both are raised as soon as they are known: a non-finite value at the first right-hand-side
 evaluation (or closed-form sample) that produces it, a cost at the scene check (memory) or after
-a short pilot of the integrator (time), see :mod:`simulate.budget`.
+a short pilot of the integrator (time), see :mod:`simulate.scene.budget`.
 """
 
 from __future__ import annotations

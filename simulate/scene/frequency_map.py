@@ -1,5 +1,5 @@
 r"""Scenes with an ``[fma]`` table: a frequency map of the 4D sphere beside one of a control
-(:mod:`simulate.fma`; issue 16). Validated here, run by ``chaplygin simulate``.
+(:mod:`simulate.analysis.fma`; issue 16). Validated here, run by ``chaplygin simulate``.
 
 .. code-block:: toml
 
@@ -30,7 +30,7 @@ import time
 from dataclasses import dataclass, field, replace
 
 import numpy as np
-from chaplygin_nd.simulate.fma import MapSpec, run_map
+from chaplygin_nd.simulate.analysis.fma import MapSpec, run_map
 
 __all__ = ["FrequencyMapScene", "load_map", "run", "REGULAR_D", "CHAOTIC_D"]
 
@@ -160,7 +160,7 @@ def _figure(path, D, x0, phi, title):
 def run(scene: FrequencyMapScene, workers: int | None = None,
         scheduler: str | None = None) -> tuple[dict, str]:
     """Compute both maps; ``({file name: writer(path)}, summary text)``."""
-    from chaplygin_nd.simulate.fma import initial_conditions
+    from chaplygin_nd.simulate.analysis.fma import initial_conditions
 
     s = scene.spec
     _, x0, phi = initial_conditions(s)

@@ -187,10 +187,10 @@ def for_scene(scene, model: str, reconstruct: bool, method: str, heyoka_tol: flo
     ``reduced-7D`` model of ``scene``; ``method``: ``"auto"`` (heyoka if importable, and DOP853),
     ``"heyoka"`` (compact or unrolled) or ``"dop853"``. None when the pilot cannot run (a
     non-finite field: the run itself then stops with the reason)."""
-    from chaplygin_nd.simulate import so
-    from chaplygin_nd.simulate.field import FullField, ReducedField
+    from chaplygin_nd.simulate.dynamics import so
+    from chaplygin_nd.simulate.dynamics.field import FullField, ReducedField
+    from chaplygin_nd.simulate.dynamics.so import reduced_invariants
     from chaplygin_nd.simulate.integrators import heyoka_systems
-    from chaplygin_nd.simulate.run import reduced_invariants
 
     if model == "reduced-7D":
         field = ReducedField(scene.a, scene.b)

@@ -23,13 +23,13 @@ accounts for). The plan line says which residual was tested against which bound.
 Integrator of the reduced and full models (``accuracy.method = "auto"``): among heyoka's Taylor
 method (:mod:`simulate.integrators.heyoka_taylor`, when heyoka is importable; compact or unrolled),
 DOP853 and the mpmath Taylor method, those whose calibrated settings honour ``accuracy.target``
-(:mod:`simulate.accuracy`; none honours it: the run is refused), and among those the one of least
-predicted cost — compile or cache load plus run (:mod:`simulate.cost`); the plan line says which,
+(:mod:`simulate.scene.accuracy`; none honours it: the run is refused), and among those the one of least
+predicted cost — compile or cache load plus run (:mod:`simulate.scene.cost`); the plan line says which,
 with what, and prints every prediction. A scene may ask for ``heyoka``, ``dop853``, ``lie`` or
 ``reference`` explicitly.
 
 The reconstruction ($g$, contact path) is added only when ``orientation`` or ``contact_path`` is
-asked for; the closed forms 1–2 reconstruct in closed form (:mod:`simulate.closed_forms`), the
+asked for; the closed forms 1–2 reconstruct in closed form (:mod:`simulate.dynamics.closed_forms`), the
 reduced models cannot (they forget the $SO(3)$ orbit), so those outputs force ``full``. A model
 whose kernel :mod:`generated` lacks is skipped, and the reason says so.
 """
@@ -39,10 +39,11 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from chaplygin_nd.simulate import accuracy, families
-from chaplygin_nd.simulate.dispatch import Kernels, active
-from chaplygin_nd.simulate.scene import Scene
-from chaplygin_nd.simulate.stops import check_finite
+from chaplygin_nd.simulate.dynamics import families
+from chaplygin_nd.simulate.integrators.stops import check_finite
+from chaplygin_nd.simulate.kernels import Kernels, active
+from chaplygin_nd.simulate.scene import accuracy
+from chaplygin_nd.simulate.scene.spec import Scene
 
 __all__ = ["Plan", "plan", "REDUCED_OUTPUTS", "MODELS"]
 
@@ -74,12 +75,12 @@ class Plan:
     method: str
     Omega0: np.ndarray
     skipped: list[str] = field(default_factory=list)
-    notes: list[str] = field(default_factory=list)  # about the scene's parameters (simulate.ball)
+    notes: list[str] = field(default_factory=list)  # about the scene's parameters (simulate.dynamics.ball)
     detail: str = ""  # what the integrator runs with (plan line)
-    compact: bool | None = None  # heyoka's mode, chosen by the cost model (simulate.cost)
+    compact: bool | None = None  # heyoka's mode, chosen by the cost model (simulate.scene.cost)
     costs: str = ""  # the cost model's predictions (plan line)
-    accuracy: accuracy.Settings | None = None  # the calibrated settings (simulate.accuracy)
-    predicted_seconds: float | None = None  # the chosen candidate's predicted total (simulate.cost)
+    accuracy: accuracy.Settings | None = None  # the calibrated settings (simulate.scene.accuracy)
+    predicted_seconds: float | None = None  # the chosen candidate's predicted total (simulate.scene.cost)
 
     def describe(self) -> str:
         """One paragraph: model, why, and what was ruled out."""
@@ -106,7 +107,7 @@ def _method(scene: Scene, model: str) -> str:
 
 
 def settings(scene: Scene, method: str, model: str = "full") -> accuracy.Settings | None:
-    """The calibrated settings of ``method`` for ``scene`` (:mod:`simulate.accuracy`); ``auto``
+    """The calibrated settings of ``method`` for ``scene`` (:mod:`simulate.scene.accuracy`); ``auto``
     picks the first method that honours the target. ``None`` for a closed form."""
     span = float(scene.t[-1] - scene.t[0])
     if method == "closed form":
@@ -117,7 +118,7 @@ def settings(scene: Scene, method: str, model: str = "full") -> accuracy.Setting
 
 
 def heyoka_tolerance(target: float) -> float:
-    """heyoka's tolerance for an accuracy target (calibrated, :mod:`simulate.accuracy`)."""
+    """heyoka's tolerance for an accuracy target (calibrated, :mod:`simulate.scene.accuracy`)."""
     return accuracy.choose("heyoka", target, 1.0).value
 
 
@@ -148,7 +149,9 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
         compact, costs, predicted = None, "", None
         if model in ("full", "reduced-7D") and chosen is not None \
                 and chosen.method in ("heyoka", "dop853"):
-            from chaplygin_nd.simulate import cost  # the method by predicted cost (compile + run)
+            from chaplygin_nd.simulate.scene import (
+                cost,  # the method by predicted cost (compile + run)
+            )
 
             dop = settings(scene, "dop853", model)
             allowed = ("auto" if scene.method == "auto" and chosen.method == "heyoka" and dop.honoured
@@ -229,6 +232,6 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
         if "frequencies" in wants:
             return make("full", "frequencies on P (the reconstruction) need the full system "
                         "eq:motion-general; the 'reduced' frequencies come from eq:red-system and "
-                        "the 'control' from the generic-J sphere (simulate/tori_scene.py)")
+                        "the 'control' from the generic-J sphere (simulate/scene/tori.py)")
     return make("full", "no closed form or reduction applies to these initial conditions "
                 "and outputs: the full system eq:motion-general")

@@ -20,7 +20,7 @@ import numpy as np
 
 __all__ = [
     "so_dim", "pairs", "vec", "unvec", "wedge", "commutator", "killing", "expm_skew_t", "expm_integral",
-    "hat", "split4", "join4", "rotation_to", "expm_small",
+    "hat", "split4", "join4", "rotation_to", "expm_small", "reduced_invariants",
 ]
 
 
@@ -170,3 +170,14 @@ def rotation_to(gamma: np.ndarray) -> np.ndarray:
     D = np.eye(n)
     D[0, 0] = -1.0
     return D @ H  # (D H)^T E_n = H D E_n = H E_n = gamma, det = +1
+
+
+def reduced_invariants(M: np.ndarray, gamma: np.ndarray) -> np.ndarray:
+    r"""$r = (A, B, E, G, F_1, x, \delta)$ with $A = \|k\|^2$, $B = \|u\|^2$, $F_1 = \langle k, u\rangle$,
+    $E = \langle k, q\rangle$, $G = \langle u, q\rangle$, $\delta = \langle q, k\times u\rangle$ — the
+    definitions of Section 5 (Reduction by SO(3)); $n = 4$, $M$ ``(..., 4, 4)``, $\gamma = (q, x)$."""
+    k, u = split4(M)
+    q, x = gamma[..., :3], gamma[..., 3]
+    dot = lambda p, s: np.einsum("...i,...i->...", p, s)  # noqa: E731
+    return np.stack([dot(k, k), dot(u, u), dot(k, q), dot(u, q), dot(k, u), x,
+                     dot(q, np.cross(k, u))], axis=-1)

@@ -8,7 +8,7 @@
   is scaled by the share of ``[t[0], t[-1]]`` covered (:class:`Projection`). The clock measures
   the integration only: an integrator that compiles or loads compiled code first calls
   :meth:`Projection.restart` when it is ready (the compile or load time is predicted by the
-  planner, :mod:`simulate.cost`, and reported apart). Closed forms cost one matrix exponential
+  planner, :mod:`simulate.scene.cost`, and reported apart). Closed forms cost one matrix exponential
   per sample and are covered by the memory count.
 
 Limits: :data:`LIMIT_SECONDS` and :func:`memory_limit`; ``--force`` lifts both.
@@ -20,7 +20,7 @@ import os
 import sys
 import time
 
-from chaplygin_nd.simulate.stops import TooCostly
+from chaplygin_nd.simulate.integrators.stops import TooCostly
 
 __all__ = ["LIMIT_SECONDS", "PILOT_SECONDS", "DRAW_SECONDS", "memory_limit", "memory_bytes",
            "Projection", "human_bytes", "announce", "refuse_before", "CLEARLY_PAST"]
@@ -69,7 +69,7 @@ def announce(text: str, stream=None) -> None:
     stream.flush()
 
 
-#: A run whose predicted cost (the planner's cost model, :mod:`simulate.cost`, within 3x of the
+#: A run whose predicted cost (the planner's cost model, :mod:`simulate.scene.cost`, within 3x of the
 #: measured integration time) is past this many times the limit is refused before it starts.
 CLEARLY_PAST = 3.0
 

@@ -7,13 +7,13 @@ conditions from the ``generic`` family (seed 3, $\|M_0\|_\kappa = 1$). Of its fi
 member 0 has $\omega_{slow}/\omega_{fast} \approx 1/17$ (it needs $T \gtrsim 10^4$) and member 2 lies near
 the 1:5 resonance ($\omega_2 - 5\omega_1 \approx 0.0016$, so its lattice has lines closer than the
 resolution $2\pi/T$); we use members 1 and 3 and say so. Each orbit is sampled every
-``DT`` for ``T_END`` and analysed by NAFF (:mod:`simulate.naff`).
+``DT`` for ``T_END`` and analysed by NAFF (:mod:`simulate.analysis.naff`).
 
 * regular orbit: frequency diffusion $D <$ ``REGULAR`` $= 10^{-5}$;
 * the control separates iff its smallest $D$ is at least ``SEPARATION`` $= 100$ times the largest
   $D$ of the axisymmetric orbits it is compared with (the same analysis, the same $T$);
 * the control: the same $n = 4$ sphere, the same $b$ and initial conditions, but the generic mass
-  tensor $\mathbb{J} = \mathrm{diag}(1, 2, 0.5, 0.25)$ (:mod:`simulate.control`, chosen there by a MEGNO rule;
+  tensor $\mathbb{J} = \mathrm{diag}(1, 2, 0.5, 0.25)$ (:mod:`simulate.analysis.control`, chosen there by a MEGNO rule;
   issue 11 used $\mathrm{diag}(1, 1.3, 0.75, 0.5)$, whose chaos MEGNO did not resolve on 3 of 8 pilot
   orbits; the axisymmetric one is $\mathrm{diag}(1, 1, 1, 1 + a) = \mathrm{diag}(1, 1, 1, 0.5)$).
 """
@@ -24,11 +24,11 @@ import json
 from pathlib import Path
 
 import numpy as np
-from chaplygin_nd.simulate import naff
-from chaplygin_nd.simulate import result_cache as rc
-from chaplygin_nd.simulate.control import CHAOTIC_J
-from chaplygin_nd.simulate.dispatch import active
-from chaplygin_nd.simulate.evidence import Experiment, Orbits, orbits, signals
+from chaplygin_nd.simulate.analysis import naff
+from chaplygin_nd.simulate.analysis import result_cache as rc
+from chaplygin_nd.simulate.analysis.control import CHAOTIC_J
+from chaplygin_nd.simulate.analysis.evidence import Experiment, Orbits, orbits, signals
+from chaplygin_nd.simulate.kernels import active
 
 __all__ = ["A", "B", "SEED", "T_END", "DT", "REGULAR", "SEPARATION", "CONTROL_J",
            "reduced_experiment", "full_experiment", "control_experiment", "vertical_experiment",
@@ -38,7 +38,7 @@ A, B, SEED = -0.5, 0.5, 3
 LEVEL_SET_MEMBERS = (3, 1)        # first: level set L1 (with extra orbits on it), then L2
 LEVEL_SHIFTS = (0.05, 0.1)
 GENERIC_MEMBERS = (1, 3)
-CONTROL_J = CHAOTIC_J[4]   # chosen by MEGNO (simulate/control.py); issue 11 had (1, 1.3, 0.75, 0.5)
+CONTROL_J = CHAOTIC_J[4]   # chosen by MEGNO (simulate/analysis/control.py); issue 11 had (1, 1.3, 0.75, 0.5)
 T_END, DT, RTOL = 4096.0, 0.5, 1e-10
 REGULAR = 1e-5
 SEPARATION = 100.0
@@ -67,7 +67,7 @@ def full_experiment(t_end: float = T_END, dt: float = DT, rtol: float = RTOL) ->
 
 
 def control_experiment(t_end: float = T_END, dt: float = DT, rtol: float = RTOL) -> Experiment:
-    """The general-J control (:mod:`simulate.control`) from the same initial conditions."""
+    """The general-J control (:mod:`simulate.analysis.control`) from the same initial conditions."""
     return Experiment("control", "control", 4, A, B, "generic", SEED, GENERIC_MEMBERS, dt,
                       int(round(t_end / dt)), rtol, J=CONTROL_J)
 
@@ -82,9 +82,9 @@ def vertical_experiment(n: int, a: float, t_end: float | None = None, dt: float 
 
 
 def spectra(exp: Experiment, orb: Orbits | None = None) -> list[naff.Spectrum]:
-    """:func:`simulate.naff.analyse` of every orbit of ``exp`` (integrated or from the cache). The
+    """:func:`simulate.analysis.naff.analyse` of every orbit of ``exp`` (integrated or from the cache). The
     analysis is cached too (JSON), under the orbits' settings key, and trusted only if the code
-    that computed it and its orbits is unchanged (:mod:`simulate.result_cache`)."""
+    that computed it and its orbits is unchanged (:mod:`simulate.analysis.result_cache`)."""
     folder = rc.private_folder("evidence")
     path = folder / f"{exp.name}-spectra-{exp.key()}.json" if folder is not None else None
     if orb is None and path is not None and path.exists():
@@ -101,7 +101,7 @@ def spectra(exp: Experiment, orb: Orbits | None = None) -> list[naff.Spectrum]:
 
 
 def _spectrum(d: dict) -> naff.Spectrum:
-    """A :class:`simulate.naff.Spectrum` from its JSON form; raises on a wrong shape or type."""
+    """A :class:`simulate.analysis.naff.Spectrum` from its JSON form; raises on a wrong shape or type."""
     lines = [(float(w), float(a)) for w, a in d["lines"]]
     freqs = [float(f) for f in d["frequencies"]]
     if not isinstance(d["diffusion"], (int, float)) or not isinstance(d["tolerance"], (int, float)):
@@ -141,7 +141,7 @@ def zeta_rates(exp: Experiment) -> list[float]:
     r"""The rotation rates $\lambda_i \ge 0$ of $\zeta(M_0, \gamma_0)$ (Th:Re, generated kernel) of the
     vertical experiment's initial condition: $\mathrm{spec}\,\zeta = \{\pm i\lambda_i\}$. An independent
     check of which lines NAFF found, not an input of the count."""
-    from chaplygin_nd.simulate import families
+    from chaplygin_nd.simulate.dynamics import families
 
     M0, g0 = families.draw(exp.family, exp.n, exp.a, exp.b, exp.seed, count=1, scale=exp.scale)
     z = active().require("zeta")(M0, g0, exp.a, exp.b)[0]
@@ -152,7 +152,7 @@ def zeta_rates(exp: Experiment) -> list[float]:
 def robustness(lengths=(2048.0, 4096.0), rtols=(1e-10, 1e-11), stream=None) -> list[dict]:
     """How the counts and diffusions of the reduced, full and control experiments change with
     orbit length and DOP853 tolerance (minutes: every setting integrates all three; cached).
-    ``python -c "from simulate.frequencies import robustness; robustness()"``."""
+    ``python -c "from simulate.analysis.frequencies import robustness; robustness()"``."""
     import sys
 
     stream = stream or sys.stdout

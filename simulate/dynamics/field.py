@@ -23,7 +23,7 @@ velocity $\dot c + \omega(-rE_n)$; rolling without slipping sets it to 0:
 $\dot c = r\,\omega E_n = r\,g\Omega\gamma$. Its last coordinate is $E_n^Tg\Omega\gamma =
 \gamma^T\Omega\gamma = 0$, so the centre stays at height $r$ (we set $c_n(0) = 0$). With the opposite
 sign of $\gamma$ the path is mirrored; $r$ (``radius``) is not fixed by $a, b$ ($b = mr^2$) and
-only scales the path. Initial orientation: :func:`simulate.so.rotation_to`.
+only scales the path. Initial orientation: :func:`simulate.dynamics.so.rotation_to`.
 
 Reduced system (n = 4): eq:red-system on $r = (A, B, E, G, F_1, x, \delta)$, from :mod:`generated`.
 
@@ -34,8 +34,8 @@ Every field counts its evaluations (``calls``; one call evaluates the whole ense
 from __future__ import annotations
 
 import numpy as np
-from chaplygin_nd.simulate import so
-from chaplygin_nd.simulate.dispatch import Kernels, active
+from chaplygin_nd.simulate.dynamics import so
+from chaplygin_nd.simulate.kernels import Kernels, active
 
 __all__ = ["FullField", "ReducedField"]
 

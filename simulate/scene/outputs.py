@@ -1,4 +1,4 @@
-r"""The requested outputs of a scene, computed from a :class:`simulate.run.Trajectory`, and written.
+r"""The requested outputs of a scene, computed from a :class:`simulate.scene.run.Trajectory`, and written.
 
 Output arrays (``S`` samples, ``count`` initial conditions):
 
@@ -13,7 +13,7 @@ Output arrays (``S`` samples, ``count`` initial conditions):
   $F_1, F_2, F_3, H$ (S5:red-integrals). Each with its drift $I(t) - I(0)$.
 
 :func:`write` puts ``outputs.npz``, one CSV per output and one PNG per output (drawn by
-:mod:`simulate.figures`) into the output folder, all of them or none (:mod:`simulate.outdir`
+:mod:`simulate.scene.figures`) into the output folder, all of them or none (:mod:`simulate.scene.outdir`
 decides which folders may be written).
 """
 
@@ -23,10 +23,10 @@ from functools import partial
 from pathlib import Path
 
 import numpy as np
-from chaplygin_nd.simulate import so
-from chaplygin_nd.simulate.dispatch import active
-from chaplygin_nd.simulate.figures import plot
-from chaplygin_nd.simulate.outdir import OutputFolder
+from chaplygin_nd.simulate.dynamics import so
+from chaplygin_nd.simulate.kernels import active
+from chaplygin_nd.simulate.scene.figures import plot
+from chaplygin_nd.simulate.scene.outdir import OutputFolder
 
 __all__ = ["collect", "integrals", "p_coefficients", "write"]
 
@@ -67,13 +67,13 @@ def collect(scene, traj) -> dict[str, np.ndarray]:
             if "horizontal" in d:
                 out["horizontal"] = d["horizontal"]
             else:
-                from chaplygin_nd.simulate.closed_forms import horizontal_invariants
+                from chaplygin_nd.simulate.dynamics.closed_forms import horizontal_invariants
                 out["horizontal"] = horizontal_invariants(d["M"], d["gamma"])
         elif name == "reduced":
             if "reduced" in d:
                 out["reduced"] = d["reduced"]
             else:
-                from chaplygin_nd.simulate.run import reduced_invariants
+                from chaplygin_nd.simulate.dynamics.so import reduced_invariants
                 out["reduced"] = reduced_invariants(d["M"], d["gamma"])
         elif name == "orientation":
             out["orientation"] = d["g"]
@@ -115,8 +115,8 @@ def _csv(path: Path, t: np.ndarray, arr: np.ndarray, name: str) -> None:
 def write(folder: OutputFolder, arrays: dict[str, np.ndarray], summary: str,
           plots: bool = True, extra: dict | None = None) -> Path:
     """Write ``arrays`` (NPZ, CSV per output, PNG per output), the ``extra`` files
-    (``{name: writer(path)}``, e.g. :func:`simulate.tori_scene.files`) and ``summary.txt`` into
-    ``folder`` (claimed by :func:`simulate.outdir.claim`), whole or not at all; returns its path."""
+    (``{name: writer(path)}``, e.g. :func:`simulate.scene.tori.files`) and ``summary.txt`` into
+    ``folder`` (claimed by :func:`simulate.scene.outdir.claim`), whole or not at all; returns its path."""
     t = arrays["t"]
     files = {"outputs.npz": lambda p: np.savez(p, **arrays)}
     for name, arr in arrays.items():

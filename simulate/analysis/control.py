@@ -20,16 +20,16 @@ written by hand.
 from __future__ import annotations
 
 import numpy as np
-from chaplygin_nd.simulate import so
-from chaplygin_nd.simulate.dispatch import Kernels
+from chaplygin_nd.simulate.dynamics import so
+from chaplygin_nd.simulate.kernels import Kernels
 
 __all__ = ["general_inertia_kernels", "L_gamma_general", "general_system", "CHAOTIC_J",
            "CANDIDATE_J"]
 
 #: Candidate mass tensors, least asymmetric first, and the rule that chose the control (issue 16),
 #: fixed before any frequency result of the drawn ensembles was seen: the first candidate for which
-#: at least 7 of 8 pilot orbits (``simulate.draws.draw("pilot-control", "generic", n, 8, seed=777)``,
-#: a draw of its own, not the ledger's) have MEGNO <Y>(4096) >= 4 (:mod:`simulate.chaos`). Measured
+#: at least 7 of 8 pilot orbits (``simulate.analysis.draws.draw("pilot-control", "generic", n, 8, seed=777)``,
+#: a draw of its own, not the ledger's) have MEGNO <Y>(4096) >= 4 (:mod:`simulate.analysis.chaos`). Measured
 #: (MEGNO only; heyoka tol 1e-10): n = 4 — diag(1, 1.3, 0.75, 0.5), the control of issue 11: 5 of
 #: 8 (1.97 11.1 1.98 1.99 13.6 13.8 13.8 17.9); diag(1, 2, 0.5, 0.25): 7 of 8 (9.5 20.4 1.96 7.0
 #: 32.3 32.6 32.9 29.1) -> chosen. n = 5 — diag(1, 1.3, 0.75, 0.5, 1.1): 3 of 8; diag(1, 2, 0.5,
@@ -48,7 +48,7 @@ def L_gamma_general(Omega: np.ndarray, gamma: np.ndarray, J: np.ndarray, b: floa
 
 
 def general_inertia_kernels(J, b: float) -> Kernels:
-    r"""A :class:`simulate.dispatch.Kernels` whose ``angular_velocity(M, gamma, a, b)`` solves
+    r"""A :class:`simulate.kernels.Kernels` whose ``angular_velocity(M, gamma, a, b)`` solves
     $L_\gamma(\Omega) = M$ for the diagonal mass tensor ``J`` (the ``a`` argument is ignored: $\mathbb{J}$
     is fixed here). Domain: $J_i > 0$, $b > 0$, $\|\gamma\| = 1$ ($L_\gamma$ is then positive definite)."""
     J = np.asarray(J, dtype=float)
@@ -74,7 +74,7 @@ def _zero(v) -> bool:
 def general_system(J):
     r"""eq:motion-general for the diagonal mass tensor ``J`` as a heyoka system
     (:class:`simulate.integrators.heyoka_systems.System`; state $(\mathrm{vec}\,M, \gamma)$ as
-    :class:`simulate.field.FullField`; parameters $(a, b)$, $a$ unused so that one parameter layout
+    :class:`simulate.dynamics.field.FullField`; parameters $(a, b)$, $a$ unused so that one parameter layout
     serves the axisymmetric and the control systems). $\Omega = L_\gamma^{-1}M$ by an $LDL^T$
     factorisation written as expressions: in the Killing-orthonormal basis $E_i\wedge E_j$ the matrix
     $L[(kl), (ij)] = (J_i + J_j)\delta_{(kl),(ij)} + b\,(w_k\gamma_l - \gamma_kw_l)$, $w = E_i\gamma_j -

@@ -4,7 +4,7 @@
 Exit status: 0 done (and the cross-check, if asked, passed); 1 the cross-check failed; 2 the scene,
 ``--out`` or the run cannot give a right answer (one line on stderr, nothing written); 3 a kernel
 is missing from ``generated/``; 130 interrupted (Ctrl-C or SIGTERM: one line, ``--out`` keeps its
-previous result, :mod:`simulate.outdir`). A closed stdout (``| head -1``) does not stop the run.
+previous result, :mod:`simulate.scene.outdir`). A closed stdout (``| head -1``) does not stop the run.
 """
 
 from __future__ import annotations
@@ -14,15 +14,15 @@ import time
 from pathlib import Path
 
 import numpy as np
-from chaplygin_nd.simulate import tori_scene
-from chaplygin_nd.simulate.dispatch import KernelMissing
-from chaplygin_nd.simulate.fma_scene import FrequencyMapScene
-from chaplygin_nd.simulate.outdir import OutputError, claim
-from chaplygin_nd.simulate.outputs import collect, max_drift, write
-from chaplygin_nd.simulate.planner import plan
-from chaplygin_nd.simulate.run import execute
-from chaplygin_nd.simulate.scene import SceneError, builtin_scenes, find
-from chaplygin_nd.simulate.stops import RunStopped, check_finite
+from chaplygin_nd.simulate.integrators.stops import RunStopped, check_finite
+from chaplygin_nd.simulate.kernels import KernelMissing
+from chaplygin_nd.simulate.scene import tori as tori_scene
+from chaplygin_nd.simulate.scene.frequency_map import FrequencyMapScene
+from chaplygin_nd.simulate.scene.outdir import OutputError, claim
+from chaplygin_nd.simulate.scene.outputs import collect, max_drift, write
+from chaplygin_nd.simulate.scene.planner import plan
+from chaplygin_nd.simulate.scene.run import execute
+from chaplygin_nd.simulate.scene.spec import SceneError, builtin_scenes, find
 
 from chaplygin_nd.cli import version_line
 from chaplygin_nd.console import (
@@ -103,7 +103,7 @@ def main(argv: list[str] | None = None) -> int:
             scene = find(args.scene, force=args.force)
             out = out or Path("out") / scene.name
             folder = claim(out, scene.name)
-            if isinstance(scene, FrequencyMapScene):  # a frequency map (simulate/fma_scene.py)
+            if isinstance(scene, FrequencyMapScene):  # a frequency map (simulate/scene/frequency_map.py)
                 return _frequency_map(scene, folder, out, args, start)
             if not args.no_plots:
                 usable_backend()
@@ -117,7 +117,7 @@ def main(argv: list[str] | None = None) -> int:
                     check_finite(key, v, scene.t if key != "zeta" else scene.t[0])
                 check = None
                 if args.cross_check:
-                    from chaplygin_nd.simulate.crosscheck import cross_check
+                    from chaplygin_nd.simulate.scene.crosscheck import cross_check
                     state = ({k: traj.data[k] for k in ("M", "gamma") if k in traj.data}
                              if tori_scene.wants(scene) else None)
                     check = cross_check(scene, p, arrays, force=args.force, state=state)
@@ -148,7 +148,7 @@ def main(argv: list[str] | None = None) -> int:
 
 def _frequency_map(scene, folder, out, args, start) -> int:
     """Run a frequency-map scene into ``folder`` (claimed) and print its summary."""
-    from chaplygin_nd.simulate import fma_scene
+    from chaplygin_nd.simulate.scene import frequency_map as fma_scene
 
     if args.workers is not None and args.workers < 1:
         raise SceneError("--workers", "--workers", f"{args.workers}", "give N >= 1")

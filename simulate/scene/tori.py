@@ -5,11 +5,11 @@ independent frequencies of the first orbit, rad per unit time), ``"diffusion"`` 
 diffusion), ``"max_diffusion"`` and ``"orbits"`` (the analysis of every orbit):
 
 * ``"reduced"`` — eq:red-system from the reduced point of every initial condition, plus two
-  orbits moved along the first one's level set (:func:`simulate.evidence.level_set_points`);
+  orbits moved along the first one's level set (:func:`simulate.analysis.evidence.level_set_points`);
 * ``"full"``    — the trajectory of the scene itself on $P$ (the planner runs the full system
   when ``frequencies`` is asked: frequencies on $P$ need it);
 * ``"control"`` — the same initial conditions for the generic-$\mathbb{J}$ sphere
-  (:mod:`simulate.control`, $\mathbb{J}$ = ``simulate.frequencies.CONTROL_J``).
+  (:mod:`simulate.analysis.control`, $\mathbb{J}$ = ``simulate.analysis.frequencies.CONTROL_J``).
 
 ``poincare`` (needs only the reduced model) writes ``poincare.png``: the section
 $\{G = 0, \dot G < 0\}$ in $(E, \delta)$ of the reduced orbits, with the level set
@@ -22,16 +22,17 @@ from __future__ import annotations
 import json
 
 import numpy as np
-from chaplygin_nd.simulate import frequencies as fq
-from chaplygin_nd.simulate import naff, so
-from chaplygin_nd.simulate.control import general_inertia_kernels
-from chaplygin_nd.simulate.dispatch import active
-from chaplygin_nd.simulate.evidence import Experiment, Orbits, level_set_points, signals
-from chaplygin_nd.simulate.field import FullField, ReducedField
+from chaplygin_nd.simulate.analysis import frequencies as fq
+from chaplygin_nd.simulate.analysis import naff
+from chaplygin_nd.simulate.analysis.control import general_inertia_kernels
+from chaplygin_nd.simulate.analysis.evidence import Experiment, Orbits, level_set_points, signals
+from chaplygin_nd.simulate.analysis.poincare import figure, section
+from chaplygin_nd.simulate.dynamics import so
+from chaplygin_nd.simulate.dynamics.field import FullField, ReducedField
+from chaplygin_nd.simulate.dynamics.so import reduced_invariants
 from chaplygin_nd.simulate.integrators import dop853
-from chaplygin_nd.simulate.poincare import figure, section
-from chaplygin_nd.simulate.run import reduced_invariants
-from chaplygin_nd.simulate.scene import SceneError
+from chaplygin_nd.simulate.kernels import active
+from chaplygin_nd.simulate.scene.spec import SceneError
 
 __all__ = ["wants", "files"]
 
@@ -85,7 +86,7 @@ def _entry(orb: Orbits, note: str) -> dict:
 
 
 def files(scene, traj) -> tuple[dict, list[str]]:
-    """The requested files as ``{name: writer(path)}`` for :meth:`simulate.outdir.OutputFolder.write`
+    """The requested files as ``{name: writer(path)}`` for :meth:`simulate.scene.outdir.OutputFolder.write`
     (computed here, written atomically there) and one summary line per file."""
     dt = np.diff(scene.t)
     if not np.allclose(dt, dt[0], rtol=1e-12, atol=0):
@@ -101,7 +102,7 @@ def files(scene, traj) -> tuple[dict, list[str]]:
         data = {"reduced": _entry(reduced, "eq:red-system (generated kernel), DOP853; orbits "
                                            "1-3 share the first level set"),
                 "full": _entry(full, "eq:motion-general on P (the scene's own trajectory)"),
-                "control": _entry(control, f"generic J = diag{fq.CONTROL_J} (simulate/control.py)"),
+                "control": _entry(control, f"generic J = diag{fq.CONTROL_J} (simulate/analysis/control.py)"),
                 "regular_threshold": fq.REGULAR, "separation_factor": fq.SEPARATION}
         text = json.dumps(data, indent=1) + "\n"
         out["frequencies.json"] = lambda path: path.write_text(text, encoding="utf-8")

@@ -2,15 +2,15 @@ r"""Orbits for the numerical evidence of Section 5 (issue 11), integrated once a
 
 An :class:`Experiment` names a vector field (the reduced field eq:red-system, the full field
 eq:motion-general with the generated $L_\gamma^{-1}$, or the general-$\mathbb{J}$ control of
-:mod:`simulate.control`), its parameters, the initial conditions (a family and seed of
-:mod:`simulate.families`, optionally moved along a level set of the reduced integrals), the
+:mod:`simulate.analysis.control`), its parameters, the initial conditions (a family and seed of
+:mod:`simulate.dynamics.families`, optionally moved along a level set of the reduced integrals), the
 sampling and the DOP853 tolerance. :func:`orbits` returns the samples, from the cache when the
 cache key matches, else by integrating (and then writing the cache atomically).
 
-Cache (:mod:`simulate.result_cache`): an entry is found by the SHA-256 of the experiment (JSON)
+Cache (:mod:`simulate.analysis.result_cache`): an entry is found by the SHA-256 of the experiment (JSON)
 and of the library versions, and trusted only if the source of every project module that was
-loaded when it was computed (recorded in the entry, :func:`simulate.result_cache.code_manifest`)
-is unchanged: an edited field (:mod:`simulate.so`), kernel, integrator or analysis recomputes.
+loaded when it was computed (recorded in the entry, :func:`simulate.analysis.result_cache.code_manifest`)
+is unchanged: an edited field (:mod:`simulate.dynamics.so`), kernel, integrator or analysis recomputes.
 Entries are ``.npz`` read without pickle; a corrupt entry is recomputed, an unusable or shared
 folder is reported and the run goes on uncached. Location: the ``evidence/`` subfolder of the
 project's cache folder (:mod:`chaplygin_nd.cache`).
@@ -25,13 +25,13 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 import numpy as np
-from chaplygin_nd.simulate import families, so
-from chaplygin_nd.simulate import result_cache as rc
-from chaplygin_nd.simulate.control import general_inertia_kernels
-from chaplygin_nd.simulate.dispatch import active
-from chaplygin_nd.simulate.field import FullField, ReducedField
+from chaplygin_nd.simulate.analysis import result_cache as rc
+from chaplygin_nd.simulate.analysis.control import general_inertia_kernels
+from chaplygin_nd.simulate.dynamics import families, so
+from chaplygin_nd.simulate.dynamics.field import FullField, ReducedField
+from chaplygin_nd.simulate.dynamics.so import reduced_invariants
 from chaplygin_nd.simulate.integrators import dop853
-from chaplygin_nd.simulate.run import reduced_invariants
+from chaplygin_nd.simulate.kernels import active
 
 from chaplygin_nd import cache as project_cache
 
@@ -78,7 +78,7 @@ class Experiment:
 @dataclass
 class Orbits:
     """Samples ``y`` of shape ``(samples + 1, count, dim)`` at ``t``, with the integration cost;
-    ``info["manifest"]``: the code that computed them (:func:`simulate.result_cache.code_manifest`)."""
+    ``info["manifest"]``: the code that computed them (:func:`simulate.analysis.result_cache.code_manifest`)."""
 
     experiment: Experiment
     t: np.ndarray
@@ -91,7 +91,7 @@ class Orbits:
 
 def cache_dir() -> Path:
     """The ``evidence/`` subfolder of the project's cache folder (:mod:`chaplygin_nd.cache`); not
-    created here (:func:`simulate.result_cache.private_folder` creates and checks it)."""
+    created here (:func:`simulate.analysis.result_cache.private_folder` creates and checks it)."""
     return project_cache.cache_dir("evidence")
 
 
@@ -157,7 +157,7 @@ def initial_states(exp: Experiment):
 def orbits(exp: Experiment, use_cache: bool = True) -> Orbits:
     """The sampled orbits of ``exp``: from the cache if an entry with its settings key was
     computed by the code loaded now, else integrated with DOP853 (one stacked system for the
-    ensemble) and cached (:mod:`simulate.result_cache`)."""
+    ensemble) and cached (:mod:`simulate.analysis.result_cache`)."""
     folder = rc.private_folder("evidence") if use_cache else None
     if folder is None:
         return _integrate(exp)

@@ -1,7 +1,7 @@
 r"""Initial conditions of the evidence rows, drawn by the ledger's seed — never picked (issue 16).
 
 An :class:`Ensemble` is ``count`` initial conditions $(M_0, \gamma_0)$ of one family
-(:mod:`simulate.families`: ``generic`` or ``vertical``) in dimension $n$, each with its own
+(:mod:`simulate.dynamics.families`: ``generic`` or ``vertical``) in dimension $n$, each with its own
 parameters $(a, b)$ and energy scale $s = \|M_0\|_\kappa$:
 
 * $(a, b)$ runs through ``A_VALUES`` $\times$ ``B_VALUES`` ($a \in \{-0.9, -0.5, 0.5, 2\}$, $b \in \{0.5, 2\}$:
@@ -24,7 +24,7 @@ import zlib
 from dataclasses import dataclass
 
 import numpy as np
-from chaplygin_nd.simulate import families
+from chaplygin_nd.simulate.dynamics import families
 
 __all__ = ["A_VALUES", "B_VALUES", "SCALES", "Ensemble", "draw"]
 
