@@ -152,7 +152,7 @@ def zeta_rates(exp: Experiment) -> list[float]:
 def robustness(lengths=(2048.0, 4096.0), rtols=(1e-10, 1e-11), stream=None) -> list[dict]:
     """How the counts and diffusions of the reduced, full and control experiments change with
     orbit length and DOP853 tolerance (minutes: every setting integrates all three; cached).
-    ``python -c "from simulate.analysis.frequencies import robustness; robustness()"``."""
+    ``python -c "from chaplygin_nd.simulate.analysis.frequencies import robustness; robustness()"``."""
     import sys
 
     stream = stream or sys.stdout
