@@ -37,6 +37,13 @@ class Result:
     def status(self) -> str:
         return "error" if self.error else self.verdict.verdict
 
+    def __repr__(self) -> str:
+        """``<Result P:inversion: holds, 4.1 s, n = 3..12, 16, 20, 24>``; the verdict's fields
+        (method, parts, counterexample) are in ``verdict`` and :meth:`to_dict`."""
+        kind = f" ({self.verdict.kind})" if self.verdict.kind else ""
+        ns = f", n = {points.n_text(self.verdict.n_values)}" if self.verdict.n_values else ""
+        return f"<Result {self.row.id}: {self.status}{kind}, {self.seconds:.2g} s{ns}>"
+
     def to_dict(self) -> dict:
         d = {"id": self.row.id, "section": self.row.section, "claim": self.row.claim,
              "seconds": round(self.seconds, 3), "proof_module": self.module,
