@@ -60,7 +60,7 @@ def test_help_shows_the_function_and_the_reprs_are_short():
 def test_a_scene_by_name_path_or_text_gives_the_same_arrays(tmp_path):
     assert "steady4d" in builtin_scenes()
     from importlib import resources
-    text = (resources.files("chaplygin_nd.simulate") / "scenes" / "steady4d.toml").read_text()
+    text = (resources.files("chaplygin_nd.scenes") / "steady4d.toml").read_text()
     path = tmp_path / "mine.toml"
     path.write_text(text)
     runs = [api.simulate("steady4d"), api.simulate(path), api.simulate(text)]

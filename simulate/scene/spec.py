@@ -132,7 +132,7 @@ class Scene:
 
 
 def _builtin_folder():
-    return resources.files("chaplygin_nd.simulate") / "scenes"
+    return resources.files("chaplygin_nd.scenes")
 
 
 def builtin_scenes() -> dict[str, str]:
