@@ -99,11 +99,20 @@ class Simulation:
 
 
 def _scene(scene: str | Path, force: bool) -> Scene:
-    from chaplygin_nd.simulate.scene.spec import find, loads
+    """The validated scene; a frequency map (``[fma]``) is refused with :class:`SceneError`:
+    it is a sweep of many orbits drawn as a figure, run by ``chaplygin simulate``, not a
+    trajectory with arrays."""
+    from chaplygin_nd.simulate.scene.spec import Scene, SceneError, find, loads
 
     if isinstance(scene, str) and ("\n" in scene or "=" in scene) and not _is_file(scene):
-        return loads(scene, source="<TOML text>", force=force)
-    return find(str(scene), force=force)
+        found = loads(scene, source="<TOML text>", force=force)
+    else:
+        found = find(str(scene), force=force)
+    if not isinstance(found, Scene):
+        raise SceneError(str(scene) if "\n" not in str(scene) else "<TOML text>", "fma",
+                         "a frequency map has no single trajectory to return",
+                         "run it with `chaplygin simulate` (it writes the map and its figure)")
+    return found
 
 
 def _is_file(text: str) -> bool:

@@ -7,7 +7,7 @@ import os
 import signal
 import time
 import traceback
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, replace
 
@@ -147,7 +147,7 @@ def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFA
     freshness = [fresh] * len(todo)
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(todo) or 1))
     if jobs == 1:
-        iterator = map(_run_one, todo, seeds, freshness)
+        iterator: Iterator = map(_run_one, todo, seeds, freshness)
         pool = None
     else:
         pool = ProcessPoolExecutor(jobs, mp_context=_context(), initializer=_init_worker)

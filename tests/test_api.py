@@ -43,6 +43,13 @@ def test_simulate_is_the_subpackage_and_the_function():
     assert isinstance(by_name, api.Simulation)
 
 
+def test_a_frequency_map_is_refused_with_one_clear_error():
+    from chaplygin_nd.simulate.scene.spec import SceneError
+
+    with pytest.raises(SceneError, match="a frequency map has no single trajectory"):
+        chaplygin_nd.simulate("fma4d")
+
+
 def test_help_shows_the_function_and_the_reprs_are_short():
     import pydoc
 

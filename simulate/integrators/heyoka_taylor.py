@@ -25,6 +25,7 @@ from __future__ import annotations
 import importlib.util
 import math
 import time
+from typing import Any
 
 import numpy as np
 from chaplygin_nd.runtime import jit_cache
@@ -226,6 +227,7 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, tol: float | None = None,
             else:
                 import mpmath
 
+                assert high is not None  # allocated for every precision but double
                 with mpmath.workprec(bits):
                     high[:, e] = np.vectorize(lambda v: mpmath.mpf(str(v)), otypes=[object])(states)
                 out[:, e] = np.vectorize(float, otypes=[float])(high[:, e])
@@ -255,7 +257,7 @@ def _watch(progress, t0: float, t_end: float, passes: int):
         try:
             reached = float(np.min(np.asarray(ta.time, dtype=float)))
             if passes > 1 and span > 0 and math.isfinite(reached):
-                reached = t0 + (callback.done + (reached - t0) / span) * span / passes
+                reached = t0 + (watch.done + (reached - t0) / span) * span / passes
             progress(reached)
         except Exception as exc:  # noqa: BLE001 - re-raised by raise_error
             error.append(exc)
@@ -266,9 +268,10 @@ def _watch(progress, t0: float, t_end: float, passes: int):
         if error:
             raise error[0]
 
-    callback.raise_error = raise_error
-    callback.done = 0
-    return callback
+    watch: Any = callback  # a function with two attributes: raise_error and done
+    watch.raise_error = raise_error
+    watch.done = 0
+    return watch
 
 
 def _check(hy, outcome, system, reached) -> None:

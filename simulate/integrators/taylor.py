@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 import time
+from typing import Any
 
 import mpmath
 import numpy as np
@@ -146,14 +147,15 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, dps: int = 30, order: int | 
     steps = 0
     for e in range(y0.shape[0]):
         parts = field.unpack(y0[e])
-        state = [fx.array(v) for v in parts] + ([] if field.reconstruct else [None, None])
+        state: list[Any] = [fx.array(v) for v in parts] + ([] if field.reconstruct else [None, None])
         T = fx.of(t[0])
         out[0, e] = fx.to_mpf(fx.array(y0[e]))
         with mpmath.workdps(dps + 15):
             for i in range(1, len(t)):
                 T_next = fx.of(t[i])
                 while T < T_next:
-                    coeffs = _series(fx, *state, a, b, r, n, p)
+                    M_, gamma_, g_, c_ = state
+                    coeffs = _series(fx, M_, gamma_, g_, c_, a, b, r, n, p)
                     size = [max(abs(int(v)) for v in np.ravel(cs[k]))
                             for cs in coeffs for k in (p - 1, p)]
                     scale = max(1.0, max(abs(int(v)) for s in state if s is not None

@@ -192,6 +192,7 @@ def for_scene(scene, model: str, reconstruct: bool, method: str, heyoka_tol: flo
     from chaplygin_nd.simulate.dynamics.so import reduced_invariants
     from chaplygin_nd.simulate.integrators import heyoka_systems
 
+    field: ReducedField | FullField
     if model == "reduced-7D":
         field = ReducedField(scene.a, scene.b)
         y0 = reduced_invariants(scene.M0, scene.gamma0)
