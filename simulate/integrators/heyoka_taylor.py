@@ -24,14 +24,17 @@ from __future__ import annotations
 
 import importlib.util
 import math
+import os
 import time
 from typing import Any
 
 import numpy as np
 from chaplygin_nd.runtime import jit_cache
 from chaplygin_nd.runtime.expressions import HeyokaArithmetic
-from chaplygin_nd.simulate.integrators import heyoka_systems
+from chaplygin_nd.simulate.integrators import heyoka_systems, settings
 from chaplygin_nd.simulate.integrators.base import Solution
+from chaplygin_nd.simulate.integrators.registry import Integrator, register
+from chaplygin_nd.simulate.integrators.settings import Tolerance
 
 __all__ = ["available", "integrate", "order_for", "bits_for_digits", "compiled_integrator",
            "default_tol", "default_compact", "cache_key"]
@@ -285,3 +288,30 @@ def _check(hy, outcome, system, reached) -> None:
         raise NonFinite(f"the state of {system.name} is not finite at t = {fmt(float(reached))} "
                         "(heyoka: non-finite state or step size; are a, b or the scale too large?)")
     raise RuntimeError(f"heyoka stopped early on {system.name} at t = {fmt(float(reached))}: {outcome}")
+
+
+#: Environment variable that hides heyoka from the planner (the base install, for tests).
+WITHOUT_HEYOKA = "CHAPLYGIN_ND_WITHOUT_HEYOKA"
+
+
+def usable() -> bool:
+    """heyoka is importable and not hidden by ``CHAPLYGIN_ND_WITHOUT_HEYOKA=1``."""
+    return available() and os.environ.get(WITHOUT_HEYOKA, "") in ("", "0")
+
+
+def _run(f, y0, t, s: Tolerance, *, checked, progress=None, compact=None) -> Solution:
+    checked(t[0], y0)  # a non-finite start is named here (heyoka would only say nan)
+    return integrate(f, y0, t, tol=s.tol, precision=s.precision, compact=compact,
+                     progress=progress)
+
+
+def _describe(s) -> str:
+    return f"heyoka Taylor, tol {s.tol:.3g}" + ("" if s.precision == "double" else f", {s.precision}")
+
+
+HEYOKA = register(Integrator(
+    "heyoka", Tolerance, _run,
+    calibrate=lambda target, span, step=0.01, dps=30, precision="double":
+        settings.tolerance("heyoka", target, precision, span),
+    error=settings.tolerance_error, describe=_describe, available=usable,
+    auto=0, reference=1, costed=True))

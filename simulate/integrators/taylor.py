@@ -28,7 +28,10 @@ from typing import Any
 import mpmath
 import numpy as np
 from chaplygin_nd.simulate.dynamics import so
+from chaplygin_nd.simulate.integrators import settings
 from chaplygin_nd.simulate.integrators.base import Solution
+from chaplygin_nd.simulate.integrators.registry import Integrator, register
+from chaplygin_nd.simulate.integrators.settings import Digits
 
 __all__ = ["integrate", "default_order", "L_matrix_mp"]
 
@@ -184,3 +187,16 @@ def so_vec_obj(M, n):
     """vec-coordinates of an object (fixed-point) skew matrix, in the basis order of :mod:`simulate.dynamics.so`."""
     i, j = so.pairs(n)
     return M[i, j]
+
+
+def _run(f, y0, t, s: Digits, *, checked, progress=None, compact=None) -> Solution:
+    return integrate(f, y0, t, dps=s.dps, progress=progress)
+
+
+REFERENCE = register(Integrator(
+    "reference", Digits, _run,
+    calibrate=lambda target, span, step=0.01, dps=30, precision="double":
+        settings.digits("reference", target, dps),
+    error=settings.digits_error,
+    describe=lambda s: f"mpmath Taylor, {s.dps} digits",
+    reduced=False, auto=2, reference=2))  # acts on (M, gamma) only
