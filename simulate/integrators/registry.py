@@ -15,7 +15,6 @@ from __future__ import annotations
 import importlib
 from collections.abc import Callable
 from dataclasses import dataclass
-
 from typing import Any
 
 from chaplygin_nd.simulate.integrators.base import Solution
