@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 CLI := $(VENV)/bin/chaplygin
 STAMP := $(VENV)/.installed
 
-.PHONY: setup verify test generate bench mutate mutate-derivations clean docs docs-html docs-test
+.PHONY: setup verify test typecheck generate bench mutate mutate-derivations clean docs docs-html docs-test
 
 setup: $(STAMP)
 
@@ -26,6 +26,12 @@ verify: setup
 ## test: the pytest suite (engine, proofs, kernels against mpmath, hard cases).
 test: setup
 	$(PY) -m pytest -q
+
+## typecheck: mypy over the package as Python imports it (.ci/typecheck.py assembles the
+## chaplygin_nd namespace outside the tree); the level is [tool.mypy] in pyproject.toml: mypy's
+## default (annotated functions checked), the claim scripts and the benchmarks not yet.
+typecheck: setup
+	$(PY) .ci/typecheck.py
 
 ## mutate: mutation testing of every printed formula (one-symbol AST mutants, each run against the
 ## rows that reach it); writes mutation.json and ledger/reach.json; fails on a surviving mutant.

@@ -94,10 +94,19 @@ def relative_error(arrays, ref) -> float:
     return worst
 
 
+def _settings(method: str, value: float) -> accuracy.Settings:
+    """The registered settings class of ``method`` holding ``value`` (tol, h or dps)."""
+    from chaplygin_nd.simulate.integrators import registry
+
+    kind = registry.get(method).settings
+    field = {accuracy.Tolerance: "tol", accuracy.Step: "h", accuracy.Digits: "dps"}[kind]
+    return kind(method, 0.0, True, **{field: value})
+
+
 def reference_settings() -> accuracy.Settings:
     if accuracy.heyoka_usable():
-        return accuracy.Settings("heyoka", 1e-28, 1e-26, True, precision="real128")
-    return accuracy.Settings("reference", 32, 1e-28, True)
+        return accuracy.Tolerance("heyoka", 1e-26, True, "real128", tol=1e-28)
+    return accuracy.Digits("reference", 1e-28, True, dps=32)
 
 
 def main(out: Path, quick: bool = False) -> int:
@@ -118,7 +127,7 @@ def main(out: Path, quick: bool = False) -> int:
             if model == "reduced-7D" and method in ("lie", "rk45"):
                 continue
             for value in SETTINGS[method][:1 if quick else None]:
-                s = accuracy.Settings(method, value, 0.0, True)
+                s = _settings(method, value)
                 arrays, seconds, model = _run(scene, method, s)
                 err = relative_error(arrays, ref)
                 ratio = err / (value ** 4 * span if method == "lie" else value)

@@ -16,8 +16,8 @@ The command line is ``chaplygin`` (``python -m chaplygin_nd``): see :mod:`chaply
 For notebooks, :mod:`chaplygin_nd.api` is re-exported here: ``chaplygin_nd.decide``,
 ``chaplygin_nd.simulate``, ``chaplygin_nd.angular_velocity``, ``L_gamma``, ``vector_field``,
 ``energy``, ``zeta``. They are imported on first use, so ``import chaplygin_nd`` loads neither
-SymPy nor NumPy. ``chaplygin_nd.simulate`` is both the subpackage and the function: calling the
-subpackage runs :func:`chaplygin_nd.api.simulate`.
+SymPy nor NumPy. ``chaplygin_nd.simulate`` is the function :func:`chaplygin_nd.api.simulate`
+(``help`` shows it) whose attributes are the subpackage's (``chaplygin_nd.simulate.scene``).
 """
 
 import importlib as _importlib
@@ -38,22 +38,32 @@ _API = ("decide", "simulate", "Simulation", "angular_velocity", "L_gamma", "vect
 __all__ = ["__version__", *_API]
 
 
-class _CallableSubpackage(_types.ModuleType):
-    """The subpackage :mod:`chaplygin_nd.simulate`, callable as :func:`chaplygin_nd.api.simulate`."""
+def _callable_subpackage(module: _types.ModuleType) -> _types.FunctionType:
+    """:func:`chaplygin_nd.api.simulate` as a new function object whose attribute namespace is the
+    subpackage's: ``help(cn.simulate)`` shows the function (its signature and docstring),
+    ``cn.simulate("steady4d")`` runs a scene, and ``cn.simulate.scene.spec`` is still the
+    submodule (the import system binds submodules into that shared namespace)."""
+    from chaplygin_nd.api import simulate
 
-    def __call__(self, scene, **options):
-        from chaplygin_nd.api import simulate
-
-        return simulate(scene, **options)
+    f = _types.FunctionType(simulate.__code__, simulate.__globals__, simulate.__name__,
+                            simulate.__defaults__, simulate.__closure__)
+    f.__kwdefaults__ = simulate.__kwdefaults__
+    f.__doc__ = simulate.__doc__
+    f.__qualname__, f.__module__ = simulate.__qualname__, simulate.__module__
+    f.__annotations__ = simulate.__annotations__
+    f.__dict__ = module.__dict__  # type: ignore[misc]  # the subpackage's namespace
+    return f
 
 
 class _Package(_types.ModuleType):
-    """This package's class: when the import system binds the subpackage ``simulate`` here, it
-    is made callable, so ``chaplygin_nd.simulate(scene)`` works whichever was imported first."""
+    """This package's class: when the import system binds the subpackage ``simulate`` here, the
+    attribute becomes the notebook function :func:`chaplygin_nd.api.simulate` sharing the
+    subpackage's namespace, so ``chaplygin_nd.simulate(scene)`` and
+    ``chaplygin_nd.simulate.scene`` both work whichever was imported first."""
 
     def __setattr__(self, name, value):
-        if name == "simulate" and type(value) is _types.ModuleType:
-            value.__class__ = _CallableSubpackage
+        if name == "simulate" and isinstance(value, _types.ModuleType):
+            value = _callable_subpackage(value)
         super().__setattr__(name, value)
 
 
@@ -63,7 +73,8 @@ _sys.modules[__name__].__class__ = _Package
 def __getattr__(name):
     """The notebook API (:mod:`chaplygin_nd.api`), imported on first use."""
     if name == "simulate":
-        return _importlib.import_module("chaplygin_nd.simulate")
+        _importlib.import_module("chaplygin_nd.simulate")  # binds the function (see _Package)
+        return globals()["simulate"]
     if name in _API:
         return getattr(_importlib.import_module("chaplygin_nd.api"), name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

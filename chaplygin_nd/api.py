@@ -77,6 +77,19 @@ class Simulation:
     outputs: dict[str, np.ndarray]
     trajectory: Trajectory = field(repr=False)
 
+    def __repr__(self) -> str:
+        """A few lines: the scene, the model and method, the times, the outputs with their
+        shapes; the arrays themselves are in ``times`` and ``outputs`` (and :meth:`summary`)."""
+        t = self.times
+        span = f"{t[0]:g} .. {t[-1]:g} ({t.size} samples)" if t.size else "no samples"
+        shown = ", ".join(f"{k} {tuple(v.shape)}" for k, v in list(self.outputs.items())[:6])
+        more = f", … {len(self.outputs) - 6} more" if len(self.outputs) > 6 else ""
+        title = f" {self.scene.title!r}" if getattr(self.scene, "title", "") else ""
+        return (f"<Simulation{title}: n = {self.scene.n}, a = {self.scene.a:g}, b = {self.scene.b:g}\n"
+                f"  model {self.plan.model} ({self.plan.detail or self.plan.method})\n"
+                f"  t = {span}\n"
+                f"  outputs: {shown}{more}>")
+
     def summary(self) -> str:
         """The one-screen summary ``chaplygin simulate`` prints (scene, model, cost, drift)."""
         from chaplygin_nd.simulate.scene.cli import summary
@@ -86,11 +99,20 @@ class Simulation:
 
 
 def _scene(scene: str | Path, force: bool) -> Scene:
-    from chaplygin_nd.simulate.scene.spec import find, loads
+    """The validated scene; a frequency map (``[fma]``) is refused with :class:`SceneError`:
+    it is a sweep of many orbits drawn as a figure, run by ``chaplygin simulate``, not a
+    trajectory with arrays."""
+    from chaplygin_nd.simulate.scene.spec import Scene, SceneError, find, loads
 
     if isinstance(scene, str) and ("\n" in scene or "=" in scene) and not _is_file(scene):
-        return loads(scene, source="<TOML text>", force=force)
-    return find(str(scene), force=force)
+        found = loads(scene, source="<TOML text>", force=force)
+    else:
+        found = find(str(scene), force=force)
+    if not isinstance(found, Scene):
+        raise SceneError(str(scene) if "\n" not in str(scene) else "<TOML text>", "fma",
+                         "a frequency map has no single trajectory to return",
+                         "run it with `chaplygin simulate` (it writes the map and its figure)")
+    return found
 
 
 def _is_file(text: str) -> bool:

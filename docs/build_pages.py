@@ -1,17 +1,20 @@
 """Write the sources of the reading site from the ledger's JSON (``make docs`` runs this, then
-``sphinx-build -c docs``): nothing on the site is written by hand but the tutorial texts.
+``sphinx-build -c docs``): nothing on the site is written by hand but the tutorial texts and
+the manual (``docs/pages/``, each page written once; the README links to them).
 
     python docs/build_pages.py [--report verification.json] [--out docs/_build/src]
 
-Writes ``index.md`` (totals, errata, remarks, the claim graph with every node a link), one page
-``claims/<page_name(id)>.md`` per ledger row (:mod:`sitegen.claims`), ``api.md`` and the two
-tutorials executed now (:mod:`sitegen.tutorials`). Exit 2 with one line when the report is
+Writes ``index.md`` (totals, errata and remarks typeset, the claim graph with every node a link,
+the rows grouped by the paper's sections and then *Beyond the paper* (:mod:`sitegen.sections`),
+and the sidebar's toctrees), one page ``claims/<page_name(id)>.md`` per ledger row
+(:mod:`sitegen.claims`), the manual (``docs/pages/``, copied) and the two tutorials executed now (:mod:`sitegen.tutorials`). Exit 2 with one line when the report is
 missing or does not match this checkout's ledger (run ``chaplygin verify`` first).
 """
 
 from __future__ import annotations
 
 import argparse
+import html
 import json
 import shutil
 import sys
@@ -24,7 +27,7 @@ ROOT = DOCS.parent
 sys.path.insert(0, str(DOCS))
 
 from chaplygin_nd.ledger import graph  # noqa: E402
-from sitegen import claims, tex, tutorials  # noqa: E402
+from sitegen import claims, sections, tex, tutorials  # noqa: E402
 
 
 @dataclass
@@ -38,6 +41,8 @@ class Context:
     registry: dict
     kernels: dict[str, list[str]]
     tests: dict[str, list[str]]
+    paper_sections: list[str]
+    paper_ids: set[str]
 
     def __post_init__(self):
         self.ids = {r["id"] for r in self.rows}
@@ -63,18 +68,94 @@ def _rows_as_results(rows: list[dict]):
             for r in rows]
 
 
-def _table(rows: list[dict], ctx: Context, prefix: str) -> str:
-    lines = ["| row | kind | what is wrong, and the exact counterexample |", "|---|---|---|"]
+def _findings(row: dict) -> list[dict]:
+    """The row itself when it carries the printed formula, the correction or the counterexample,
+    else its parts that do (a row of parts keeps them on the parts)."""
+    keys = ("printed_latex", "correction_latex")
+    if any(row.get(k) for k in keys):
+        return [dict(row, name="")]
+    return [p for p in row["parts"] if p.get("kind") and any(p.get(k) for k in keys)]
+
+
+def _findings_table(rows: list[dict], prefix: str) -> str:
+    """Errata or remarks: each finding as printed, what is proved instead and the exact
+    counterexample, typeset by MathJax (raw HTML: MyST tables cannot hold display maths)."""
+    head = ("<tr><th>row</th><th>kind</th><th>as printed</th><th>proved instead</th>"
+            "<th>exact counterexample to the text as printed</th></tr>")
+    body = []
     for r in rows:
-        what = "; ".join(f"{p['name']}: {p.get('counterexample') or p['method']}"
-                         for p in r["parts"] if p.get("kind")) or (r.get("counterexample") or "")
-        lines.append(f"| [{r['id']}]({prefix}{graph.page_name(r['id'])}.md) | {r['kind']} | "
-                     f"{claims._cell(what)} |")
+        link = f'<a href="{prefix}{graph.page_name(r["id"])}.html">{html.escape(r["id"])}</a>'
+        for f in _findings(r) or [dict(r, name="")]:
+            name = f'<br><span class="part">{html.escape(f["name"])}</span>' if f["name"] else ""
+            body.append(f"<tr><td>{link}{name}</td><td>{html.escape(r['kind'] or '')}</td>"
+                        f"<td>{claims.math(f.get('printed_latex'))}</td>"
+                        f"<td>{claims.math(f.get('correction_latex'))}</td>"
+                        f"<td>{claims.counterexample(f)}</td></tr>")
+    return claims.raw(f'<div class="table-wrap"><table class="findings mathjax_process">{head}'
+                      f'{"".join(body)}</table></div>')
+
+
+def _section_table(section: sections.Section, prefix: str, paper_ids: set[str]) -> str:
+    lines = ["| row | statement | verdict |", "|---|---|---|"]
+    for r in section.rows:
+        verdict = r["verdict"] + (f" ({r['kind']})" if r["kind"] else "")
+        added = " *(added)*" if r["id"] not in paper_ids else ""
+        lines.append(f"| [{r['id']}]({prefix}{graph.page_name(r['id'])}.md) | "
+                     f"{claims._cell(r['claim'])}{added} | {verdict} |")
     return "\n".join(lines) + "\n"
 
 
+MANUAL = (("pages/verdicts", "Verdicts, kinds and reports"),
+          ("pages/engines", "The two exact engines"),
+          ("pages/printed", "Printed formulas, reach and mutation"),
+          ("pages/evidence", "Evidence: Section 5's dynamics, measured"),
+          ("pages/scenes", "Scenes and the planner"),
+          ("pages/accuracy", "Accuracy, cross-check and output folders"),
+          ("pages/caches", "Caches"),
+          ("pages/benchmarks", "Kernels and benchmarks"),
+          ("pages/site", "About this site"),
+          ("tutorials/scene-to-figure", None), ("tutorials/p-inversion", None),
+          ("pages/api", None))
+
+_FILTER = """<div class="claim-filter"><label for="claim-filter">Find a claim by words of its
+statement:</label> <input id="claim-filter" type="search" placeholder="e.g. inverse, measure, torus"
+autocomplete="off"> <span id="claim-filter-count"></span></div>
+<script>
+document.addEventListener("DOMContentLoaded", function () {
+  var box = document.getElementById("claim-filter"), count = document.getElementById("claim-filter-count");
+  var rows = Array.prototype.slice.call(document.querySelectorAll(".claims-by-section tbody tr"));
+  box.addEventListener("input", function () {
+    var words = box.value.toLowerCase().split(/\\s+/).filter(Boolean), shown = 0;
+    rows.forEach(function (tr) {
+      var text = tr.textContent.toLowerCase();
+      var hit = words.every(function (w) { return text.indexOf(w) >= 0; });
+      tr.style.display = hit ? "" : "none"; shown += hit;
+    });
+    count.textContent = words.length ? shown + " of " + rows.length + " rows" : "";
+  });
+});
+</script>"""
+
+
+def _toctrees(groups: list[sections.Section]) -> str:
+    """Hidden toctrees: they make the sidebar, one caption per section, each row as
+    ``id — short title``."""
+    out = ["\n```{toctree}\n:hidden:\n:caption: How it works\n:maxdepth: 1\n\n"]
+    out += [f"{title} <{doc}>\n" if title else f"{doc}\n" for doc, title in MANUAL]
+    out.append("```\n")
+    for s in groups:
+        caption = f"{sections.BEYOND}: {s.title}" if s.beyond else s.title
+        out.append(f"\n```{{toctree}}\n:hidden:\n:caption: {caption}\n:maxdepth: 1\n\n")
+        for r in s.rows:
+            title = sections.short_title(r["claim"]).replace("<", "‹").replace(">", "›")
+            out.append(f"{r['id']} — {title} <claims/{graph.page_name(r['id'])}>\n")
+        out.append("```\n")
+    return "".join(out)
+
+
 def index(report: dict, ctx: Context) -> str:
-    """The index page: totals, errata and remarks, evidence, the clickable claim graph, all rows."""
+    """The index page: totals, errata and remarks typeset, the claim graph, the rows grouped by
+    the paper's sections (then the rows beyond the paper), the manual."""
     rows = report["rows"]
     summary = ", ".join(f"**{v}** {k}" for k, v in report["summary"].items())
     errata = [r for r in rows if r["kind"] in graph.ERRATA_KINDS]
@@ -83,28 +164,36 @@ def index(report: dict, ctx: Context) -> str:
     svg = svg[svg.index("<svg"):]
     out = ["# chaplygin-nd: the ledger of the paper, row by row\n",
            "A machine-checked reading of L. C. García-Naranjo, *Integrability of the "
-           "n-dimensional axially symmetric Chaplygin sphere* (arXiv:1906.00261). Every page "
-           "below is generated from the ledger's report (`verification.json`, seed "
-           f"{report['seed']}), the paper's source and the proof scripts.\n",
+           "n-dimensional axially symmetric Chaplygin sphere* (arXiv:1906.00261). Every claim "
+           "page is generated from the ledger's report (`verification.json`, seed "
+           f"{report['seed']}), the paper's source and the proof scripts; the pages under "
+           "*How it works* in the sidebar are the manual.\n",
            f"\n**{len(rows)} rows:** {summary}.\n",
            "\nThe paper is the author's work, included unmodified for verification and not "
            "covered by the project's licence (NOTICE).\n",
            "\n## Errata\n\nA displayed formula (`formula`) or a step of a proof (`proof`) is "
-           "false as printed; the row's page shows what is proved instead.\n\n",
-           _table(errata, ctx, "claims/"),
+           "false as printed: the paper's text, the proved correction and the exact "
+           "counterexample.\n",
+           _findings_table(errata, "claims/"),
            "\n## Remarks\n\nThe statement holds where the paper means it (`scope`: fails on a "
-           "case the paper does not exclude; `reading`: ambiguous text).\n\n",
-           _table(remarks, ctx, "claims/"),
+           "case the paper does not exclude; `reading`: ambiguous text).\n",
+           _findings_table(remarks, "claims/"),
            "\n## The claim graph\n\nEvery node opens its row's page; an arrow goes from a row to "
            "a row that uses it.\n",
            claims.raw(f'<div class="claim-graph">{svg}</div>'),
-           "\n## Every row\n\n| row | section | verdict | kind |\n|---|---|---|---|\n"]
-    for r in rows:
-        out.append(f"| [{r['id']}](claims/{graph.page_name(r['id'])}.md) | "
-                   f"{claims._cell(r['section'])} | {r['verdict']} | {r['kind'] or ''} |\n")
-    out.append("\n```{toctree}\n:hidden:\n:maxdepth: 1\n\ntutorials/scene-to-figure\n"
-               "tutorials/p-inversion\napi\n" + "".join(
-                   f"claims/{graph.page_name(r['id'])}\n" for r in rows) + "```\n")
+           "\n## The claims, section by section\n\n",
+           claims.raw(_FILTER)]
+    groups = sections.group(rows, ctx.paper_sections)
+    beyond_started = False
+    for s in groups:
+        if s.beyond and not beyond_started:
+            beyond_started = True
+            out.append(f"\n## {sections.BEYOND}\n\nRows this project adds: they answer questions "
+                       "the paper leaves open, or certify what the kernels evaluate. They are "
+                       "never mixed with the paper's claims.\n")
+        out.append(f"\n({s.anchor})=\n{'####' if s.beyond else '###'} {s.title}\n\n")
+        out.append("```{container} claims-by-section\n" + _section_table(s, "claims/", ctx.paper_ids) + "```\n")
+    out.append(_toctrees(groups))
     return "".join(out)
 
 
@@ -125,7 +214,7 @@ def main(argv: list[str] | None = None) -> int:
               f"({type(exc).__name__}: {exc})", file=sys.stderr)
         return 2
 
-    from chaplygin_nd.ledger.catalog import PAPER_PATH, all_rows, discover
+    from chaplygin_nd.ledger.catalog import CLAIMS_PATH, PAPER_PATH, all_rows, claims_rows, discover
     from chaplygin_nd.ledger.registry import registry
 
     discover()
@@ -141,7 +230,9 @@ def main(argv: list[str] | None = None) -> int:
                   PAPER_PATH.read_text(encoding="utf-8").splitlines(),
                   tex.printed_lines(ROOT / "symbolic" / "printed"), registry(),
                   claims.kernels_by_claim(ROOT / "generated"),
-                  claims.tests_by_claim(ROOT / "tests", [r["id"] for r in report["rows"]]))
+                  claims.tests_by_claim(ROOT / "tests", [r["id"] for r in report["rows"]]),
+                  sections.paper_sections(CLAIMS_PATH.read_text(encoding="utf-8")),
+                  {r.id for r in claims_rows()})
     out = Path(args.out)
     if out.exists():
         shutil.rmtree(out)
@@ -150,9 +241,10 @@ def main(argv: list[str] | None = None) -> int:
     for row in report["rows"]:
         (out / "claims" / f"{graph.page_name(row['id'])}.md").write_text(
             claims.page(row, ctx), encoding="utf-8")
-    shutil.copy(DOCS / "pages" / "api.md", out / "api.md")
+    shutil.copytree(DOCS / "pages", out / "pages")
+    shutil.copytree(DOCS / "figures", out / "figures")
     tutorials.execute_all(DOCS / "tutorials", out / "tutorials")
-    print(f"wrote {len(report['rows'])} claim pages, the index, the API page and the tutorials "
+    print(f"wrote {len(report['rows'])} claim pages, the index, the manual and the tutorials "
           f"into {out}")
     return 0
 

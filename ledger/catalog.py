@@ -2,8 +2,8 @@
 
 ``paper/CLAIMS.md`` and ``paper/chaplygin-sphere-nd.tex`` are copies of the shared originals
 (a test keeps them identical when ``../shared`` is present). They ship inside the package as
-``proofs/paper`` (a link to ``paper/`` in the repository), read through :mod:`importlib.resources`,
-so an installed wheel finds them. A CLAIMS.md cell such as
+package data of :mod:`chaplygin_nd.paper` (the folder ``paper/``), read through
+:mod:`importlib.resources`, so an installed wheel finds them. A CLAIMS.md cell such as
 ``eq:motion-general, eq:M-O, eq:Inertia`` or ``eq:Manakov / eq:itildendim`` yields one row per id.
 """
 
@@ -18,7 +18,7 @@ from pathlib import Path
 
 #: The folder above the packages: the repository root in a checkout, site-packages when installed.
 ROOT = Path(__file__).resolve().parent.parent
-_PAPER = resources.files("chaplygin_nd.proofs") / "paper"
+_PAPER = resources.files("chaplygin_nd.paper")
 CLAIMS_PATH = Path(str(_PAPER / "CLAIMS.md"))
 PAPER_PATH = Path(str(_PAPER / "chaplygin-sphere-nd.tex"))
 

@@ -144,8 +144,9 @@ def rests_on_erratum(results: Sequence[Result]) -> dict[str, str]:
             seen.add(u)
             if kind.get(u) in ERRATA_KINDS:
                 prev = found.get(r.row.id)
-                if prev is None or KINDS.index(kind[u]) < KINDS.index(prev):
-                    found[r.row.id] = kind[u]
+                here = kind[u]
+                if here is not None and (prev is None or KINDS.index(here) < KINDS.index(prev)):
+                    found[r.row.id] = here
             stack.extend(uses.get(u, ()))
     return found
 
@@ -164,6 +165,7 @@ def draw(results: Sequence[Result], link: Callable[[str], str | None] = site_lin
 
     matplotlib.use("Agg")
     from matplotlib import pyplot as plt
+    from matplotlib.artist import Artist
     from matplotlib.lines import Line2D
     from matplotlib.patches import FancyBboxPatch, Patch
 
@@ -226,7 +228,7 @@ def draw(results: Sequence[Result], link: Callable[[str], str | None] = site_lin
             label.set_url(url)
 
     present = {r.status for r in results}
-    handles = [Patch(facecolor=VERDICT_COLOUR.get(v, "#ffffff"), edgecolor="#303030", label=v)
+    handles: list[Artist] = [Patch(facecolor=VERDICT_COLOUR.get(v, "#ffffff"), edgecolor="#303030", label=v)
                for v in VERDICTS if v in present and v not in ("corrected", "fails")]
     handles += [Patch(facecolor=KIND_COLOUR[k], edgecolor="#303030",
                       label=f"{k} ({'erratum' if k in ERRATA_KINDS else 'remark'})") for k in KINDS]

@@ -52,6 +52,7 @@ from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 from types import FunctionType
+from typing import Any
 
 import sympy as sp
 from chaplygin_nd.ledger.catalog import ROOT, is_checkout
@@ -360,7 +361,7 @@ def _equivalence(fn, mutant_code, claim_id: str, budget: float, key: str = "",
     kinds = ["exact"] + (["scale"] if key in SCALE_INVARIANT else []) + (
         ["positive scale"] if key in POSITIVE_SCALE_INVARIANT else []) + (
         ["sign"] if key in ARGUMENT_SIGN_INVARIANT else [])
-    state = {"calls": 0, "ok": dict.fromkeys(kinds, True)}
+    state: dict[str, Any] = {"calls": 0, "ok": dict.fromkeys(kinds, True)}
     hook_name = "__mutate_compare_hook__"
 
     def hook(*args, **kwargs):
@@ -432,7 +433,7 @@ def evaluate(task: tuple[Mutant, list[tuple[str, tuple, float]]]) -> dict:
     mutant, rows = task
     fn = printed_functions()[mutant.function]
     original = fn.__code__
-    record = {"function": mutant.function, "mutation": f"{mutant.operator}: {mutant.description}",
+    record: dict[str, Any] = {"function": mutant.function, "mutation": f"{mutant.operator}: {mutant.description}",
               "row": None, "outcome": "", "reason": ""}
     try:
         code = compile_mutant(fn, mutant)
@@ -506,7 +507,8 @@ def plan(base: dict, selection: list[Mutant]) -> list[tuple[Mutant, list]]:
     tasks = []
     for m in selection:
         rows = sorted(reach.get(m.function, []), key=lambda r: base[r][1])
-        chosen, total = [], 0.0
+        chosen: list = []
+        total = 0.0
         for r in rows:
             if chosen and total + base[r][1] > ROW_TIME_CAP:
                 break

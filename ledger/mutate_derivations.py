@@ -38,6 +38,7 @@ import traceback
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from types import FunctionType
+from typing import Any
 
 from chaplygin_nd.ledger import mutate as mu
 from chaplygin_nd.ledger.catalog import ROOT, is_checkout
@@ -161,7 +162,7 @@ def _runtime_equivalence(fn, mutant_code) -> tuple[bool, int]:
     orig.__kwdefaults__ = fn.__kwdefaults__
     mut = FunctionType(mutant_code, fn.__globals__, fn.__name__, fn.__defaults__)
     mut.__kwdefaults__ = fn.__kwdefaults__
-    state = {"calls": 0, "same": True}
+    state: dict[str, Any] = {"calls": 0, "same": True}
 
     def hook(*args, **kwargs):
         want = orig(*args, **kwargs)
@@ -185,7 +186,7 @@ def _runtime_equivalence(fn, mutant_code) -> tuple[bool, int]:
     finally:
         fn.__code__ = original
         fn.__globals__.pop(name, None)
-    return state["same"] and state["calls"] > 0, state["calls"]
+    return bool(state["same"]) and state["calls"] > 0, state["calls"]
 
 
 def evaluate(task: Task) -> dict:

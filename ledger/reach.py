@@ -36,7 +36,7 @@ import json
 import os
 import tempfile
 from pathlib import Path
-from types import FunctionType
+from types import CodeType, FunctionType
 
 PRINTED_MODULES = ("section2", "section3", "section4", "section5")
 MAP_PATH = Path(__file__).resolve().parent / "reach.json"
@@ -145,7 +145,7 @@ class Recorder:
     def __init__(self, functions: dict[str, FunctionType] | None = None):
         self.functions = functions if functions is not None else watched_functions()
         self.calls: set[str] = set()
-        self._saved: dict[str, object] = {}
+        self._saved: dict[str, CodeType] = {}
         self._caches = _caches(self.functions)
         self._counts: dict[str, int] = {}
 

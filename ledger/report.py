@@ -273,7 +273,7 @@ def markdown_text(results: Sequence[Result], info: RunInfo) -> str:
     if measured:
         out += ["## Numerical evidence", ""]
         for r in measured:
-            e = r.verdict.evidence
+            e = r.verdict.evidence or {}
             out += [f"### `{r.row.id}` — {r.status}", "", f"Claim: {_cell(str(r.row.claim))}", "",
                     f"- measured: {_cell(str(e['measured']))}", f"- initial conditions: {_cell(str(e['initial_conditions']))}",
                     f"- tolerance: {_cell(str(e['tolerance']))}",

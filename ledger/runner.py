@@ -7,7 +7,7 @@ import os
 import signal
 import time
 import traceback
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, replace
 
@@ -36,6 +36,13 @@ class Result:
     @property
     def status(self) -> str:
         return "error" if self.error else self.verdict.verdict
+
+    def __repr__(self) -> str:
+        """``<Result P:inversion: holds, 4.1 s, n = 3..12, 16, 20, 24>``; the verdict's fields
+        (method, parts, counterexample) are in ``verdict`` and :meth:`to_dict`."""
+        kind = f" ({self.verdict.kind})" if self.verdict.kind else ""
+        ns = f", n = {points.n_text(self.verdict.n_values)}" if self.verdict.n_values else ""
+        return f"<Result {self.row.id}: {self.status}{kind}, {self.seconds:.2g} s{ns}>"
 
     def to_dict(self) -> dict:
         d = {"id": self.row.id, "section": self.row.section, "claim": self.row.claim,
@@ -140,7 +147,7 @@ def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFA
     freshness = [fresh] * len(todo)
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(todo) or 1))
     if jobs == 1:
-        iterator = map(_run_one, todo, seeds, freshness)
+        iterator: Iterator = map(_run_one, todo, seeds, freshness)
         pool = None
     else:
         pool = ProcessPoolExecutor(jobs, mp_context=_context(), initializer=_init_worker)

@@ -1,6 +1,6 @@
 r"""The verdict rule of the drawn evidence rows (issue 16), shared by proofs/s5_tori_evidence.py and
 proofs/s6_open_reduced_n5.py. Fixed before the drawn ensembles were run (a timing pilot of 8
-orbits each of the $n = 4$ and $n = 5$ spheres had been seen; it is reported in notes/i16b.md).
+orbits each of the $n = 4$ and $n = 5$ spheres had been seen; it is reported in docs/design-notes/i16b.md).
 
 Per orbit (simulate/analysis/drawn_evidence.py): frequency class ``predicted`` / ``resonant`` / ``excess`` /
 ``unresolved`` and MEGNO class ``regular`` / ``chaotic`` / ``undecided`` (simulate/analysis/chaos.py).

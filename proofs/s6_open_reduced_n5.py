@@ -25,7 +25,7 @@ Chaos (a positive Lyapunov exponent on a set of positive measure) would show tha
 ``n5_row``; $a \in \{-0.9, -0.5, 0.5, 2\}$, $b \in \{0.5, 2\}$, three energies): the count on the two
 $SO(4)$-invariant observables (reduced frequencies) and on $P$, the frequency diffusion, MEGNO.
 
-**Rule (fixed before the 100-orbit run; an 8-orbit timing pilot had been seen, notes/i16b.md).**
+**Rule (fixed before the 100-orbit run; an 8-orbit timing pilot had been seen, docs/design-notes/i16b.md).**
 Verdict ``evidence`` that no chaos is resolved and the counts respect the bounds of integrability
 iff: at most 2 % of the orbits are MEGNO-chaotic, at least 90 % MEGNO-regular, and at most 2 % of
 the orbits that are resolved (D < 1e-5) have more than 3 reduced or more than 5 frequencies on $P$;

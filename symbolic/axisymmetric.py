@@ -75,7 +75,7 @@ def _coords_in(target: sp.Matrix, spanning: list[sp.Matrix], reduce_rule: dict) 
 
 
 @lru_cache(maxsize=1)
-def frame_coefficients() -> dict[str, object]:
+def frame_coefficients() -> dict[str, sp.Expr]:
     r"""Images of the adapted basis under $L_\gamma$ (P:Measure), computed in $\mathbb{R}^4$ with
     $E = E_4$, $\gamma = (0, 0, s, x)$, $s^2 = 1 - x^2$, $s \neq 0$, $w_1 = E_1$, $w_2 = E_2$.
 

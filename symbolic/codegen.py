@@ -272,7 +272,7 @@ def diff_report(current_dir: Path, fresh_dir: Path) -> str:
     command that fixes it."""
     fresh = {p.name: p.read_text() for p in fresh_dir.glob("*.py")}
     current = {p.name: p.read_text() for p in current_dir.glob("*.py")} if current_dir.exists() else {}
-    diff = []
+    diff: list[str] = []
     for name in sorted(set(fresh) | set(current)):
         a, b = current.get(name, ""), fresh.get(name, "")
         if a != b:

@@ -51,7 +51,8 @@ def _grouped(point) -> list[tuple[str, object]]:
     vectors = {base: comps for base, comps in bases.items()
                if len(comps) >= 2 and sorted(comps) == list(range(1, len(comps) + 1))
                and base not in {name for name, _ in point} and base not in _NOT_VECTORS}
-    out, done = [], set()
+    out: list[tuple[str, object]] = []
+    done: set[str] = set()
     for name, value in point:
         m = _INDEXED.match(name)
         if m and m.group(1) in vectors:

@@ -96,7 +96,7 @@ class FlintMatrix:
     def __eq__(self, other) -> bool:
         return isinstance(other, FlintMatrix) and self.mat == other.mat
 
-    __hash__ = None
+    __hash__ = None  # type: ignore[assignment]  # mutable: unhashable, as list
 
     def __getitem__(self, key):
         if isinstance(key, tuple) and len(key) == 2:

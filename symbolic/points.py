@@ -46,7 +46,8 @@ def all_n(start: int = 3, top: int | None = None) -> tuple[int, ...]:
 def n_text(ns) -> str:
     """``(3, 4, 5, 6, 16, 20)`` -> ``"3..6, 16, 20"`` (runs of consecutive n shortened)."""
     ns = sorted(set(ns))
-    runs, out = [], []
+    runs: list[list[int]] = []
+    out: list[str] = []
     for n in ns:
         if runs and n == runs[-1][-1] + 1:
             runs[-1].append(n)

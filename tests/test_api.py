@@ -43,10 +43,31 @@ def test_simulate_is_the_subpackage_and_the_function():
     assert isinstance(by_name, api.Simulation)
 
 
+def test_a_frequency_map_is_refused_with_one_clear_error():
+    from chaplygin_nd.simulate.scene.spec import SceneError
+
+    with pytest.raises(SceneError, match="a frequency map has no single trajectory"):
+        chaplygin_nd.simulate("fma4d")
+
+
+def test_help_shows_the_function_and_the_reprs_are_short():
+    import pydoc
+
+    text = pydoc.render_doc(chaplygin_nd.simulate, renderer=pydoc.plaintext)
+    assert "function simulate" in text and "Plan and run ``scene``" in text
+    assert "Four subpackages and one binding" not in text  # not the subpackage's docstring
+    run = chaplygin_nd.simulate("steady4d")
+    shown = repr(run)
+    assert shown.startswith("<Simulation") and shown.count("\n") <= 4 and len(shown) < 600
+    assert "constant-Omega" in shown and "M (301, 1, 4, 4)" in shown
+    result = api.decide("eq:invL3D")
+    assert repr(result).startswith("<Result eq:invL3D: holds") and len(repr(result)) < 120
+
+
 def test_a_scene_by_name_path_or_text_gives_the_same_arrays(tmp_path):
     assert "steady4d" in builtin_scenes()
     from importlib import resources
-    text = (resources.files("chaplygin_nd.simulate") / "scenes" / "steady4d.toml").read_text()
+    text = (resources.files("chaplygin_nd.scenes") / "steady4d.toml").read_text()
     path = tmp_path / "mine.toml"
     path.write_text(text)
     runs = [api.simulate("steady4d"), api.simulate(path), api.simulate(text)]

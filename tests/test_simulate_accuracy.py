@@ -57,13 +57,20 @@ def test_every_builtin_scene_passes_its_own_cross_check(name, install, monkeypat
     promised = p.accuracy.promised if p.accuracy else scene.target
     assert ref.promised <= promised / MARGIN * (1 + 1e-9)
     if p.accuracy is not None:  # a different integrator or precision
-        assert (ref.method, ref.precision, ref.value) != (p.accuracy.method, p.accuracy.precision,
-                                                          p.accuracy.value)
+        assert _setting(ref) != _setting(p.accuracy)
+
+
+def _setting(s) -> dict:
+    """The integrator, its precision and its typed setting (tol, h or dps)."""
+    import dataclasses
+
+    return {f.name: getattr(s, f.name) for f in dataclasses.fields(s)
+            if f.name not in ("promised", "honoured")}
 
 
 def test_dop853_cannot_honour_a_target_below_its_floor():
     s = accuracy.choose("dop853", 1e-13, 10.0)
-    assert not s.honoured and s.value == accuracy.FLOORS["dop853"] and s.promised > 1e-13
+    assert not s.honoured and s.tol == accuracy.FLOORS["dop853"] and s.promised > 1e-13
     assert "CANNOT honour" in s.describe()
     assert accuracy.choose("dop853", 1e-8, 10.0).honoured
 
@@ -71,7 +78,7 @@ def test_dop853_cannot_honour_a_target_below_its_floor():
 def test_auto_falls_back_to_the_taylor_method_without_heyoka(monkeypatch):
     monkeypatch.setenv(accuracy.WITHOUT_HEYOKA, "1")
     s = accuracy.automatic(1e-12, 100.0, 30, reduced=False)
-    assert s.method == "reference" and s.honoured and s.value >= 18
+    assert s.method == "reference" and s.honoured and s.dps >= 18
     assert accuracy.automatic(1e-8, 100.0, 30, reduced=False).method == "dop853"
     with pytest.raises(accuracy.Unattainable, match="cannot be honoured"):
         accuracy.automatic(1e-13, 100.0, 30, reduced=True)
@@ -102,8 +109,8 @@ def test_an_unattainable_automatic_target_is_refused_with_one_line(tmp_path, cap
 
 def test_the_lie_step_follows_the_target():
     s = accuracy.choose("lie", 1e-8, 100.0, step=0.05)
-    assert s.honoured and s.value < 0.05
-    assert accuracy.SAFETY * accuracy.estimated_error("lie", s.value, 100.0) <= 1e-8 * (1 + 1e-9)
+    assert s.honoured and s.h < 0.05
+    assert accuracy.SAFETY * accuracy.estimated_error(s, 100.0) <= 1e-8 * (1 + 1e-9)
 
 
 def test_a_fail_says_which_side_is_off():

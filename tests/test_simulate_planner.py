@@ -62,7 +62,7 @@ def test_method_of_example_scenes():
     if heyoka_taylor.available():  # auto: the honouring candidate of least predicted cost
         assert generic.method == "heyoka"  # DOP853 cannot honour 1e-12 (simulate/scene/accuracy.py)
         assert "cost: predicted" in generic.describe()  # every prediction in the plan line
-        tol = generic.accuracy.value  # calibrated for target 1e-12
+        tol = generic.accuracy.tol  # calibrated for target 1e-12
         assert f"heyoka Taylor, tol {tol:.3g}; calibrated for relative error <= 1e-12" \
             in generic.describe()
     else:  # DOP853 cannot honour 1e-12: the mpmath Taylor method does

@@ -103,3 +103,45 @@ def test_no_internal_link_is_broken():
     from check_links import broken_links
 
     assert broken_links(SITE) == []
+
+
+def test_the_sidebar_and_the_index_are_grouped_by_the_papers_sections(browser):
+    """The sidebar has one caption per section of CLAIMS.md (then *Beyond the paper*), each row
+    a link ``id — short title`` under its section; the index has the same headings, a filter
+    that finds a claim by words of its statement, and the errata typeset by MathJax."""
+    from selenium.webdriver.common.by import By
+
+    browser.get((SITE / "index.html").as_uri())
+    _typeset(browser)
+    captions = [c.text for c in browser.find_elements(By.CSS_SELECTOR, ".sphinxsidebar p.caption")]
+    assert "Section 4 — the axisymmetric sphere" in captions, captions
+    assert any(c.startswith("Beyond the paper") for c in captions), captions
+    # the link to P:inversion sits in the list that follows the Section 4 caption
+    grouped = browser.find_elements(By.XPATH, (
+        "//div[contains(@class,'sphinxsidebar')]//p[contains(@class,'caption')]"
+        "[normalize-space()='Section 4 — the axisymmetric sphere']"
+        "/following-sibling::ul[1]//a[contains(@href,'claims/P-inversion.html')]"))
+    assert len(grouped) == 1 and grouped[0].text.startswith("P:inversion — ")
+    headings = [h.text for h in browser.find_elements(By.CSS_SELECTOR, "h3, h4")]
+    assert "Section 4 — the axisymmetric sphere" in headings
+    assert "Beyond the paper" in [h.text for h in browser.find_elements(By.CSS_SELECTOR, "h2")]
+    box = browser.find_element(By.ID, "claim-filter")
+    box.send_keys("explicit inverse")
+    shown = [tr.text for tr in browser.find_elements(By.CSS_SELECTOR, ".claims-by-section tbody tr")
+             if tr.is_displayed()]
+    assert len(shown) == 1 and shown[0].startswith("eq:invL3D"), shown
+    assert browser.find_elements(By.CSS_SELECTOR, "table.findings mjx-container")
+    assert browser.find_elements(By.CSS_SELECTOR, "mjx-merror, [data-mjx-error]") == []
+    SHOTS.mkdir(parents=True, exist_ok=True)
+    assert browser.save_screenshot(str(SHOTS / "index.png"))
+
+
+def test_a_corrected_row_shows_its_correction_typeset(browser):
+    from selenium.webdriver.common.by import By
+
+    browser.get((SITE / "claims" / "eq-VHgeneraln.html").as_uri())
+    _typeset(browser)
+    grid = browser.find_elements(By.CSS_SELECTOR, ".correction .correction-grid")
+    assert grid and grid[0].find_elements(By.CSS_SELECTOR, "mjx-container")
+    assert browser.find_elements(By.CSS_SELECTOR, "table.parts mjx-container")
+    assert browser.find_elements(By.CSS_SELECTOR, "mjx-merror, [data-mjx-error]") == []

@@ -28,9 +28,10 @@ def installed(tmp_path_factory):
     shutil.copytree(ROOT, source, symlinks=True, ignore=shutil.ignore_patterns(
         ".venv", ".git", "build", "*.egg-info", "out", "__pycache__", ".pytest_cache",
         ".hypothesis"))
-    r = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(dist),
+    r = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-v", "-w", str(dist),
                         str(source)], capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr
+    (base / "build.log").write_text(r.stdout + r.stderr)
     (wheel,) = dist.glob("chaplygin_nd-*.whl")
     r = subprocess.run([sys.executable, "-m", "pip", "install", "--no-deps", "-q", "--target",
                         str(target), str(wheel)], capture_output=True, text=True, timeout=300)
@@ -62,13 +63,27 @@ def _loaded_from(stderr: str, target: Path) -> dict[str, str]:
 def test_wheel_contents(installed):
     wheel, _, _ = installed
     names = zipfile.ZipFile(wheel).namelist()
-    assert "chaplygin_nd/proofs/paper/CLAIMS.md" in names
-    assert "chaplygin_nd/proofs/paper/chaplygin-sphere-nd.tex" in names
-    assert "chaplygin_nd/simulate/scenes/generic4d.toml" in names
+    assert "chaplygin_nd/paper/CLAIMS.md" in names
+    assert "chaplygin_nd/paper/chaplygin-sphere-nd.tex" in names
+    assert "chaplygin_nd/scenes/generic4d.toml" in names
     assert "chaplygin_nd/py.typed" in names
     tops = {n.split("/")[0] for n in names}
     dist_info = {t for t in tops if t.startswith("chaplygin_nd-") and t.endswith(".dist-info")}
     assert len(dist_info) == 1 and tops == {"chaplygin_nd"} | dist_info, tops  # nothing else
+
+
+def test_the_build_warns_of_nothing_and_the_tree_has_no_link(installed):
+    """The package data are real folders mapped as packages (issue 26): setuptools has no
+    "Package would be ignored" (nor any other of its warnings) to say about the layout."""
+    _, _, base = installed
+    log = (base / "build.log").read_text()
+    assert "would be ignored" not in log and "SetuptoolsDeprecationWarning" not in log \
+        and "SetuptoolsWarning" not in log, log[-3000:]
+    links = [str(p.relative_to(ROOT)) for folder in ("paper", "scenes", "proofs", "simulate",
+                                                      "symbolic", "ledger", "runtime", "generated",
+                                                      "bench", "chaplygin_nd", "docs", "tests")
+             for p in (ROOT / folder).rglob("*") if p.is_symlink()]
+    assert links == []
 
 
 def test_a_proof_and_the_list_run_from_the_wheel(installed):

@@ -16,7 +16,7 @@ from pathlib import Path
 
 from chaplygin_nd.ledger import graph
 
-from sitegen import svg, tex
+from sitegen import sections, svg, tex
 
 VERDICT_NOTE = {
     "holds": "proved exactly", "definition": "a definition, checked for consistency",
@@ -39,6 +39,95 @@ def raw(text: str) -> str:
 def code(text: str, lang: str = "python") -> str:
     fence = "````" if "```" in text else "```"
     return f"\n{fence}{lang}\n{text.rstrip()}\n{fence}\n"
+
+
+def math(latex: str | None, display: bool = False) -> str:
+    """HTML for MathJax: ``\\( … \\)`` (or ``\\[ … \\]``) around the escaped LaTeX; empty when none."""
+    if not latex:
+        return ""
+    open_, close = (r"\[", r"\]") if display else (r"\(", r"\)")
+    return open_ + html.escape(latex.strip().strip("$")) + close
+
+
+def counterexample(finding: dict) -> str:
+    """The exact counterexample of a row or a part: typeset when the report has its LaTeX."""
+    if finding.get("counterexample_latex"):
+        return math(finding["counterexample_latex"])
+    return html.escape(finding.get("counterexample") or "")
+
+
+def split_top(text: str, sep: str) -> list[str]:
+    """``text`` split at ``sep`` outside parentheses, brackets and braces."""
+    out, depth, start, i = [], 0, 0, 0
+    while i < len(text):
+        ch = text[i]
+        if ch in "([{":
+            depth += 1
+        elif ch in ")]}":
+            depth = max(0, depth - 1)
+        elif depth == 0 and text.startswith(sep, i):
+            out.append(text[start:i])
+            start = i + len(sep)
+            i = start
+            continue
+        i += 1
+    out.append(text[start:])
+    return [s.strip() for s in out if s.strip()]
+
+
+def _clauses(method: str) -> tuple[list[str], str]:
+    """The ``; ``-separated clauses of a method, each once, and the engines clause apart."""
+    engines, out = "", []
+    for clause in split_top(method, "; "):
+        if clause.startswith("engines:"):
+            engines = clause[len("engines:"):].strip()
+        elif clause.rstrip(";") not in out:
+            out.append(clause.rstrip(";"))
+    return out, engines
+
+
+def checks(row: dict) -> tuple[list[tuple[str, list[str]]], list[str], str]:
+    """The method of a row as a list of checks ``(what, [how, ...])`` — one per part when the
+    row has parts, else one per clause of its method — with every clause once; a long
+    parenthesis that several checks share is moved to a footnote (returned second, each cited
+    as ``[k]``); the engines (third) are listed once for the row."""
+    _, engines = _clauses(row["method"])
+    items: list[tuple[str, list[str]]] = []
+    if row.get("parts"):
+        for p in row["parts"]:
+            hows, _ = _clauses(p["method"])
+            items.append((p["name"], hows))
+    else:
+        hows, _ = _clauses(row["method"])
+        for how in hows:
+            head = split_top(how, ": ")
+            if len(head) > 1 and len(head[0]) < 90:
+                items.append((head[0], [": ".join(head[1:])]))
+            else:
+                items.append(("", [how]))
+    counts: dict[str, int] = {}
+    for _, hows in items:
+        for how in hows:
+            for par in set(re.findall(r"\([^()]{40,}(?:\([^()]*\)[^()]*)*\)", how)):
+                counts[par] = counts.get(par, 0) + 1
+    notes = [par for par, c in counts.items() if c > 1]
+    for i, par in enumerate(notes, 1):
+        items = [(what, [how.replace(par, f"[{i}]") for how in hows]) for what, hows in items]
+    return items, [par[1:-1] for par in notes], engines
+
+
+def checks_html(row: dict) -> str:
+    """The checks of a row as an HTML list: what is checked, how (for which n), the engines."""
+    items, notes, engines = checks(row)
+    lis = []
+    for what, hows in items:
+        lead = f"<strong>{html.escape(what)}</strong>: " if what else ""
+        lis.append(f"<li>{lead}{html.escape('; '.join(hows))}</li>")
+    if engines:
+        lis.append(f"<li><strong>engines</strong>: {html.escape(engines)}</li>")
+    foot = "".join(f'<p class="check-note">[{i}] {html.escape(n)}</p>'
+                   for i, n in enumerate(notes, 1))
+    return '<ul class="checks">' + "".join(lis) + "</ul>" + foot
 
 
 def kernels_by_claim(generated: Path) -> dict[str, list[str]]:
@@ -82,7 +171,7 @@ def _badge(row: dict, seed) -> str:
     return (f'<div class="badge-row"><span class="verdict verdict-{v}" '
             f'style="background:{fill(row)}">{v}</span>{kind}{argued}'
             f'<span class="meta">{html.escape(VERDICT_NOTE.get(v, ""))}</span></div>'
-            f'<table class="facts"><tr><th>method</th><td>{html.escape(row["method"])}</td></tr>'
+            f'<table class="facts"><tr><th>checks</th><td>{checks_html(row)}</td></tr>'
             f'<tr><th>backed for n</th><td>{ns}</td></tr>'
             f'<tr><th>seconds</th><td>{row["seconds"]}</td></tr>'
             f'<tr><th>seed</th><td>{seed}</td></tr>'
@@ -91,16 +180,48 @@ def _badge(row: dict, seed) -> str:
 
 
 def _parts(row: dict) -> str:
+    """The parts: verdict, kind and — typeset — the text as printed, what is proved instead and
+    the exact counterexample (each part's checks are in the list of checks above)."""
     if not row["parts"]:
         return ""
-    lines = ["\n## Parts: as printed, and what is proved instead\n",
-             "| part | verdict | kind | method | exact counterexample to the printed text |",
-             "|---|---|---|---|---|"]
+    typeset = any(p.get(k) for p in row["parts"]
+                  for k in ("printed_latex", "correction_latex", "counterexample_latex",
+                            "counterexample"))
+    head = "<tr><th>part</th><th>verdict</th><th>kind</th>" + (
+        "<th>as printed</th><th>proved instead (correction)</th><th>exact counterexample</th>"
+        if typeset else "") + "</tr>"
+    body = []
     for p in row["parts"]:
-        cells = [p["name"], f"**{p['verdict']}**" + (" (argued)" if p.get("argued") else ""),
-                 p.get("kind") or "", p["method"], p.get("counterexample") or ""]
-        lines.append("| " + " | ".join(_cell(c) for c in cells) + " |")
-    return "\n".join(lines) + "\n"
+        verdict = f"<strong>{html.escape(p['verdict'])}</strong>" + (" (argued)" if p.get("argued") else "")
+        cells = (f"<td>{math(p.get('printed_latex'))}</td><td>{math(p.get('correction_latex'))}</td>"
+                 f"<td>{counterexample(p)}</td>") if typeset else ""
+        body.append(f"<tr><td>{html.escape(p['name'])}</td><td>{verdict}</td>"
+                    f"<td>{html.escape(p.get('kind') or '')}</td>{cells}</tr>")
+    title = ("\n## Parts: as printed, and what is proved instead\n" if typeset
+             else "\n## Parts\n\nEach part's checks are listed above; every part holds as printed.\n"
+             if all(p["verdict"] in ("holds", "definition") for p in row["parts"])
+             else "\n## Parts\n")
+    return title + raw(f'<div class="table-wrap"><table class="parts mathjax_process">{head}'
+                       f'{"".join(body)}</table></div>')
+
+
+def _correction(row: dict) -> str:
+    """For a finding: the paper's formula, the proved correction and the counterexample, typeset
+    side by side (from the row, or from each part that carries them)."""
+    found = [dict(row, name="")] if row.get("correction_latex") or row.get("printed_latex") else \
+        [p for p in row["parts"] if p.get("correction_latex") or p.get("printed_latex")]
+    if not found:
+        return ""
+    blocks = []
+    for f in found:
+        name = f'<p class="part-name">{html.escape(f["name"])}</p>' if f["name"] else ""
+        blocks.append(f'{name}<div class="correction-grid">'
+                      f'<div><h4>As printed</h4>{math(f.get("printed_latex"), True)}</div>'
+                      f'<div><h4>Proved instead</h4>{math(f.get("correction_latex"), True)}</div>'
+                      f'<div><h4>Exact counterexample</h4>{counterexample(f)}</div></div>')
+    return ("\n## The correction\n\nThe paper's text as printed, the correction this row proves, "
+            "and an exact point where the printed text fails.\n"
+            + raw('<div class="correction mathjax_process">' + "".join(blocks) + "</div>"))
 
 
 def _cell(text: str) -> str:
@@ -126,8 +247,11 @@ def page(row: dict, ctx) -> str:
     """The MyST source of the page of ``row`` (``ctx``: see :class:`build_pages.Context`)."""
     cid = row["id"]
     link = ctx.html_link
-    out = [f"({graph.page_name(cid)})=\n# {cid}\n",
-           f"*{html.escape(row['section'])}* — {_cell(row['claim'])}\n",
+    title = sections.short_title(row["claim"])
+    added = "" if cid in ctx.paper_ids else " (a row this project adds)"
+    out = [f"({graph.page_name(cid)})=\n# {cid} — {_cell(title)}\n",
+           f"*{html.escape(row['section'])}*{added}"
+           + ("" if title == row["claim"].strip() else f" — {_cell(row['claim'])}") + "\n",
            raw(_badge(row, ctx.seed))]
     if row.get("notes"):
         out.append(f"\n**Notes.** {_cell(row['notes'])}\n")
@@ -142,7 +266,9 @@ def page(row: dict, ctx) -> str:
         text = "\n".join(ctx.tex_lines[p.first - 1:p.last])
         out.append(f"\nchaplygin-sphere-nd.tex, lines {p.first}–{p.last} ({html.escape(p.how)}):\n")
         out.append(raw('<div class="statement mathjax_process">' + tex.to_html(text, link) + "</div>"))
-    if row.get("counterexample"):
+    if row["verdict"] in ("corrected", "fails"):
+        out.append(_correction(row))
+    elif row.get("counterexample"):
         out.append(f"\n**Exact counterexample to the text as printed:** {_cell(row['counterexample'])}\n")
     out.append(_parts(row))
     if row["printed"]:

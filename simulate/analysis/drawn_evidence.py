@@ -93,7 +93,7 @@ class OrbitResult:
     megno_cls: str = ""
     relation: str = ""
     invariant_count: int = -1
-    invariant_frequencies: list = None
+    invariant_frequencies: list | None = None
     invariant_diffusion: float = float("nan")
 
     def to_dict(self) -> dict:

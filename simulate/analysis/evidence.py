@@ -143,6 +143,7 @@ def initial_states(exp: Experiment):
     M0, g0 = families.draw(exp.family, exp.n, exp.a, exp.b, exp.seed,
                            count=max(exp.members) + 1, scale=exp.scale)
     M0, g0 = M0[list(exp.members)], g0[list(exp.members)]
+    f: ReducedField | FullField
     if exp.model == "reduced":
         f = ReducedField(exp.a, exp.b)
         r0 = reduced_invariants(M0, g0)

@@ -56,8 +56,8 @@ def run_with_rerun(setting: Setting, ens, y0: np.ndarray, seed: int, rerun: int 
     first ``rerun`` unresolved ones again at ``LONGER * T``."""
     results = measure(setting, ens, y0, seed)
     index = [k for k, r in enumerate(results) if r.cls == "unresolved"][:rerun]
-    rerun = measure(setting.longer(LONGER), subset(ens, index), y0[index], seed) if index else []
-    return {"results": results, "rerun_index": index, "rerun": rerun}
+    again = measure(setting.longer(LONGER), subset(ens, index), y0[index], seed) if index else []
+    return {"results": results, "rerun_index": index, "rerun": again}
 
 
 def reduced_row(seed: int) -> dict:
@@ -68,7 +68,10 @@ def reduced_row(seed: int) -> dict:
 
     base = draws.draw("S5:EJ-tori", "generic", 4, LEVEL_SETS, seed)
     r0 = reduced_invariants(base.M0, base.gamma0)
-    rows, pick, groups, failed = [], [], [], 0
+    rows: list = []
+    pick: list = []
+    groups: list = []
+    failed = 0
     for k in range(base.count):
         group = [len(rows)]
         rows.append(r0[k])

@@ -184,7 +184,9 @@ def initial_conditions(spec: MapSpec) -> tuple[np.ndarray, np.ndarray, np.ndarra
     X, F = np.meshgrid(x0, phi)
     gamma = np.stack([np.sqrt(1 - X**2), 0 * X, 0 * X, X], -1).reshape(-1, n)
     M = (np.cos(F)[..., None, None] * P + np.sin(F)[..., None, None] * Q).reshape(-1, n, n)
-    Omega = general_inertia_kernels(spec.mass_tensor, spec.b).angular_velocity(M, gamma, spec.a, spec.b)
+    solve = general_inertia_kernels(spec.mass_tensor, spec.b).angular_velocity
+    assert solve is not None  # general_inertia_kernels always provides it
+    Omega = solve(M, gamma, spec.a, spec.b)
     H = 0.5 * np.einsum("...i,...i->...", so.vec(M), so.vec(Omega))     # S2.2:energy
     M = M * np.sqrt(spec.h / H)[:, None, None]
     return np.concatenate([so.vec(M), gamma], -1), x0, phi

@@ -225,7 +225,7 @@ def _find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a) -> None:
     ``R`` (subtracted in place) into ``found_w``, ``found_a``. Runs with one BLAS thread (the caller
     limits it): the products are small, and on a busy machine (``make verify`` runs a worker per
     core) OpenBLAS's waiting threads made them and everything after them up to 3x slower
-    (measured, notes/r20-evidence.md)."""
+    (measured, docs/design-notes/r20-evidence.md)."""
     K, N = R.shape
     omega_grid = 2 * np.pi * np.fft.fftfreq(pad, d=dt)
     idx = np.arange(K)

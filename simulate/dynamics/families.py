@@ -70,7 +70,7 @@ def claim_residual(family: str, M: np.ndarray, gamma: np.ndarray) -> float:
     r"""Relative distance of $(M, \gamma)$ from the set named by ``family`` (0 for ``generic``):
     $\|M\gamma\|/\|M\|$ for $\mathcal V$, $\|M - (M\gamma)\wedge\gamma\|/\|M\|$ for $\mathcal H$
     (eq:def-H-V). ``steady-rotation`` is checked on $\Omega$ by :func:`steady_residual`."""
-    norm = max(np.linalg.norm(M), 1e-300)
+    norm = max(float(np.linalg.norm(M)), 1e-300)
     if family == "vertical":
         return float(np.linalg.norm(M @ gamma) / norm)
     if family == "horizontal":

@@ -9,9 +9,13 @@ control is over the whole ensemble. SciPy clamps ``rtol`` at $100\,\varepsilon \
 from __future__ import annotations
 
 import time
+from functools import partial
 
 import numpy as np
+from chaplygin_nd.simulate.integrators import settings
 from chaplygin_nd.simulate.integrators.base import Solution
+from chaplygin_nd.simulate.integrators.registry import Integrator, register
+from chaplygin_nd.simulate.integrators.settings import Tolerance
 from chaplygin_nd.simulate.integrators.stops import RunStopped
 from scipy.integrate import solve_ivp
 
@@ -43,3 +47,22 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, rtol: float = 1e-10,
     steps = (sol.nfev - 1) // (12 if scheme == "DOP853" else 6)
     return Solution(t=np.asarray(t), y=y, method=f"{scheme} rtol={rtol:g} atol={atol:g}",
                     steps=steps, calls=sol.nfev, seconds=seconds)
+
+
+def _run(f, y0, t, s: Tolerance, *, checked, progress=None, compact=None, scheme="DOP853"):
+    return integrate(checked, y0, t, rtol=s.tol, atol=s.tol, progress=progress, scheme=scheme)
+
+
+def _entry(name: str, scheme: str, **ranks) -> Integrator:
+    return register(Integrator(
+        name, Tolerance, partial(_run, scheme=scheme),
+        calibrate=lambda target, span, step=0.01, dps=30, precision="double":
+            settings.tolerance(name, target, precision, span),
+        error=settings.tolerance_error,
+        describe=lambda s: f"{scheme}, rtol = atol = {s.tol:.3g}",
+        **ranks))
+
+
+DOP853 = _entry("dop853", "DOP853", auto=1, reference=0, costed=True)
+#: SciPy's Dormand–Prince 5(4): not chosen by the planner; a second route for tests and benches.
+RK45 = _entry("rk45", "RK45", reduced=False)

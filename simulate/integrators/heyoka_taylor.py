@@ -24,13 +24,17 @@ from __future__ import annotations
 
 import importlib.util
 import math
+import os
 import time
+from typing import Any
 
 import numpy as np
 from chaplygin_nd.runtime import jit_cache
 from chaplygin_nd.runtime.expressions import HeyokaArithmetic
-from chaplygin_nd.simulate.integrators import heyoka_systems
+from chaplygin_nd.simulate.integrators import heyoka_systems, settings
 from chaplygin_nd.simulate.integrators.base import Solution
+from chaplygin_nd.simulate.integrators.registry import Integrator, register
+from chaplygin_nd.simulate.integrators.settings import Tolerance
 
 __all__ = ["available", "integrate", "order_for", "bits_for_digits", "compiled_integrator",
            "default_tol", "default_compact", "cache_key"]
@@ -226,6 +230,7 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, tol: float | None = None,
             else:
                 import mpmath
 
+                assert high is not None  # allocated for every precision but double
                 with mpmath.workprec(bits):
                     high[:, e] = np.vectorize(lambda v: mpmath.mpf(str(v)), otypes=[object])(states)
                 out[:, e] = np.vectorize(float, otypes=[float])(high[:, e])
@@ -255,7 +260,7 @@ def _watch(progress, t0: float, t_end: float, passes: int):
         try:
             reached = float(np.min(np.asarray(ta.time, dtype=float)))
             if passes > 1 and span > 0 and math.isfinite(reached):
-                reached = t0 + (callback.done + (reached - t0) / span) * span / passes
+                reached = t0 + (watch.done + (reached - t0) / span) * span / passes
             progress(reached)
         except Exception as exc:  # noqa: BLE001 - re-raised by raise_error
             error.append(exc)
@@ -266,9 +271,10 @@ def _watch(progress, t0: float, t_end: float, passes: int):
         if error:
             raise error[0]
 
-    callback.raise_error = raise_error
-    callback.done = 0
-    return callback
+    watch: Any = callback  # a function with two attributes: raise_error and done
+    watch.raise_error = raise_error
+    watch.done = 0
+    return watch
 
 
 def _check(hy, outcome, system, reached) -> None:
@@ -282,3 +288,30 @@ def _check(hy, outcome, system, reached) -> None:
         raise NonFinite(f"the state of {system.name} is not finite at t = {fmt(float(reached))} "
                         "(heyoka: non-finite state or step size; are a, b or the scale too large?)")
     raise RuntimeError(f"heyoka stopped early on {system.name} at t = {fmt(float(reached))}: {outcome}")
+
+
+#: Environment variable that hides heyoka from the planner (the base install, for tests).
+WITHOUT_HEYOKA = "CHAPLYGIN_ND_WITHOUT_HEYOKA"
+
+
+def usable() -> bool:
+    """heyoka is importable and not hidden by ``CHAPLYGIN_ND_WITHOUT_HEYOKA=1``."""
+    return available() and os.environ.get(WITHOUT_HEYOKA, "") in ("", "0")
+
+
+def _run(f, y0, t, s: Tolerance, *, checked, progress=None, compact=None) -> Solution:
+    checked(t[0], y0)  # a non-finite start is named here (heyoka would only say nan)
+    return integrate(f, y0, t, tol=s.tol, precision=s.precision, compact=compact,
+                     progress=progress)
+
+
+def _describe(s) -> str:
+    return f"heyoka Taylor, tol {s.tol:.3g}" + ("" if s.precision == "double" else f", {s.precision}")
+
+
+HEYOKA = register(Integrator(
+    "heyoka", Tolerance, _run,
+    calibrate=lambda target, span, step=0.01, dps=30, precision="double":
+        settings.tolerance("heyoka", target, precision, span),
+    error=settings.tolerance_error, describe=_describe, available=usable,
+    auto=0, reference=1, costed=True))

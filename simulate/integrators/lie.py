@@ -24,7 +24,10 @@ import time
 
 import numpy as np
 from chaplygin_nd.simulate.dynamics import so
+from chaplygin_nd.simulate.integrators import settings
 from chaplygin_nd.simulate.integrators.base import Solution
+from chaplygin_nd.simulate.integrators.registry import Integrator, register
+from chaplygin_nd.simulate.integrators.settings import Step
 
 __all__ = ["integrate", "step"]
 
@@ -90,3 +93,16 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, h: float = 0.01, progress=No
     seconds = time.perf_counter() - start
     return Solution(t=np.asarray(t), y=out, method=f"RKMK4 h<={h:g}", steps=steps,
                     calls=field.calls - calls0, seconds=seconds)
+
+
+def _run(f, y0, t, s: Step, *, checked, progress=None, compact=None) -> Solution:
+    return integrate(f, y0, t, h=s.h, progress=progress)
+
+
+LIE = register(Integrator(
+    "lie", Step, _run,
+    calibrate=lambda target, span, step=0.01, dps=30, precision="double":
+        settings.step("lie", target, span, step),
+    error=settings.step_error,
+    describe=lambda s: f"RKMK4, step h = {s.h:.3g}",
+    reduced=False))  # acts on (M, gamma) only

@@ -36,9 +36,10 @@ def check_finite(name: str, values: np.ndarray, t: np.ndarray | float, hint: str
     if np.isfinite(values).all():
         return
     if np.ndim(t) == 0:
-        when = fmt(t)
+        when = fmt(float(np.asarray(t)))
     else:
-        bad = ~np.isfinite(values.reshape(len(t), -1)).all(axis=1)
-        when = fmt(t[int(np.argmax(bad))])
+        times = np.asarray(t)
+        bad = ~np.isfinite(values.reshape(len(times), -1)).all(axis=1)
+        when = fmt(times[int(np.argmax(bad))])
     raise NonFinite(f"{name} is not finite at t = {when}"
                     + (f" ({hint})" if hint else " (inf or nan in float64)"))

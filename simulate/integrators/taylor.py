@@ -23,11 +23,15 @@ from __future__ import annotations
 
 import math
 import time
+from typing import Any
 
 import mpmath
 import numpy as np
 from chaplygin_nd.simulate.dynamics import so
+from chaplygin_nd.simulate.integrators import settings
 from chaplygin_nd.simulate.integrators.base import Solution
+from chaplygin_nd.simulate.integrators.registry import Integrator, register
+from chaplygin_nd.simulate.integrators.settings import Digits
 
 __all__ = ["integrate", "default_order", "L_matrix_mp"]
 
@@ -146,14 +150,15 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, dps: int = 30, order: int | 
     steps = 0
     for e in range(y0.shape[0]):
         parts = field.unpack(y0[e])
-        state = [fx.array(v) for v in parts] + ([] if field.reconstruct else [None, None])
+        state: list[Any] = [fx.array(v) for v in parts] + ([] if field.reconstruct else [None, None])
         T = fx.of(t[0])
         out[0, e] = fx.to_mpf(fx.array(y0[e]))
         with mpmath.workdps(dps + 15):
             for i in range(1, len(t)):
                 T_next = fx.of(t[i])
                 while T < T_next:
-                    coeffs = _series(fx, *state, a, b, r, n, p)
+                    M_, gamma_, g_, c_ = state
+                    coeffs = _series(fx, M_, gamma_, g_, c_, a, b, r, n, p)
                     size = [max(abs(int(v)) for v in np.ravel(cs[k]))
                             for cs in coeffs for k in (p - 1, p)]
                     scale = max(1.0, max(abs(int(v)) for s in state if s is not None
@@ -182,3 +187,16 @@ def so_vec_obj(M, n):
     """vec-coordinates of an object (fixed-point) skew matrix, in the basis order of :mod:`simulate.dynamics.so`."""
     i, j = so.pairs(n)
     return M[i, j]
+
+
+def _run(f, y0, t, s: Digits, *, checked, progress=None, compact=None) -> Solution:
+    return integrate(f, y0, t, dps=s.dps, progress=progress)
+
+
+REFERENCE = register(Integrator(
+    "reference", Digits, _run,
+    calibrate=lambda target, span, step=0.01, dps=30, precision="double":
+        settings.digits("reference", target, dps),
+    error=settings.digits_error,
+    describe=lambda s: f"mpmath Taylor, {s.dps} digits",
+    reduced=False, auto=2, reference=2))  # acts on (M, gamma) only

@@ -118,7 +118,8 @@ def main(argv: list[str] | None = None) -> int:
                 check = None
                 if args.cross_check:
                     from chaplygin_nd.simulate.scene.crosscheck import cross_check
-                    state = ({k: traj.data[k] for k in ("M", "gamma") if k in traj.data}
+                    state: dict[str, np.ndarray] | None = (
+                        {k: traj.data[k] for k in ("M", "gamma") if k in traj.data}
                              if tori_scene.wants(scene) else None)
                     check = cross_check(scene, p, arrays, force=args.force, state=state)
                 extra, extra_lines = (tori_scene.files(scene, traj) if tori_scene.wants(scene)

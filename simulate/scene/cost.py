@@ -7,7 +7,7 @@ the cache state is known: in memory / on disk / cold, :func:`runtime.jit_cache.c
 the samples), so they do not enter the choice. The cheapest candidate wins; the plan line prints
 every prediction.
 
-How the run is predicted (no constant here is a guess; each was measured, see notes/i18.md and
+How the run is predicted (no constant here is a guess; each was measured, see docs/design-notes/i18.md and
 ``bench/bench_scaling.py``, on 2 shared cores):
 
 * a **DOP853 pilot** — the scene's own field and initial conditions (the whole ensemble, as DOP853
@@ -190,8 +190,9 @@ def for_scene(scene, model: str, reconstruct: bool, method: str, heyoka_tol: flo
     from chaplygin_nd.simulate.dynamics import so
     from chaplygin_nd.simulate.dynamics.field import FullField, ReducedField
     from chaplygin_nd.simulate.dynamics.so import reduced_invariants
-    from chaplygin_nd.simulate.integrators import heyoka_systems
+    from chaplygin_nd.simulate.integrators import heyoka_systems, registry
 
+    field: ReducedField | FullField
     if model == "reduced-7D":
         field = ReducedField(scene.a, scene.b)
         y0 = reduced_invariants(scene.M0, scene.gamma0)
@@ -203,7 +204,8 @@ def for_scene(scene, model: str, reconstruct: bool, method: str, heyoka_tol: flo
         else:
             y0 = field.pack(scene.M0, scene.gamma0)
     system, _ = heyoka_systems.for_field(field)
-    methods = ("heyoka", "dop853") if method == "auto" else (method,)
+    methods = tuple(m for m in registry.names("auto") if registry.get(m).costed) \
+        if method == "auto" else (method,)
     try:
         with np.errstate(over="ignore", invalid="ignore", divide="ignore", under="ignore"):
             candidates = predict(field, y0, scene.t, system, scene.n, heyoka_tol, dop_rtol, methods)

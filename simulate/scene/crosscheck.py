@@ -27,6 +27,7 @@ import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
+from chaplygin_nd.simulate.integrators import registry
 from chaplygin_nd.simulate.scene import accuracy
 from chaplygin_nd.simulate.scene.outputs import collect
 from chaplygin_nd.simulate.scene.planner import plan
@@ -48,19 +49,18 @@ def reference_settings(scene, main_plan) -> accuracy.Settings:
     need = promised(scene, main_plan) / MARGIN
     span = float(scene.t[-1] - scene.t[0])
     run = main_plan.accuracy
-    candidates = [("dop853", "double")]
-    if accuracy.heyoka_usable():
-        candidates.append(("heyoka", "double"))
-    candidates.append(("reference", "mp"))
-    for method, precision in candidates:
-        if run is not None and method == run.method and precision in (run.precision, "mp") \
-                and method != "reference":
+    for method in registry.names("reference"):  # DOP853, heyoka (double), the Taylor method
+        entry = registry.get(method)
+        if not entry.available():
             continue
-        if method == "reference":
-            s = accuracy.choose("reference", need, span, dps=scene.dps)
-            if run is not None and run.method == "reference":
-                s = dataclasses.replace(s, value=max(s.value, run.value + 10))
+        if entry.settings is accuracy.Digits:  # multiprecision: honours every target
+            s = accuracy.choose(method, need, span, dps=scene.dps)
+            if isinstance(run, accuracy.Digits) and isinstance(s, accuracy.Digits) \
+                    and run.method == method:
+                s = dataclasses.replace(s, dps=max(s.dps, run.dps + 10))
             return s
+        if run is not None and method == run.method and run.precision == "double":
+            continue  # the same integrator in the same precision is no independent reference
         s = accuracy.choose(method, need, span)
         if s.honoured:
             return s

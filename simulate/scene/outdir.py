@@ -148,7 +148,7 @@ class _Lock:
         if folder.stat().st_uid != os.getuid() or folder.is_symlink():
             raise OutputError(f"--out {given}: the lock folder {folder} belongs to another user; "
                               "remove it or set TMPDIR")
-        self.fd = os.open(self.file, os.O_RDWR | os.O_CREAT, 0o600)
+        self.fd: int | None = os.open(self.file, os.O_RDWR | os.O_CREAT, 0o600)
         try:
             fcntl.flock(self.fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except OSError:
@@ -160,8 +160,9 @@ class _Lock:
         os.write(self.fd, f"{os.getpid()} {real}\n".encode())
 
     def release(self) -> None:
-        if getattr(self, "fd", None) is not None:
-            os.close(self.fd)  # closing drops the flock; the small file stays for the next run
+        fd = getattr(self, "fd", None)
+        if fd is not None:
+            os.close(fd)  # closing drops the flock; the small file stays for the next run
             self.fd = None
 
     __del__ = release
@@ -190,7 +191,7 @@ class OutputFolder:
                                                               encoding="utf-8"))
 
     @staticmethod
-    def _atomic(folder: Path, name: str, writer: Callable[[Path], None]) -> None:
+    def _atomic(folder: Path, name: str, writer: Callable[[Path], object]) -> None:
         fd, tmp = tempfile.mkstemp(prefix=f".{name}.", suffix=f".tmp{Path(name).suffix}",
                                    dir=folder)
         os.close(fd)

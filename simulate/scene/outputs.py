@@ -19,8 +19,10 @@ decides which folders may be written).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from functools import partial
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from chaplygin_nd.simulate.dynamics import so
@@ -118,7 +120,8 @@ def write(folder: OutputFolder, arrays: dict[str, np.ndarray], summary: str,
     (``{name: writer(path)}``, e.g. :func:`simulate.scene.tori.files`) and ``summary.txt`` into
     ``folder`` (claimed by :func:`simulate.scene.outdir.claim`), whole or not at all; returns its path."""
     t = arrays["t"]
-    files = {"outputs.npz": lambda p: np.savez(p, **arrays)}
+    files: dict[str, Callable[[Path], Any]] = {
+        "outputs.npz": lambda p: np.savez(p, **arrays)}  # type: ignore[arg-type]  # numpy stub: **kwds
     for name, arr in arrays.items():
         if name == "t":
             continue

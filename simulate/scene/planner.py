@@ -40,6 +40,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from chaplygin_nd.simulate.dynamics import families
+from chaplygin_nd.simulate.integrators import registry
 from chaplygin_nd.simulate.integrators.stops import check_finite
 from chaplygin_nd.simulate.kernels import Kernels, active
 from chaplygin_nd.simulate.scene import accuracy
@@ -101,8 +102,8 @@ def _method(scene: Scene, model: str) -> str:
         return "closed form"
     if scene.method == "auto":
         return "auto"
-    if model == "reduced-7D" and scene.method not in ("dop853", "heyoka"):
-        return "dop853"  # the Lie-group and Taylor methods act on (M, gamma) only
+    if model == "reduced-7D" and not registry.get(scene.method).reduced:
+        return "dop853"  # e.g. the Lie-group and Taylor methods act on (M, gamma) only
     return scene.method
 
 
@@ -119,7 +120,9 @@ def settings(scene: Scene, method: str, model: str = "full") -> accuracy.Setting
 
 def heyoka_tolerance(target: float) -> float:
     """heyoka's tolerance for an accuracy target (calibrated, :mod:`simulate.scene.accuracy`)."""
-    return accuracy.choose("heyoka", target, 1.0).value
+    s = accuracy.choose("heyoka", target, 1.0)
+    assert isinstance(s, accuracy.Tolerance)
+    return s.tol
 
 
 def method_detail(scene: Scene, method: str, model: str = "full") -> str:
@@ -148,16 +151,18 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
         chosen = settings(scene, method, model)  # calibrated; "auto": the first that honours it
         compact, costs, predicted = None, "", None
         if model in ("full", "reduced-7D") and chosen is not None \
-                and chosen.method in ("heyoka", "dop853"):
+                and registry.get(chosen.method).costed:
             from chaplygin_nd.simulate.scene import (
                 cost,  # the method by predicted cost (compile + run)
             )
 
             dop = settings(scene, "dop853", model)
+            hey = settings(scene, "heyoka", model)
+            assert isinstance(dop, accuracy.Tolerance) and isinstance(hey, accuracy.Tolerance)
             allowed = ("auto" if scene.method == "auto" and chosen.method == "heyoka" and dop.honoured
                        else chosen.method)  # only methods that honour the target compete
             picked = cost.for_scene(scene, model, reconstruct, allowed,
-                                    settings(scene, "heyoka", model).value, dop.value)
+                                    hey.tol, dop.tol)
             if picked is not None:
                 (best, costs) = picked
                 compact, predicted = best.compact, best.total

@@ -24,7 +24,7 @@ from chaplygin_nd.simulate.dynamics.closed_forms import (
 )
 from chaplygin_nd.simulate.dynamics.field import FullField, ReducedField
 from chaplygin_nd.simulate.dynamics.so import reduced_invariants
-from chaplygin_nd.simulate.integrators import dop853, heyoka_taylor, lie, taylor
+from chaplygin_nd.simulate.integrators import registry
 from chaplygin_nd.simulate.integrators.stops import NonFinite, check_finite, fmt
 from chaplygin_nd.simulate.kernels import active
 from chaplygin_nd.simulate.scene.budget import Projection, refuse_before
@@ -176,18 +176,9 @@ def _integrate(f, y0, t, plan, scene, progress=True, force=False):
     bar = Progress(t[-1], label, stream=sys.stderr if progress else _Null(),
                    projection=Projection(t[0], t[-1], label, force), t0=t[0])
     acc = plan.accuracy or settings(scene, plan.method, plan.model)  # simulate.scene.accuracy
-    try:
-        if plan.method == "heyoka":
-            _checked(f)(t[0], y0)  # a non-finite start is named here (heyoka would only say nan)
-            return heyoka_taylor.integrate(f, y0, t, tol=acc.value, precision=acc.precision,
-                                           compact=getattr(plan, "compact", None), progress=bar)
-        if plan.method in ("dop853", "rk45"):
-            return dop853.integrate(_checked(f), y0, t, rtol=acc.value, atol=acc.value,
-                                    progress=bar,
-                                    scheme="DOP853" if plan.method == "dop853" else "RK45")
-        if plan.method == "lie":
-            return lie.integrate(f, y0, t, h=acc.value, progress=bar)
-        return taylor.integrate(f, y0, t, dps=int(acc.value), progress=bar)
+    try:  # the integrator registered under the plan's method (simulate.integrators.registry)
+        return registry.get(acc.method).run(f, y0, t, acc, checked=_checked(f), progress=bar,
+                                            compact=getattr(plan, "compact", None))
     finally:
         bar.done()
 

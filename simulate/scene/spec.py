@@ -62,6 +62,7 @@ import tomllib
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 from chaplygin_nd.simulate.dynamics import families
@@ -73,6 +74,9 @@ from chaplygin_nd.simulate.dynamics.ball import (
     parameter_violations,
 )
 from chaplygin_nd.simulate.scene import budget
+
+if TYPE_CHECKING:  # pragma: no cover
+    from chaplygin_nd.simulate.scene.frequency_map import FrequencyMapScene
 
 __all__ = ["Scene", "SceneError", "OUTPUTS", "METHODS", "load", "loads", "find", "builtin_scenes"]
 
@@ -132,7 +136,7 @@ class Scene:
 
 
 def _builtin_folder():
-    return resources.files("chaplygin_nd.simulate") / "scenes"
+    return resources.files("chaplygin_nd.scenes")
 
 
 def builtin_scenes() -> dict[str, str]:
@@ -145,7 +149,7 @@ def builtin_scenes() -> dict[str, str]:
     return out
 
 
-def find(arg: str, force: bool = False) -> Scene:
+def find(arg: str, force: bool = False) -> Scene | FrequencyMapScene:
     """The scene named by ``arg``: a scene file, else a built-in scene of that name (with or
     without ``.toml``); a :class:`SceneError` names the built-in scenes when neither exists (an
     empty or blank ``arg`` too: ``Path("")`` would be the current folder)."""
@@ -169,7 +173,7 @@ def find(arg: str, force: bool = False) -> Scene:
     return load(path, force=force)
 
 
-def load(path: str | Path, force: bool = False) -> Scene:
+def load(path: str | Path, force: bool = False) -> Scene | FrequencyMapScene:
     """Read and validate a scene file (see the module docstring); ``force`` lifts the memory
     limit of :mod:`simulate.scene.budget`."""
     path = Path(path)
@@ -212,7 +216,7 @@ def _read_limited(path: Path) -> bytes:
     return data
 
 
-def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
+def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene | FrequencyMapScene:
     """Validate a scene given as TOML text; raises :class:`SceneError` (also when the predicted
     memory is past the limit of :mod:`simulate.scene.budget` and ``force`` is not given)."""
     def fail(where, problem, fix):
@@ -304,7 +308,7 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene:
         gamma0 = _array(init["gamma"], (n,), "initial.gamma", fail)
         name = "M" if "M" in init else "Omega"
         X = _array(init[name], (n, n), f"initial.{name}", fail)
-        skew = np.linalg.norm(X + X.T) / max(1.0, np.linalg.norm(X))
+        skew = float(np.linalg.norm(X + X.T)) / max(1.0, float(np.linalg.norm(X)))
         if skew > tol:
             fail(f"initial.{name}", f"not skew-symmetric (|X + X^T|/|X| = {skew:.3g})",
                  "give X with X[j][i] = -X[i][j] and zero diagonal")

@@ -20,6 +20,7 @@ The times of the scene must be uniform (NAFF needs equal spacing).
 from __future__ import annotations
 
 import json
+from typing import Any
 
 import numpy as np
 from chaplygin_nd.simulate.analysis import frequencies as fq
@@ -99,7 +100,7 @@ def files(scene, traj) -> tuple[dict, list[str]]:
     if "frequencies" in scene.outputs:
         y = np.concatenate([so.vec(traj.data["M"]), traj.data["gamma"]], axis=-1)
         full = Orbits(_experiment(scene, "full"), scene.t, y, traj.seconds, traj.steps)
-        data = {"reduced": _entry(reduced, "eq:red-system (generated kernel), DOP853; orbits "
+        data: dict[str, Any] = {"reduced": _entry(reduced, "eq:red-system (generated kernel), DOP853; orbits "
                                            "1-3 share the first level set"),
                 "full": _entry(full, "eq:motion-general on P (the scene's own trajectory)"),
                 "control": _entry(control, f"generic J = diag{fq.CONTROL_J} (simulate/analysis/control.py)"),

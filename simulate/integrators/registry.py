@@ -1,0 +1,82 @@
+r"""The integrators, one entry each: the one place the scene product (planner, cost model, run,
+cross-check) looks an integrator up by the name a scene gives in ``accuracy.method``.
+
+An entry (:class:`Integrator`) says what its settings are (a class of
+:mod:`simulate.integrators.settings`), how the target becomes settings (``calibrate``) and how
+accurate those settings are (``error``), how to run it (``run``), what the plan line says
+(``describe``), whether it can integrate the reduced 7D field, whether it is usable here, and
+the order in which ``accuracy.method = "auto"`` and ``--cross-check`` try it. Each integrator
+module of this folder registers itself at import (:func:`register`); :data:`MODULES` lists them.
+A new integrator is one module that calls :func:`register`, and its name in :data:`MODULES`.
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from chaplygin_nd.simulate.integrators.base import Solution
+
+__all__ = ["Integrator", "register", "get", "names", "MODULES"]
+
+#: The integrator modules, each registering one or more entries at import.
+MODULES = ("dop853", "heyoka_taylor", "lie", "taylor")
+
+
+@dataclass(frozen=True)
+class Integrator:
+    """One integrator, as the scene product sees it.
+
+    ``run(field, y0, t, settings, progress=..., compact=...) -> Solution``;
+    ``calibrate(target, span, step, dps, precision) -> settings``; ``error(settings, span)``: the
+    calibrated relative error (no safety factor). ``auto`` / ``reference``: rank among the
+    methods ``accuracy.method = "auto"`` / the cross-check reference try, lowest first (``None``:
+    never). ``costed``: the cost model (:mod:`simulate.scene.cost`) predicts its run time."""
+
+    name: str
+    settings: type  # a class of simulate.integrators.settings (which imports this module)
+    run: Callable[..., Solution]
+    calibrate: Callable[..., Any]
+    error: Callable[[Any, float], float]
+    describe: Callable[[Any], str]
+    reduced: bool = True
+    available: Callable[[], bool] = lambda: True
+    auto: int | None = None
+    reference: int | None = None
+    costed: bool = False
+
+
+_REGISTRY: dict[str, Integrator] = {}
+
+
+def register(entry: Integrator) -> Integrator:
+    """Add ``entry`` (one name once)."""
+    if entry.name in _REGISTRY and _REGISTRY[entry.name] is not entry:
+        raise ValueError(f"integrator {entry.name!r} registered twice")
+    _REGISTRY[entry.name] = entry
+    return entry
+
+
+def _load() -> None:
+    for module in MODULES:
+        importlib.import_module(f"chaplygin_nd.simulate.integrators.{module}")
+
+
+def get(name: str) -> Integrator:
+    """The integrator called ``name``; ``ValueError`` naming the known ones otherwise."""
+    _load()
+    if name not in _REGISTRY:
+        raise ValueError(f"no integrator {name!r}; known: {', '.join(sorted(_REGISTRY))}")
+    return _REGISTRY[name]
+
+
+def names(order: str | None = None) -> list[str]:
+    """Every registered name; with ``order = "auto"`` or ``"reference"`` those that take part,
+    in their rank order."""
+    _load()
+    if order is None:
+        return sorted(_REGISTRY)
+    ranked = [(getattr(e, order), e.name) for e in _REGISTRY.values() if getattr(e, order) is not None]
+    return [name for _, name in sorted(ranked)]
