@@ -99,3 +99,37 @@ def relations_on_P() -> list:
     if len(r2) != 1:
         raise ArithmeticError("expected one new relation in tridegree (4,2,2)")
     return [ri5.on_sphere(r1).as_expr(), ri5.on_sphere(r2[0]).as_expr()]
+
+
+#: The known integrals (eq:pol-first-integrals, H) by name: the non-constant coefficients of
+#: $p(\lambda, \sigma) = \det(M + \sigma\gamma\gamma^T - \lambda)$ and the energy.
+INTEGRAL_NAMES = ("c_lambda3", "c_lambda1", "c_sigma_lambda2", "c_sigma_lambda0", "H")
+
+
+@cache
+def _integral_numerators() -> dict:
+    from sympy.polys.matrices import DomainMatrix
+
+    lam, sig = sp.symbols("lambda sigma")
+    A = DomainMatrix.from_Matrix(ri5.M + sig * ri5.gamma * ri5.gamma.T - lam * sp.eye(5))
+    p = sp.Poly(A.domain.to_sympy(A.det()), lam, sig)     # fraction-free det over ZZ[...]
+    R = ri5.RING
+    out = {}
+    for name, mon in zip(INTEGRAL_NAMES[:4], ((3, 0), (1, 0), (2, 1), (0, 1)), strict=True):
+        out[name] = ri5.on_sphere(ri5.in_generators(R(p.coeff_monomial(lam**mon[0] * sig**mon[1]))))
+    DO = inverse_numerator(ri5.M, ri5.gamma)
+    twoDH = sum((ri5.M[i, j] * DO[i, j] for i in range(5) for j in range(i + 1, 5)), sp.Integer(0))
+    out["H"] = ri5.on_sphere(ri5.in_generators(R(sp.expand(twoDH))))   # 2 D H
+    return out
+
+
+def integrals() -> dict:
+    r"""The five known integrals in the reduced coordinates (S6:reduced-n5): the coefficients of
+    $\lambda^3, \lambda^1, \sigma\lambda^2, \sigma\lambda^0$ of $p(\lambda,\sigma)$ (eq:pol-first-integrals;
+    $s \to 1 - x^2$) and $H = \tfrac12\langle M, L_\gamma^{-1}M\rangle_\kappa$ (over $2D$); name -> SymPy
+    expression in $a, b$ and the coordinates."""
+    num = _integral_numerators()
+    return {n: (num[n].as_expr() / (2 * D) if n == "H" else num[n].as_expr()) for n in INTEGRAL_NAMES}
+
+
+__all__ += ["INTEGRAL_NAMES", "integrals"]

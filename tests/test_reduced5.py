@@ -178,3 +178,38 @@ def test_reduced_orbit_matches_full_orbit():
     assert err <= 1e-10, err
     # the orbit moves (not an equilibrium): the invariants change by O(1)
     assert np.max(np.ptp(R_full, axis=0)) > 0.1
+    # the five known integrals stay constant along the reduced orbit
+    F = g5.reduced5_integrals(R, a, b)
+    assert np.max(np.abs(F - F[0]) / np.maximum(1.0, np.abs(F[0]))) <= 1e-10
+
+
+def _p_coefficients(Mv, gm):
+    """Coefficients of lambda^3, lambda^1, sigma lambda^2, sigma lambda^0 of det(M + sigma g g^T - lambda)
+    at 50 digits: values at lambda = 0..5, sigma in {0, 1}, solved against the Vandermonde matrix."""
+    M = mp_unvec(Mv, 5)
+    G = mpmath.matrix(5, 5)
+    for i in range(5):
+        for j in range(5):
+            G[i, j] = gm[i] * gm[j]
+    lams = [mpmath.mpf(k) for k in range(6)]
+    V = mpmath.matrix([[lm**e for e in range(6)] for lm in lams])
+    p0 = mpmath.lu_solve(V, mpmath.matrix([mpmath.det(M - lm * mpmath.eye(5)) for lm in lams]))
+    p1 = mpmath.lu_solve(V, mpmath.matrix([mpmath.det(M + G - lm * mpmath.eye(5))
+                                           - mpmath.det(M - lm * mpmath.eye(5)) for lm in lams]))
+    return [p0[3], p0[1], p1[2], p1[0]]
+
+
+def test_reduced5_integrals_against_mpmath():
+    """reduced5_integrals at the invariants of a phase point against the coefficients of p(lambda, sigma)
+    (eq:pol-first-integrals) and H = <M, Omega>/2 computed at 50 digits from the definitions."""
+    mpmath.mp.dps = 50
+    rng = np.random.default_rng(31)
+    for _ in range(4):
+        Mv, gm, a, b = _point(rng, ("generic", None))
+        r, _, ell, m = _reference(Mv, gm, a, b)
+        Om = mp_Omega(mp_unvec(Mv, 5), gm, mpmath.mpf(a), mpmath.mpf(b))
+        H = mpmath.fsum(Mv[k] * Om[i, j] for k, (i, j) in enumerate(
+            (i, j) for i in range(5) for j in range(i + 1, 5))) / 2
+        ref = _p_coefficients(Mv, gm) + [H]
+        got = g5.reduced5_integrals(np.array([float(c) for c in r]), a, b)
+        assert max(_ulps(got, ref, [m**2, m**4, m**2, m**4, ell * m**2])) <= BOUND_ULPS

@@ -1,6 +1,7 @@
 r"""Kernels of the $SO(4)$-reduced $n = 5$ sphere on $r = (x, A_+, A_-, B, G, E_+, E_-, S_{uu}, S_{uq}, S_{qq})$.
 
-Sources (derived): :mod:`symbolic.reduced5` (the reduced field, row S6:reduced-n5) and
+Sources (derived): :mod:`symbolic.reduced5` (the reduced field and the known integrals, row
+S6:reduced-n5) and
 :mod:`symbolic.reduced5_invariants` (the generators and the relations $R_1, R_2$). The field is a
 polynomial numerator over $D = 2(2+a+b)\Delta(x)$ with $\Delta$ in the stable form of row K:Delta.
 """
@@ -16,6 +17,11 @@ from chaplygin_nd.symbolic.emit.fourd import stable_D
 __all__ = ["kernels"]
 
 a, b, x = r5.a, r5.b, r5.x
+
+
+def _integral(name: str, D) -> sp.Expr:
+    num = r5._integral_numerators()[name].as_expr()
+    return num / (2 * D) if name == "H" else num
 
 
 def kernels() -> list[Kernel]:
@@ -39,6 +45,10 @@ def kernels() -> list[Kernel]:
                "r = (x, Ap, Am, B, G, Ep, Em, Suu, Suq, Sqq) of a phase point (M, gamma) of the n = 5\n"
                "    sphere, M by its upper-triangular entries M_ij (i < j, row-major); shape (..., 10).",
                (m, g), sp.Matrix(inv), (10,)),
+        Kernel("reduced5_integrals", ("S6:reduced-n5", "eq:pol-first-integrals", "K:Delta"),
+               "The known integrals at r (S6:reduced-n5): the coefficients of lambda^3, lambda^1,\n"
+               "    sigma lambda^2, sigma lambda^0 of p(lambda, sigma) and H; shape (..., 5).",
+               (R, A_, B_), sp.Matrix([_integral(n, D) for n in r5.INTEGRAL_NAMES]), (5,)),
         Kernel("reduced5_relations", ("S6:reduced-n5",),
                "(R1, R2) at r (S6:reduced-n5): zero on the reduced space; shape (..., 2).",
                (R,), sp.Matrix(r5.relations_on_P()), (2,)),
