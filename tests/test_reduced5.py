@@ -213,3 +213,48 @@ def test_reduced5_integrals_against_mpmath():
         ref = _p_coefficients(Mv, gm) + [H]
         got = g5.reduced5_integrals(np.array([float(c) for c in r]), a, b)
         assert max(_ulps(got, ref, [m**2, m**4, m**2, m**4, ell * m**2])) <= BOUND_ULPS
+
+
+def _pfaffian_vector(M):
+    def pf4(A):
+        return A[0, 1] * A[2, 3] - A[0, 2] * A[1, 3] + A[0, 3] * A[1, 2]
+    return np.array([(-1) ** i * pf4(M[np.ix_([j for j in range(5) if j != i],
+                                             [j for j in range(5) if j != i])]) for i in range(5)])
+
+
+def test_sixth_integral_constant_along_drawn_orbits():
+    """Row S6:sixth-integral-n5 numerically: F = <w, B(2+B)w>/Delta, computed on P from its definition
+    (w the signed 4x4 Pfaffians, B = a E5 E5^T + b gamma gamma^T), stays constant along 4 drawn n = 5
+    orbits (heyoka, tol 1e-15, T = 200) to 1e-10 relative, while it varies between orbits; the kernel
+    reduced5_sixth_integral agrees with the definition at the invariants."""
+    from chaplygin_nd.simulate.analysis import draws
+    from chaplygin_nd.simulate.integrators import heyoka_systems, heyoka_taylor
+
+    if not heyoka_taylor.available():
+        pytest.skip("heyoka (the extra 'fast') is not installed")
+    ens = draws.draw("test sixth integral", "generic", 5, 4, 23)
+    iu = np.triu_indices(5, 1)
+    ta, _, _ = heyoka_taylor.compiled_integrator(heyoka_systems.full(5), "double", 1e-15)
+    E = np.eye(5)[4]
+    values = []
+    for k in range(ens.count):
+        a, b = ens.a[k], ens.b[k]
+        ta.state[:] = np.concatenate([ens.M0[k][iu], ens.gamma0[k]])
+        ta.pars[:] = [a, b]
+        ta.time = 0.0
+        Y = ta.propagate_grid(np.linspace(0.0, 200.0 / ens.scale[k], 101))[-1]
+        F = []
+        for y in Y:
+            M = np.zeros((5, 5))
+            M[iu] = y[:10]
+            M = M - M.T
+            g = y[10:]
+            w = _pfaffian_vector(M)
+            B = a * np.outer(E, E) + b * np.outer(g, g)
+            F.append(w @ B @ (2 * w + B @ w) / ((2 + a) * (2 + b) - a * b * g[4] ** 2))
+        F = np.array(F)
+        assert np.ptp(F) <= 1e-10 * np.abs(F).max()
+        r = g5.reduced5_invariants(Y[:, :10], Y[:, 10:])
+        assert np.allclose(g5.reduced5_sixth_integral(r, a, b)[:, 0], F, rtol=1e-9, atol=0)
+        values.append(F[0] / ens.scale[k] ** 4)
+    assert np.ptp(values) > 1e-3 * np.max(np.abs(values))

@@ -1,7 +1,7 @@
 r"""Kernels of the $SO(4)$-reduced $n = 5$ sphere on $r = (x, A_+, A_-, B, G, E_+, E_-, S_{uu}, S_{uq}, S_{qq})$.
 
 Sources (derived): :mod:`symbolic.reduced5` (the reduced field and the known integrals, row
-S6:reduced-n5) and
+S6:reduced-n5), :mod:`symbolic.sixth_integral` (row S6:sixth-integral-n5) and
 :mod:`symbolic.reduced5_invariants` (the generators and the relations $R_1, R_2$). The field is a
 polynomial numerator over $D = 2(2+a+b)\Delta(x)$ with $\Delta$ in the stable form of row K:Delta.
 """
@@ -11,7 +11,9 @@ from __future__ import annotations
 import sympy as sp
 from chaplygin_nd.symbolic import reduced5 as r5
 from chaplygin_nd.symbolic import reduced5_invariants as ri5
+from chaplygin_nd.symbolic import sixth_integral as si
 from chaplygin_nd.symbolic.codegen import Argument, Kernel
+from chaplygin_nd.symbolic.emit.axisym import stable_Delta
 from chaplygin_nd.symbolic.emit.fourd import stable_D
 
 __all__ = ["kernels"]
@@ -49,6 +51,11 @@ def kernels() -> list[Kernel]:
                "The known integrals at r (S6:reduced-n5): the coefficients of lambda^3, lambda^1,\n"
                "    sigma lambda^2, sigma lambda^0 of p(lambda, sigma) and H; shape (..., 5).",
                (R, A_, B_), sp.Matrix([_integral(n, D) for n in r5.INTEGRAL_NAMES]), (5,)),
+        Kernel("reduced5_sixth_integral", ("S6:sixth-integral-n5", "K:Delta"),
+               "F = <w, B(2+B) w>/Delta at r (S6:sixth-integral-n5: w = *(M^M)/8, B = a E5 E5^T +\n"
+               "    b gamma gamma^T), in the reduced coordinates; shape (..., 1).",
+               (R, A_, B_), sp.Matrix([si.numerator_in_invariants().as_expr()
+                                       / stable_Delta(x, a, b)]), (1,)),
         Kernel("reduced5_relations", ("S6:reduced-n5",),
                "(R1, R2) at r (S6:reduced-n5): zero on the reduced space; shape (..., 2).",
                (R,), sp.Matrix(r5.relations_on_P()), (2,)),
