@@ -20,7 +20,7 @@ ledger uses for all-$n$ rows up to $n = 12$ (here to 9 for cost). (2) At a seede
 differentials on $TP$ of the $n$ known integrals and $H_2..H_{\lceil n/2\rceil-1}$ have rank
 $2n - 2 - \lfloor n/2\rfloor$ and vanish on the generators of $SO(n-1)$, $n = 5, \dots, 8$ (SymPy and
 FLINT ranks, exact zeros). For $n = 5$ the symbolic proof is row S6:sixth-integral-n5 ($H_2$ and its $F$
-span the same integrals modulo $\lVert w\rVert^2$; tests/test_reduced5.py).
+is $(\lVert w\rVert^2 + F)/(2+a+b)$; tests/test_reduced5.py).
 
 **Not proved.** The identity for every $n$ (no reduction argument yet); and what the count gives for
 $n \ge 6$: Euler–Jacobi needs $m - 2$ integrals and yields 2-tori, but here the expected tori have

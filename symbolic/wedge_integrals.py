@@ -10,7 +10,7 @@ $D_B$ the derivation extension of $B$ to $\Lambda^{2k}\mathbb{R}^n$
 
 in the orthonormal basis $e_I$ of $\Lambda^{2k}$, $(M^{\wedge k})_I = \operatorname{Pf}(M_{II})$ (up to the factor $k!$).
 $H_1 = 2H$ (the energy); for $n = 2k$, $D_B = \operatorname{tr}B$ on $\Lambda^n$ and $H_{n/2} = \operatorname{Pf}(M)^2/(2+a+b)$
-(known). For $n = 5$, $H_2$ lies in the span of $\lVert w\rVert^2$ and the $F$ of S6:sixth-integral-n5
+(known). For $n = 5$, $H_2 = (\lVert w\rVert^2 + F)/(2+a+b)$ with the $F$ of S6:sixth-integral-n5
 (checked in the tests). Conjecture (issue 23): every $H_k$ is a first integral of eq:motion-general;
 with the $n$ known integrals they give $2n - 2 - \lfloor n/2\rfloor$ independent invariant integrals.
 

@@ -258,3 +258,46 @@ def test_sixth_integral_constant_along_drawn_orbits():
         assert np.allclose(g5.reduced5_sixth_integral(r, a, b)[:, 0], F, rtol=1e-9, atol=0)
         values.append(F[0] / ens.scale[k] ** 4)
     assert np.ptp(values) > 1e-3 * np.max(np.abs(values))
+
+
+def test_wedge_integral_H2_is_the_sixth_integral_for_n5():
+    """S6:wedge-integrals at n = 5: H_2 = <M^M, (2 + D_B)^{-1} M^M> = (|w|^2 + F)/(2 + a + b) exactly,
+    F the integral of S6:sixth-integral-n5 (so the two rows name the same new integral)."""
+    import sympy as sp
+    from chaplygin_nd.symbolic import points
+    from chaplygin_nd.symbolic import sixth_integral as si
+    from chaplygin_nd.symbolic import wedge_integrals as wi
+
+    rng = points.generator(7, "H2 vs F")
+    for _ in range(3):
+        M, g = points.skew_matrix(rng, 5), points.sphere_point(rng, 5)
+        a, b = points.rational(rng, -1, 1), points.rational(rng, 1, 3)
+        w = si.pfaffian_vector([[M[i, j] for j in range(5)] for i in range(5)])
+        F = si.numerator_expr(M, g, a, b) / ((2 + a) * (2 + b) - a * b * g[4] ** 2)
+        assert sp.simplify(wi.value(M, g, a, b, 2) - (sum(v * v for v in w) + F) / (2 + a + b)) == 0
+
+
+def test_wedge_integral_rate_detects_a_wrong_operator():
+    """The exact rate of S6:wedge-integrals is zero for (2 + D_B)^{-1} and non-zero for (3 + D_B)^{-1}
+    (n = 6, k = 2, both engines): the check can fail."""
+    import sympy as sp
+    from chaplygin_nd.symbolic import points
+    from chaplygin_nd.symbolic import wedge_integrals as wi
+
+    rng = points.generator(8, "rate")
+    M, g = points.skew_matrix(rng, 6), points.sphere_point(rng, 6)
+    a, b = sp.Rational(1, 2), sp.Rational(3, 2)
+    assert wi.rate(M, g, a, b, 2, "sympy") == 0 and wi.rate(M, g, a, b, 2, "flint") == 0
+    original = wi.derivation_matrix
+
+    def shifted(B, n, m, zero):
+        D = original(B, n, m, zero)
+        if m == 4:
+            for i in range(len(D)):
+                D[i][i] = D[i][i] + 1
+        return D
+    wi.derivation_matrix = shifted
+    try:
+        assert wi.rate(M, g, a, b, 2, "sympy") != 0 and wi.rate(M, g, a, b, 2, "flint") != 0
+    finally:
+        wi.derivation_matrix = original
