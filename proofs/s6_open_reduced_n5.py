@@ -226,7 +226,8 @@ def open_problem_verdict(n: int) -> Verdict:
                   "orbits: consistent with an integrable reduced system (the count suggests invariant "
                   f"{max(inv, key=inv.get) if inv else '?'}-tori inside the {level}-dimensional level "
                   f"sets, as {quotient - (max(inv, key=inv.get) if inv else 0)} integrals would give "
-                  f"against the {n} known); a measurement, not a proof" if no_chaos else
+                  f"against the {n} known; the missing ones are proved or checked in rows "
+                  "S6:sixth-integral-n5 and S6:wedge-integrals); a measurement, not a proof" if no_chaos else
                   "chaos or undecided MEGNO on a fraction of the drawn orbits; see the numbers")
                + ("; n = 6: row S6:open-reduced-n6" if n == 5 else "")),
         data={"orbits": dc.record(res), "rerun": dc.record(rerun), f"control{n}": dc.record(ctl5),

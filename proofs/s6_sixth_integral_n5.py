@@ -9,8 +9,9 @@ and $B = aE_5E_5^T + b\gamma\gamma^T$ (so $L_\gamma(\Omega) = 2\Omega + B\Omega 
     F = \frac{\langle w, B(2+B)w\rangle}{\Delta(x)} = \frac{a(a+2)\langle w,E_5\rangle^2
         + 2abx\langle w,E_5\rangle\langle w,\gamma\rangle + b(b+2)\langle w,\gamma\rangle^2}{(2+a)(2+b)-abx^2}
 
-is a first integral of eq:motion-general on $P = \mathfrak{so}(5)\times S^4$, invariant under $SO(4)$ and
-independent of the five known integrals (the non-constant coefficients of $p(\lambda, \sigma)$ and $H$).
+is a first integral of eq:motion-general on $P = \mathfrak{so}(5)\times S^4$, invariant under $SO(4)$ and,
+for $a \ne 0$, independent of the five known integrals (the non-constant coefficients of
+$p(\lambda, \sigma)$ and $H$). At $a = 0$ (spherical tensor) $F = \tfrac b2\langle w,\gamma\rangle^2 = \tfrac b2 c_{\sigma\lambda^0}$.
 
 **Proved here.** (1) $\Delta\,D\dot N_F - N_F\,D\dot\Delta = 0$ on $P$ for symbolic $a, b$ ($N_F = \Delta F$,
 $D\dot{}$ along the derived field with $D = 2(2+a+b)\Delta$): a sparse-polynomial identity modulo

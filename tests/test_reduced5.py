@@ -301,3 +301,22 @@ def test_wedge_integral_rate_detects_a_wrong_operator():
         assert wi.rate(M, g, a, b, 2, "sympy") != 0 and wi.rate(M, g, a, b, 2, "flint") != 0
     finally:
         wi.derivation_matrix = original
+
+
+def test_reduced5_builder_equals_numpy_kernel():
+    """The heyoka expression builder reduced5_field, evaluated on floats, equals the NumPy kernel
+    emitted from the same derived expression (S6:reduced-n5)."""
+    from chaplygin_nd.generated import expression_builders as eb
+
+    class FloatOps:
+        rational = staticmethod(lambda p, q: p / q)
+        sqrt = staticmethod(np.sqrt)
+
+    rng = np.random.default_rng(12)
+    M = rng.normal(size=(5, 5))
+    M = M - M.T
+    g = rng.normal(size=5)
+    g /= np.linalg.norm(g)
+    r = g5.reduced5_invariants(M[np.triu_indices(5, 1)], g)
+    got = np.array(eb.reduced5_field(list(r), -0.3, 1.1, FloatOps), dtype=float)
+    assert np.allclose(got, g5.reduced5_field(r, -0.3, 1.1), rtol=1e-13, atol=1e-14)
