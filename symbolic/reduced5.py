@@ -41,12 +41,14 @@ D = 2 * (2 + a + b) * Delta
 def phase_field_numerators():
     r"""$(D\dot M_{ij})_{i<j}$ and $D\dot\gamma$ as elements of :data:`symbolic.reduced5_invariants.RING`
     (eq:motion-general with the derived inverse, $n = 5$; valid on $S^4$)."""
-    DO = inverse_numerator(ri5.M, ri5.gamma)
     R = ri5.RING
-    dM = ri5.M * DO - DO * ri5.M
-    dg = -(DO * ri5.gamma)
-    Mdot = {(i, j): R(sp.expand(dM[i, j])) for i in range(5) for j in range(i + 1, 5)}
-    gdot = [R(sp.expand(dg[i])) for i in range(5)]
+    DO = inverse_numerator(ri5.M, ri5.gamma)          # expanded entries
+    W = [[R(DO[i, j]) for j in range(5)] for i in range(5)]
+    M = [[R(ri5.M[i, j]) for j in range(5)] for i in range(5)]
+    g = [R(v) for v in ri5.gamma]
+    Mdot = {(i, j): sum((M[i][k] * W[k][j] - W[i][k] * M[k][j] for k in range(5)), R(0))
+            for i in range(5) for j in range(i + 1, 5)}
+    gdot = [-sum((W[i][k] * g[k] for k in range(5)), R(0)) for i in range(5)]
     return Mdot, gdot
 
 
