@@ -67,12 +67,18 @@ def generation_part() -> tuple[Check, list]:
 
 
 def relation_part() -> Check:
-    """Part 2: $R_1, R_2$ vanish identically in $(K, u, q)$ (both engines)."""
+    """Part 2: the relations vanish identically in $(K, u, q)$, and $R_1, R_2$ with $s = 1 - x^2$ on $P$
+    (both engines)."""
     rel = ri5.relations()
     polys = [ri5.to_phase_space(r) for rs in rel.values() for r in rs]
     if [len(rel[(2, 2, 2)]), len(rel[(4, 2, 2)])] != [1, 3]:
         return Check(False, f"unexpected relation counts {[len(v) for v in rel.values()]}")
-    return rational_identity(polys, label="S6:reduced-n5 relations")
+    # and R1, R2 as the kernels use them (s = 1 - x^2) vanish on P
+    on_p = [ri5.to_phase_space(ri5.INV_RING(e)) for e in r5.relations_on_P()]
+    free = rational_identity(polys, label="S6:reduced-n5 relations")
+    if not free.ok:
+        return free
+    return rational_identity(on_p, sphere=SPHERE, label="S6:reduced-n5 relations on P")
 
 
 def _point():
