@@ -2,7 +2,7 @@ r"""Beyond the paper: a sixth integral for $n = 5$, and with it the paper's open
 (row S6:sixth-integral-n5, issue 23).
 
 **Claim.** For the axisymmetric sphere in dimension $n = 5$ (any $a$, $b$ with $\Delta \ne 0$), with
-$w = \star(M\wedge M)/8$ (the Pfaffians of the $4\times4$ principal minors of $M$, signed so that $Mw = 0$)
+$w = \star(M\wedge M)/2$ (the Pfaffians of the $4\times4$ principal minors of $M$, signed so that $Mw = 0$)
 and $B = aE_5E_5^T + b\gamma\gamma^T$ (so $L_\gamma(\Omega) = 2\Omega + B\Omega + \Omega B$),
 
 .. math::
@@ -137,7 +137,7 @@ def text_form() -> Check:
 @claim("S6:sixth-integral-n5", uses=("eq:motion-general", "P:inversion", "eq:Delta",
                                       "eq:pol-first-integrals", "P:Measure", "eq:action"),
        adds=(SECTION, "a sixth first integral of the axisymmetric n = 5 sphere, F = <w, B(2+B)w>/Delta "
-                      "with w = *(M^M)/8 and B = a E_n E_n^T + b gamma gamma^T, proved exactly and "
+                      "with w = *(M^M)/2 and B = a E_n E_n^T + b gamma gamma^T, proved exactly and "
                       "independent of the five known; with Euler-Jacobi (argued) the reduced system "
                       "on P/SO(4) is integrable"))
 def s6_sixth_integral_n5() -> Verdict:

@@ -6,7 +6,7 @@ exact linear algebra over $\mathbb{Q}(a, b)$ in the reduced coordinates of :mod:
 written with $\mathfrak{so}(5)$ operations:
 
 .. math::
-    w = \star(M\wedge M)/8 \in \mathbb{R}^5,\quad w_i = (-1)^{i-1}\operatorname{Pf}(M_{\hat\imath\hat\imath})
+    w = \star(M\wedge M)/2 \in \mathbb{R}^5,\quad w_i = (-1)^{i-1}\operatorname{Pf}(M_{\hat\imath\hat\imath})
     \ (\text{so } Mw = 0),\qquad B = aE_5E_5^T + b\gamma\gamma^T,
 
 .. math::

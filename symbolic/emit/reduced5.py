@@ -52,7 +52,7 @@ def kernels() -> list[Kernel]:
                "    sigma lambda^2, sigma lambda^0 of p(lambda, sigma) and H; shape (..., 5).",
                (R, A_, B_), sp.Matrix([_integral(n, D) for n in r5.INTEGRAL_NAMES]), (5,)),
         Kernel("reduced5_sixth_integral", ("S6:sixth-integral-n5", "K:Delta"),
-               "F = <w, B(2+B) w>/Delta at r (S6:sixth-integral-n5: w = *(M^M)/8, B = a E5 E5^T +\n"
+               "F = <w, B(2+B) w>/Delta at r (S6:sixth-integral-n5: w = *(M^M)/2, B = a E5 E5^T +\n"
                "    b gamma gamma^T), in the reduced coordinates; shape (..., 1).",
                (R, A_, B_), sp.Matrix([si.numerator_in_invariants().as_expr()
                                        / stable_Delta(x, a, b)]), (1,)),
