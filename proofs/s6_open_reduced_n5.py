@@ -52,10 +52,10 @@ SECTION = "Conclusions — open problems (beyond the paper)"
 N = 5
 
 
-def _point():
-    rng = points.generator(ledger_seed(), "S6:open-reduced-n5")
-    gamma = points.sphere_point(rng, N)
-    M = points.skew_matrix(rng, N)
+def _point(n: int = N):
+    rng = points.generator(ledger_seed(), f"S6:open-reduced-n{n}")
+    gamma = points.sphere_point(rng, n)
+    M = points.skew_matrix(rng, n)
     a, b = points.rational(rng, -1, 1), points.rational(rng, 1, 3)
     return M, gamma, a, b
 
@@ -72,6 +72,7 @@ def _integral_gradients(M, gamma, a, b):
     Domain: rational $M$, $\gamma$, $a$, $b$."""
     from sympy.polys.matrices import DomainMatrix
 
+    N = M.rows
     lam, sig = sp.symbols("lambda sigma")
     ring = sp.QQ[lam, sig]   # exact polynomial matrices (SymPy's DomainMatrix over QQ[lambda, sigma])
 
@@ -102,8 +103,9 @@ def _integral_gradients(M, gamma, a, b):
 
 
 def _generators(M, gamma):
-    r"""The velocities $(\mathrm{vec}[X, M], X\gamma)$ of the 6 generators $X = E_i\wedge E_j$,
-    $i < j < 5$, of $SO(4) = \{h : hE_5 = E_5\}$ (eq:SOnminus1, eq:action)."""
+    r"""The velocities $(\mathrm{vec}[X, M], X\gamma)$ of the generators $X = E_i\wedge E_j$,
+    $i < j < n$, of $SO(n-1) = \{h : hE_n = E_n\}$ (eq:SOnminus1, eq:action); 6 for $n = 5$."""
+    N = M.rows
     rows = []
     for i in range(N - 1):
         for j in range(i + 1, N - 1):
@@ -112,12 +114,14 @@ def _generators(M, gamma):
     return sp.Matrix(rows)
 
 
-def reduced_dimension_check() -> dict:
-    """The exact part (module docstring (i), (ii)): ranks by SymPy's ``Matrix.rank`` and again by
-    ``DomainMatrix.rank`` over QQ (two implementations); the invariance as exact zeros."""
+def reduced_dimension_check(n: int = N) -> dict:
+    """The exact part (module docstring (i), (ii)) in dimension ``n`` (5 for this row, 6 for
+    S6:open-reduced-n6): ranks by SymPy's ``Matrix.rank`` and again by ``DomainMatrix.rank`` over QQ
+    (two implementations); the invariance as exact zeros."""
     from sympy.polys.matrices import DomainMatrix
 
-    M, gamma, a, b = _point()
+    N = n
+    M, gamma, a, b = _point(n)
     coeffs, G = _integral_gradients(M, gamma, a, b)
     X = _generators(M, gamma)
     dim = algebra.so_dim(N)
@@ -146,16 +150,24 @@ def _over(r, reduced_bound, full_bound) -> bool:
                       "and MEGNO on 100 drawn orbits, with the integrable n = 4 sphere and a "
                       "non-symmetric n = 5 sphere as controls"))
 def s6_open_reduced_n5() -> Verdict:
+    return open_problem_verdict(N)
+
+
+def open_problem_verdict(n: int) -> Verdict:
+    r"""The rule of the module docstring in dimension ``n`` (rows S6:open-reduced-n5, S6:open-reduced-n6):
+    the exact count (:func:`reduced_dimension_check`), the drawn orbits of
+    :func:`simulate.analysis.evidence_rows.open_row`, the $n = 4$ and general-$\mathbb{J}$ controls."""
     if reason := dc.without_heyoka():
         return Verdict.open(reason)
-    exact = reduced_dimension_check()
+    exact = reduced_dimension_check(n)
+    dim_p, group = algebra.so_dim(n) + n - 1, algebra.so_dim(n - 1)
     orbit = exact["orbit_rank"][0]
-    quotient = 14 - orbit
+    quotient = dim_p - orbit
     level = quotient - exact["integral_rank"][0]
-    derived = (exact["orbit_rank"] == (6, 6) and exact["integral_rank"] == (5, 5)
+    derived = (exact["orbit_rank"] == (group, group) and exact["integral_rank"] == (n, n)
                and exact["invariant"])
-    reduced_bound, full_bound = level, level + 2
-    out = er.n5_row(ledger_seed())
+    reduced_bound, full_bound = level, level + (n - 1) // 2     # + rank SO(n-1)
+    out = er.open_row(n, ledger_seed())
     res, rerun, ctl5 = out["symmetric"]["results"], out["symmetric"]["rerun"], out["control"]
     ctl4 = er.full4_row(ledger_seed())["results"]
     chaotic = lambda r: r.megno_cls == "chaotic"  # noqa: E731
@@ -176,13 +188,15 @@ def s6_open_reduced_n5() -> Verdict:
     for r in rerun:
         inv_rerun[r.invariant_count] = inv_rerun.get(r.invariant_count, 0) + 1
     prediction = (f"derived (exact, SymPy Matrix.rank and DomainMatrix.rank over QQ, at {exact['point']}): "
-                  f"SO(4)-orbits of dimension {orbit}, so dim P/SO(4) = 14 - {orbit} = {quotient}; "
+                  f"SO({n - 1})-orbits of dimension {orbit}, so dim P/SO({n - 1}) = {dim_p} - {orbit} = "
+                  f"{quotient}; "
                   f"{exact['integrals']} invariant integrals ({', '.join(exact['coefficients'])} of "
                   f"p(lambda, sigma), and H) of rank {exact['integral_rank'][0]} on TP, so regular "
                   f"reduced level sets of dimension {level}; if the reduced system were integrable: "
-                  f"at most {reduced_bound} reduced frequencies ({reduced_bound - 1} with a sixth "
-                  f"integral, Euler-Jacobi), at most {full_bound} on P ({full_bound - 1})")
-    measured = (f"{prediction}. Measured: SO(4)-invariant observables resolved (D < 1e-5) on "
+                  f"at most {reduced_bound} reduced frequencies ({reduced_bound - 1} with "
+                  f"{'a sixth integral, Euler-Jacobi' if n == 5 else 'one more integral'}), at most "
+                  f"{full_bound} on P ({full_bound - 1})")
+    measured = (f"{prediction}. Measured: SO({n - 1})-invariant observables resolved (D < 1e-5) on "
                 f"{sum(inv.values())} of {len(res)} orbits: "
                 + ", ".join(f"{c} frequenc{'y' if c == 1 else 'ies'} on {k} orbit{'' if k == 1 else 's'}"
                            for c, k in sorted(inv.items()))
@@ -191,7 +205,7 @@ def s6_open_reduced_n5() -> Verdict:
                 + str(sorted(r.count for r in rerun)) + ", invariant counts "
                 + str(dict(sorted(inv_rerun.items()))))
     control = (dc.describe(ctl4, "n = 4 axisymmetric (integrable, proved)") + f": no chaos: {ctl4_ok}; "
-               + dc.describe(ctl5, f"n = 5, J = diag{CHAOTIC_J[5]}") + f": chaotic and diffusing: {ctl5_ok}")
+               + dc.describe(ctl5, f"n = {n}, J = diag{CHAOTIC_J[n]}") + f": chaotic and diffusing: {ctl5_ok}")
     return Verdict.numerical(
         derived and no_chaos and over <= dc.CONTRADICTING_MAX,
         measured=measured, initial_conditions=len(res),
@@ -203,17 +217,19 @@ def s6_open_reduced_n5() -> Verdict:
                        f"reduced or {full_bound} frequencies on P (rule of the module docstring, fixed "
                        "before the run)"),
         control=control, control_separates=ctl4_ok and ctl5_ok,
-        method=("exact ranks at a seeded rational point (SymPy) + numerical: eq:motion-general n = 5 "
-                "(expression builders), MEGNO, NAFF on drawn orbits"),
-        n_values=(5,),
+        method=("exact ranks at a seeded rational point (SymPy) + numerical: eq:motion-general "
+                f"n = {n} (expression builders), MEGNO, NAFF on drawn orbits"),
+        n_values=(n,),
         notes=("what the measurement says about the open problem: "
                + ("no chaos was resolved on any drawn orbit and the reduced observables show "
                   f"{max(inv, key=inv.get) if inv else '?'} independent frequencies on most resolved "
                   "orbits: consistent with an integrable reduced system (the count suggests invariant "
-                  "2-tori inside the 3-dimensional level sets, as a sixth integral would give); a "
-                  "measurement, not a proof" if no_chaos else
+                  f"{max(inv, key=inv.get) if inv else '?'}-tori inside the {level}-dimensional level "
+                  f"sets, as {quotient - (max(inv, key=inv.get) if inv else 0)} integrals would give "
+                  f"against the {n} known; the missing ones are proved or checked in rows "
+                  "S6:sixth-integral-n5 and S6:wedge-integrals); a measurement, not a proof" if no_chaos else
                   "chaos or undecided MEGNO on a fraction of the drawn orbits; see the numbers")
-               + "; n = 6 was not measured (cost)"),
-        data={"orbits": dc.record(res), "rerun": dc.record(rerun), "control5": dc.record(ctl5),
+               + ("; n = 6: row S6:open-reduced-n6" if n == 5 else "")),
+        data={"orbits": dc.record(res), "rerun": dc.record(rerun), f"control{n}": dc.record(ctl5),
               "invariant_counts": inv, "exact": {k: (list(v) if isinstance(v, tuple) else v)
                                                  for k, v in exact.items()}})

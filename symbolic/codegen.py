@@ -45,6 +45,7 @@ MODULES: tuple[tuple[str, str], ...] = (
     ("axisym", "chaplygin_nd.symbolic.emit.axisym:kernels"),
     ("fourd", "chaplygin_nd.symbolic.emit.fourd:kernels"),
     ("reduced", "chaplygin_nd.symbolic.emit.reduced:kernels"),
+    ("reduced5", "chaplygin_nd.symbolic.emit.reduced5:kernels"),
 )
 
 

@@ -37,6 +37,7 @@ BUILDERS: tuple[tuple[str, tuple[str, ...]], ...] = (
                                                                 "vector_field_axisym_4d",
                                       "energy_axisym_4d")),
     ("chaplygin_nd.symbolic.emit.reduced:kernels", ("reduced_field", "reduced_integrals")),
+    ("chaplygin_nd.symbolic.emit.reduced5:kernels", ("reduced5_field",)),
     ("chaplygin_nd.symbolic.emit.sphere3d:kernels", ("vector_field_3d", "integrals_3d")),
 )
 
@@ -47,7 +48,7 @@ STEM = "expression_builders"
 #: Taylor integrator, where a product of two series costs O(order) per order and a product with a
 #: parameter O(1). Measured on the reduced field (tol 1e-13, T = 50): heyoka decomposition 217 -> 121
 #: terms, run 0.26 -> 0.17 ms. An identity of rational functions (numerator expanded and regrouped).
-COLLECT = frozenset({"reduced_field"})
+COLLECT = frozenset({"reduced_field", "reduced5_field"})
 
 
 def collected(expr: sp.Expr, symbols) -> sp.Expr:

@@ -29,7 +29,8 @@ from chaplygin_nd.simulate.analysis.drawn_evidence import Setting, measure, subs
 from chaplygin_nd.simulate.dynamics import so
 
 __all__ = ["LEVEL_SETS", "SHIFTS", "RERUN", "LONGER", "reduced_row", "full4_row", "vertical_row",
-           "control4_row", "run_with_rerun", "SETTINGS"]
+           "control4_row", "run_with_rerun", "SETTINGS", "open_row", "open_setting",
+           "OPEN_COUNTS"]
 
 LEVEL_SETS = 50
 SHIFTS = (0.04, 0.08, 0.12)     # times the energy scale: distances across the flow on a level set
@@ -106,21 +107,43 @@ def control4_row(seed: int) -> dict:
             "rerun_index": []}
 
 
-N5_COUNT, N5_CONTROL = 100, 24
-N5_SETTING = Setting("full5", "full", 5, 4096.0, 0.5, observables="invariant+general",
-                     invariant=2, limit=6)
+#: Orbits per open-problem row (axisymmetric, general-J control): n = 5 is row S6:open-reduced-n5
+#: (issue 16); n = 6 is row S6:open-reduced-n6 (issue 23), fewer orbits: its field costs ~1.5x.
+OPEN_COUNTS = {5: (100, 24), 6: (16, 4)}
+N5_COUNT, N5_CONTROL = OPEN_COUNTS[5]
+
+
+def open_setting(n: int, J: tuple[float, ...] = ()) -> Setting:
+    r"""The setting of the open-problem rows in dimension ``n`` (axisymmetric, or the general-$\mathbb{J}$
+    control when ``J`` is given): $T = 4096$, $dt = 1/2$, the two $SO(n-1)$-invariant signals counted
+    apart. For $n = 5$ these are the settings of row S6:open-reduced-n5 unchanged (names, cache keys)."""
+    name = f"control{n}" if J else f"full{n}"
+    return Setting(name, "control" if J else "full", n, 4096.0, 0.5,
+                   observables="invariant+general", invariant=2, limit=n + 1, J=tuple(J))
+
+
+N5_SETTING = open_setting(5)
+
+
+def open_row(n: int, seed: int, count: int | None = None, control: int | None = None) -> dict:
+    r"""The open problem in dimension $n$ (rows S6:open-reduced-n5, S6:open-reduced-n6): ``count``
+    generic orbits of the axisymmetric sphere and ``control`` of the general-$\mathbb{J}$ sphere
+    ``CHAOTIC_J[n]``, the same analysis (the $SO(n-1)$-invariant observables counted apart); defaults
+    from ``OPEN_COUNTS``. The $n = 4$ control is :func:`full4_row`."""
+    count = OPEN_COUNTS[n][0] if count is None else count
+    control = OPEN_COUNTS[n][1] if control is None else control
+    ens = draws.draw(f"S6:open-reduced-n{n}", "generic", n, count, seed)
+    sym = run_with_rerun(open_setting(n), ens, _full_state(ens), seed)
+    out = {"symmetric": sym, "control": []}
+    if control:
+        cens = draws.draw(f"S6:open-reduced-n{n} control", "generic", n, control, seed)
+        out["control"] = measure(open_setting(n, CHAOTIC_J[n]), cens, _full_state(cens), seed)
+    return out
 
 
 def n5_row(seed: int) -> dict:
-    r"""The open problem for $n = 5$: ``N5_COUNT`` generic orbits of the axisymmetric sphere and
-    ``N5_CONTROL`` of the general-$\mathbb{J}$ sphere ``CHAOTIC_J[5]``, the same analysis (the $SO(4)$-
-    invariant observables counted apart); the $n = 4$ control is :func:`full4_row`."""
-    ens = draws.draw("S6:open-reduced-n5", "generic", 5, N5_COUNT, seed)
-    sym = run_with_rerun(N5_SETTING, ens, _full_state(ens), seed)
-    cens = draws.draw("S6:open-reduced-n5 control", "generic", 5, N5_CONTROL, seed)
-    ctl = Setting("control5", "control", 5, 4096.0, 0.5, observables="invariant+general",
-                  invariant=2, limit=6, J=CHAOTIC_J[5])
-    return {"symmetric": sym, "control": measure(ctl, cens, _full_state(cens), seed)}
+    r"""The open problem for $n = 5$ (row S6:open-reduced-n5): :func:`open_row` at $n = 5$."""
+    return open_row(5, seed)
 
 
 def vertical_setting(n: int) -> Setting:

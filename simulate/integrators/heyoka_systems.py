@@ -6,6 +6,8 @@ Three systems, all from derived expressions (never a printed formula, never hand
   [$+ (g, c)$], any $n \ge 3$, $\Omega = L_\gamma^{-1}M$ assembled by :mod:`runtime.expressions` from
   the derived coefficients of P:inversion; parameters $(a, b, r)$;
 * ``reduced()`` — eq:red-system on $(A, B, E, G, F_1, x, \delta)$ ($n = 4$); parameters $(a, b)$;
+* ``reduced5()`` — the $SO(4)$-reduced $n = 5$ field (row S6:reduced-n5) on
+  $(x, A_+, A_-, B, G, E_+, E_-, S_{uu}, S_{uq}, S_{qq})$; parameters $(a, b)$;
 * ``sphere3d()`` — eq:motion3D with general diagonal inertia (derived from eq:mom3D); parameters
   $(I_1, I_2, I_3, b)$.
 
@@ -23,7 +25,7 @@ from functools import cache
 
 from chaplygin_nd.generated import expression_builders as eb
 
-__all__ = ["System", "full", "reduced", "sphere3d", "for_field"]
+__all__ = ["System", "full", "reduced", "reduced5", "sphere3d", "for_field"]
 
 
 @dataclass(frozen=True)
@@ -89,6 +91,17 @@ def reduced() -> System:
         return eb.reduced_field(v, p[0], p[1], ops)
 
     return System("reduced 7D", ("A", "B", "E", "G", "F1", "x", "delta"), ("a", "b"), build)
+
+
+@cache
+def reduced5() -> System:
+    r"""The $SO(4)$-reduced $n = 5$ field (S6:reduced-n5) on
+    $r = (x, A_+, A_-, B, G, E_+, E_-, S_{uu}, S_{uq}, S_{qq})$; parameters $(a, b)$."""
+    def build(v, p, ops):
+        return eb.reduced5_field(v, p[0], p[1], ops)
+
+    return System("reduced5 10D", ("x", "Ap", "Am", "B", "G", "Ep", "Em", "Suu", "Suq", "Sqq"),
+                  ("a", "b"), build)
 
 
 @cache
