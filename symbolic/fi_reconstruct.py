@@ -217,7 +217,7 @@ def to_expression(B: fi_basis.Basis, blk: fi_basis.Block, cols, coeffs) -> sp.Ex
             re += coeff * (u[0] if not ipow else -u[1])   # Re(i^ipow * u)
         total += flint.fmpq(int(sp.Rational(q).p), int(sp.Rational(q).q)) * re
     terms = total.to_dict()
-    return sp.Add(*[sp.Rational(int(c.p), int(c.q)) * sp.Mul(*[s**e for s, e in zip(syms, mon)])
+    return sp.Add(*[sp.Rational(int(c.p), int(c.q)) * sp.Mul(*[s**int(e) for s, e in zip(syms, mon)])
                     for mon, c in terms.items()])
 
 
