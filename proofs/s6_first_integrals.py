@@ -117,6 +117,14 @@ def _proofs() -> list[Part]:
         c = fi_new.prove_at_points(n, 2, seed=ledger_seed())
         parts.append(Part(f"X(F) = 0, n = {n}, random a, b", "holds" if c.ok else "fails",
                           f"{c.method} ({c.engines})"))
+    if deep:
+        for n in (7, 9):
+            r = fi_known.jacobian_rank_mod_p(model_for(n), True, seed=ledger_seed())
+            parts.append(Part(f"independence n = {n}: the coefficients of p, H and F",
+                              "holds" if r["rank_mod_p"] == r["functions"] else "fails",
+                              f"Jacobian rank mod {r['prime']} = {r['rank_mod_p']} of "
+                              f"{r['functions']} at an integer-seeded rational point (a lower bound "
+                              "of the rank over QQ: full rank mod p proves independence)"))
     r = fi_known.jacobian_rank(model_for(5), ledger_seed(), include_new=True)
     parts.append(Part("independence n = 5: rank of (4 coefficients of p, H, F) on TP",
                       "holds" if r["rank"] == 6 else "fails",

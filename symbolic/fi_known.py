@@ -255,3 +255,54 @@ def jacobian_rank(model: Model, seed: int, include_new: bool = False) -> dict:
     if r1 != r2:
         raise ArithmeticError(f"the engines disagree on the Jacobian rank: {r1} vs {r2}")
     return {"rank": r1, "functions": T.rows, "engines": "SymPy+FLINT"}
+
+
+def jacobian_rank_mod_p(model: Model, include_new: bool = True, prime_index: int = 0,
+                        seed: int = 0) -> dict:
+    r"""A lower bound of the exact Jacobian rank (on $TP$) of the generators that are not square
+    roots, at an integer-seeded rational point of $P$: the rank modulo $p$ of the reduction of the
+    rational Jacobian (rank$_p \le$ rank$_\mathbb{Q}$). Each directional derivative is the linear
+    coefficient of $\varepsilon \mapsto D^k f(z + \varepsilon e)$ (a polynomial of degree $< 24$),
+    interpolated exactly mod $p$, then divided by $D$. Full rank mod $p$ proves independence."""
+    p = fi_field.PRIMES[prime_index]
+    gens = generators(model, include_new)
+    keep = [i for i, g in enumerate(gens) if g.name not in ("Pf(M)", "<v, gamma>")]
+    n = model.n
+    dim = n * (n - 1) // 2
+    z0 = fi_field.sample(model, 1, p, np.random.default_rng([seed, 17, n]))["z"][0]
+    eps = np.arange(1, 25, dtype=np.int64)
+    grads = []
+    for c in range(dim + n):
+        pts = np.array([(z0 + e * (np.arange(dim + n) == c)) % p for e in eps])
+        f = values(model, pts, p, include_new)[:, keep]
+        D = fi_field.field_at(model, pts, p)["D"]
+        cols = []
+        for j, i in enumerate(keep):
+            num = f[:, j] * (D if gens[i].d_power else 1) % p
+            cols.append(_linear_coefficient(eps, num, p))
+        grads.append(cols)
+    J = np.array(grads, dtype=np.int64).T % p            # functions x coordinates
+    D0 = fi_field.field_at(model, z0[None, :], p)["D"][0]
+    f0 = values(model, z0[None, :], p, include_new)[0, keep]
+    inv = int(fi_field.inv_mod(np.array([D0]), p)[0])
+    for j, i in enumerate(keep):   # d(P/D) = (dP - f dD)/D with P = f D for the rational ones
+        if gens[i].d_power:
+            dD = np.array([_linear_coefficient(
+                eps, fi_field.field_at(model, np.array([(z0 + e * (np.arange(dim + n) == c)) % p
+                                                        for e in eps]), p)["D"], p)
+                for c in range(dim + n)])
+            J[j] = (J[j] - f0[j] * dD) % p * inv % p
+    g = z0[dim:] % p
+    proj = (np.eye(n, dtype=np.int64) - np.outer(g, g)) % p
+    T = np.concatenate([J[:, :dim], J[:, dim:] @ proj % p], axis=1) % p
+    r = flint.nmod_mat(T.shape[0], T.shape[1], T.ravel().tolist(), p).rank()
+    return {"rank_mod_p": r, "functions": len(keep), "prime": p,
+            "names": [gens[i].name for i in keep]}
+
+
+def _linear_coefficient(xs: np.ndarray, ys: np.ndarray, p: int) -> int:
+    """The coefficient of x in the interpolating polynomial of (xs, ys) mod p (exact when the
+    polynomial has degree < len(xs)); the values at x = xs, the constant term is f(0)."""
+    A = flint.nmod_mat([[pow(int(x), k, p) for k in range(len(xs))] for x in xs], p)
+    b = flint.nmod_mat([[int(y)] for y in ys], p)
+    return int(A.solve(b)[1, 0])

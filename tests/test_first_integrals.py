@@ -94,3 +94,10 @@ def test_api_bad_input():
         cn.first_integrals(4, 2, a=0, b=-1)
     with pytest.raises(ValueError, match="degree"):
         cn.first_integrals(4, 0, a=0, b=1)
+
+
+def test_jacobian_mod_p_is_a_lower_bound_that_matches_the_exact_rank():
+    """rank mod p <= rank over QQ; at n = 4, 5 it equals the exact rank (4, then 6 with F)."""
+    for n, rank in ((4, 4), (5, 6)):
+        r = fi_known.jacobian_rank_mod_p(fi_field.axisymmetric(n, A, B), True)
+        assert r["rank_mod_p"] == rank == r["functions"]
