@@ -90,6 +90,8 @@ def generators(model: Model, include_new: bool = False) -> list[Generator]:
     out.append(Generator("H", 2, _energy_degrees(model)[0], 1))
     if include_new and model.kind == "axisymmetric" and n % 2:
         out.append(Generator("F", n - 1, 4, 1))
+    if include_new and model.kind == "axisymmetric" and n == 6:
+        out.append(Generator("G", 4, 2, 1))
     return sorted(out, key=lambda g: (g.m_degree, g.name))
 
 
@@ -170,10 +172,44 @@ def values(model: Model, z: np.ndarray, p: int, include_new: bool = False) -> np
                 w = (w + vi * ui) % p
             delta = ((2 + a) * (2 + b) - a * b % p * x % p * x) % p
             cols["F"] = w * w % p * fi_field.inv_mod(delta, p) % p
+    if include_new and model.kind == "axisymmetric" and n == 6:
+        cols["G"] = _g6(M, g, model, p)
     f = fi_field.field_at(model, z, p)
     Om = f["Omega"]
     cols["H"] = sum(M[:, i, j] * Om[:, i, j] % p for i, j in pairs) % p * pow(2, p - 2, p) % p
     return np.stack([cols[gen.name] for gen in generators(model, include_new)], axis=1)
+
+
+def _g6(M, g, model: Model, p: int) -> np.ndarray:
+    """G of symbolic/fi_new.py (n = 6) mod p at the points, as a function (numerator / Delta)."""
+    import itertools
+
+    n = 6
+    inv8 = pow(8, p - 2, p)
+    W = np.zeros(M.shape, dtype=np.int64)
+    for i in range(n):
+        for j in range(n):
+            if i == j:
+                continue
+            rest = [t for t in range(n) if t not in (i, j)]
+            acc = np.zeros(M.shape[0], dtype=np.int64)
+            for q in itertools.permutations(rest):
+                t = (i, j) + q
+                sgn = (-1) ** sum(1 for u in range(6) for v in range(u + 1, 6) if t[u] > t[v])
+                acc = (acc + sgn * (M[:, q[0], q[1]] * M[:, q[2], q[3]] % p)) % p
+            W[:, i, j] = acc * inv8 % p
+    a, b = fi_field.mod(model.a, p), fi_field.mod(model.b, p)
+    x = g[:, -1]
+    P = W[:, :, -1] % p
+    Q = np.einsum("rij,rj->ri", W, g) % p
+    pp = (P * P % p).sum(1) % p
+    pq = (P * Q % p).sum(1) % p
+    qq = (Q * Q % p).sum(1) % p
+    pg = (P * g % p).sum(1) % p
+    num = (2 * a * (a + 2) % p * pp + 4 * a * b % p * x % p * pq + 2 * b * (b + 2) % p * qq
+           + a * b % p * ((a + b + 4) % p) % p * (pg * pg % p)) % p
+    delta = ((2 + a) * (2 + b) - a * b % p * x % p * x) % p
+    return num * fi_field.inv_mod(delta, p) % p
 
 
 def _gradients_at(model: Model, M: sp.Matrix, gamma: sp.Matrix) -> sp.Matrix:

@@ -20,7 +20,7 @@ import sympy as sp
 from chaplygin_nd.symbolic.algebra import unvec
 
 __all__ = ["pfaffian", "pfaffian_vector", "new_integral", "new_integral_text", "prove_symbolic",
-           "prove_at_points"]
+           "prove_at_points", "hodge_square", "new_integral_6", "new_integral_6_text"]
 
 
 def pfaffian(A: sp.Matrix):
@@ -60,6 +60,59 @@ def new_integral(M: sp.Matrix, gamma: sp.Matrix, a, b) -> tuple[sp.Expr, sp.Expr
     return sp.expand((v.T * u)[0, 0] ** 2), (2 + a) * (2 + b) - a * b * x**2
 
 
+def hodge_square(M: sp.Matrix) -> sp.Matrix:
+    r"""$W = \star(M\wedge M)/8 \in \mathfrak{so}(6)$ for $M \in \mathfrak{so}(6)$:
+    $W_{ij} = \frac18\sum \varepsilon_{ijklmn} M_{kl}M_{mn}$ (quadratic in $M$, equivariant)."""
+    import itertools
+
+    n = M.shape[0]
+    if n != 6:
+        raise ValueError("hodge_square is the n = 6 object")
+
+    def sign(t):
+        s = 1
+        for i in range(len(t)):
+            for j in range(i + 1, len(t)):
+                if t[i] > t[j]:
+                    s = -s
+        return s
+
+    W = sp.zeros(n, n)
+    for i in range(n):
+        for j in range(n):
+            if i != j:
+                rest = [t for t in range(n) if t not in (i, j)]
+                W[i, j] = sp.expand(sum(sign((i, j) + q) * M[q[0], q[1]] * M[q[2], q[3]]
+                                        for q in itertools.permutations(rest)) / 8)
+    return W
+
+
+def new_integral_6(M: sp.Matrix, gamma: sp.Matrix, a, b) -> tuple[sp.Expr, sp.Expr]:
+    r"""(numerator, $\Delta$) of the integral the search found for $n = 6$ at $M$-degree 4 over
+    $\Delta$ (read off an exact ansatz over $\mathbb{Q}(a, b)$), with $W$ of :func:`hodge_square`,
+    $p = WE_6$, $q = W\gamma$:
+    $G = \big(2a(a+2)\|p\|^2 + 4abx\langle p, q\rangle + 2b(b+2)\|q\|^2 + ab(a+b+4)\langle p,
+    \gamma\rangle^2\big)/\Delta$."""
+    W = hodge_square(M)
+    e = sp.zeros(6, 1)
+    e[5] = 1
+    x = gamma[5]
+    p, q = W * e, W * gamma
+    num = (2 * a * (a + 2) * p.dot(p) + 4 * a * b * x * p.dot(q) + 2 * b * (b + 2) * q.dot(q)
+           + a * b * (a + b + 4) * (gamma.T * p)[0] ** 2)
+    return sp.expand(num), (2 + a) * (2 + b) - a * b * x**2
+
+
+def new_integral_6_text() -> str:
+    """G (n = 6) as text SymPy parses, in M_<i><j>, gamma_<i>, a, b."""
+    from chaplygin_nd.symbolic.fi_reconstruct import real_symbols
+
+    Ms, gs = real_symbols(6)
+    a, b = sp.symbols("a b")
+    num, den = new_integral_6(unvec(Ms, 6), sp.Matrix(gs), a, b)
+    return f"({sp.sstr(num)})/({sp.sstr(den)})"
+
+
 def new_integral_text(n: int) -> str:
     """F as text SymPy parses, in M_<i><j> (i < j), gamma_<i> (1-based), a, b."""
     from chaplygin_nd.symbolic.fi_reconstruct import real_symbols
@@ -73,7 +126,7 @@ def new_integral_text(n: int) -> str:
     return f"({sp.sstr(sp.expand(inner))})**2/({sp.sstr(den)})"
 
 
-def prove_symbolic(n: int, a=None, b=None):
+def prove_symbolic(n: int, a=None, b=None, builder=None):
     r"""Exact proof of $X(F) = 0$ with both engines (symbolic/exact.py), for symbolic $a, b$ by
     default: $\Delta X(P) - P X(\Delta) \equiv 0$ modulo the sphere (fi_reconstruct)."""
     from chaplygin_nd.symbolic.fi_field import Model
@@ -82,12 +135,12 @@ def prove_symbolic(n: int, a=None, b=None):
     a = sp.Symbol("a") if a is None else a
     b = sp.Symbol("b") if b is None else b
     Ms, gs = real_symbols(n)
-    num, _ = new_integral(unvec(Ms, n), sp.Matrix(gs), a, b)
+    num, _ = (builder or new_integral)(unvec(Ms, n), sp.Matrix(gs), a, b)
     model = Model(n, (), sp.Integer(1), "axisymmetric", sp.Integer(0))
     return prove_integral(num, model, 1, a=a, b=b)
 
 
-def prove_at_points(n: int, count: int = 2, seed: int | None = None):
+def prove_at_points(n: int, count: int = 2, seed: int | None = None, builder=None):
     r"""$X(F) = 0$ at seeded exact rational points of $P$ with random $a \in [-1, 1]$, $b > 0$
     (symbolic/exact.py ``zero_at_points``, both engines where they apply): $X(F)$ from the
     exact $\Omega = L_\gamma^{-1}M$ (a linear solve of eq:M-O) and the exact directional
@@ -108,7 +161,7 @@ def prove_at_points(n: int, count: int = 2, seed: int | None = None):
         J = sp.diag(*([1] * (n - 1) + [1 + a]))
         Om = mdl.angular_velocity(M, g, J, b)
         Md, gd = commutator(M, Om), -Om * g
-        num, den = new_integral(M + eps * Md, g + eps * gd, a, b)
+        num, den = (builder or new_integral)(M + eps * Md, g + eps * gd, a, b)
         F = sp.Poly(sp.expand(num), eps)
         D = sp.Poly(sp.expand(den), eps)
         f0, f1 = F.coeff_monomial(1), F.coeff_monomial(eps)

@@ -101,3 +101,12 @@ def test_jacobian_mod_p_is_a_lower_bound_that_matches_the_exact_rank():
     for n, rank in ((4, 4), (5, 6)):
         r = fi_known.jacobian_rank_mod_p(fi_field.axisymmetric(n, A, B), True)
         assert r["rank_mod_p"] == rank == r["functions"]
+
+
+def test_n6_integral_at_an_exact_point_and_counted_in_the_box():
+    """G (n = 6) vanishes under X at an exact rational point (random a, b); the known ranks of
+    the box (4, 4, 1) grow by one when G is counted."""
+    assert fi_new.prove_at_points(6, 1, builder=fi_new.new_integral_6).ok
+    m6 = fi_field.axisymmetric(6, A, B)
+    with_g = sum(fi.known_ranks(m6, 4, 4, 1, True).values())
+    assert with_g == sum(fi.known_ranks(m6, 4, 4, 1, False).values()) + 1
