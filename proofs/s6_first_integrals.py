@@ -130,6 +130,10 @@ def _proofs() -> list[Part]:
     parts.append(Part("X(G) = 0, n = 6, random a, b", "holds" if c.ok else "fails",
                       f"{c.method} ({c.engines})"))
     if deep:
+        c = fi_new.prove_symbolic(6, builder=fi_new.new_integral_6)
+        parts.append(Part("X(G) = 0, n = 6, symbolic a, b", "holds" if c.ok else "fails",
+                          f"{c.method} ({c.engines})"))
+    if deep:
         r = fi_known.jacobian_rank_mod_p(model_for(6), True, seed=ledger_seed())
         parts.append(Part("independence n = 6: the coefficients of p, H and G",
                           "holds" if r["rank_mod_p"] == r["functions"] else "fails",
