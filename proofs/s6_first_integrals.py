@@ -129,6 +129,10 @@ def _proofs() -> list[Part]:
     c = fi_new.prove_at_points(6, 2, seed=ledger_seed(), builder=fi_new.new_integral_6)
     parts.append(Part("X(G) = 0, n = 6, random a, b", "holds" if c.ok else "fails",
                       f"{c.method} ({c.engines})"))
+    for n in ((5, 6, 7, 8) if deep else (5, 6)):
+        c = fi_new.prove_at_points(n, 2, seed=ledger_seed(), builder=fi_new.general_integral)
+        parts.append(Part(f"X(G_n) = 0 (general form), n = {n}, random a, b",
+                          "holds" if c.ok else "fails", f"{c.method} ({c.engines})"))
     if deep:
         c = fi_new.prove_symbolic(6, builder=fi_new.new_integral_6)
         parts.append(Part("X(G) = 0, n = 6, symbolic a, b", "holds" if c.ok else "fails",

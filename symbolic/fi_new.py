@@ -20,7 +20,8 @@ import sympy as sp
 from chaplygin_nd.symbolic.algebra import unvec
 
 __all__ = ["pfaffian", "pfaffian_vector", "new_integral", "new_integral_text", "prove_symbolic",
-           "prove_at_points", "hodge_square", "new_integral_6", "new_integral_6_text"]
+           "prove_at_points", "hodge_square", "new_integral_6", "new_integral_6_text",
+           "general_integral"]
 
 
 def pfaffian(A: sp.Matrix):
@@ -100,6 +101,41 @@ def new_integral_6(M: sp.Matrix, gamma: sp.Matrix, a, b) -> tuple[sp.Expr, sp.Ex
     p, q = W * e, W * gamma
     num = (2 * a * (a + 2) * p.dot(p) + 4 * a * b * x * p.dot(q) + 2 * b * (b + 2) * q.dot(q)
            + a * b * (a + b + 4) * (gamma.T * p)[0] ** 2)
+    return sp.expand(num), (2 + a) * (2 + b) - a * b * x**2
+
+
+def general_integral(M: sp.Matrix, gamma: sp.Matrix, a, b) -> tuple[sp.Expr, sp.Expr]:
+    r"""(numerator, $\Delta$) of the family found by the search, for every $n \ge 5$: with the
+    4-form $\omega = \tfrac12 M\wedge M$ ($\omega_{ijkl} = M_{ij}M_{kl} - M_{ik}M_{jl} + M_{il}M_{jk}$),
+    $e = E_n$, $x = \gamma_n$ and $\|\cdot\|$ the sum of squares over increasing index sets,
+    $G_n = \big(2a(a+2)\|\omega\wedge e\|^2 + 4abx\langle\omega\wedge e, \omega\wedge\gamma\rangle
+    + 2b(b+2)\|\omega\wedge\gamma\|^2 + ab(a+b+4)\|\omega\wedge e\wedge\gamma\|^2\big)/\Delta$.
+    $n = 6$: :func:`new_integral_6`; $n = 5$: $a(2+a)^{-1}$ times $F$'s numerator plus a known
+    integral; $n = 4$: $0$. Guessed from $n = 5, 6$, checked at exact points (row S6:first-integrals)."""
+    import itertools
+
+    n = M.shape[0]
+
+    def om(S):
+        i, j, k, l = S
+        return M[i, j] * M[k, l] - M[i, k] * M[j, l] + M[i, l] * M[j, k]
+
+    def wedge(form, deg, vec):
+        return {S: sum((-1) ** (deg - t) * form[S[:t] + S[t + 1:]] * vec[S[t]]
+                       for t in range(deg + 1))
+                for S in itertools.combinations(range(n), deg + 1)}
+
+    w = {S: om(S) for S in itertools.combinations(range(n), 4)}
+    e = [0] * (n - 1) + [1]
+    we, wg = wedge(w, 4, e), wedge(w, 4, list(gamma))
+    weg = wedge(we, 5, list(gamma))
+    x = gamma[n - 1]
+
+    def dot(A, B):
+        return sum(A[S] * B[S] for S in A)
+
+    num = (2 * a * (a + 2) * dot(we, we) + 4 * a * b * x * dot(we, wg)
+           + 2 * b * (b + 2) * dot(wg, wg) + a * b * (a + b + 4) * dot(weg, weg))
     return sp.expand(num), (2 + a) * (2 + b) - a * b * x**2
 
 
