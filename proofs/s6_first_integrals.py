@@ -146,7 +146,7 @@ def _proofs() -> list[Part]:
     if deep:
         for n in (7, 9):
             r = fi_known.jacobian_rank_mod_p(model_for(n), True, seed=ledger_seed())
-            parts.append(Part(f"independence n = {n}: the coefficients of p, H and F",
+            parts.append(Part(f"independence n = {n}: the coefficients of p, H, F and G_n",
                               "holds" if r["rank_mod_p"] == r["functions"] else "fails",
                               f"Jacobian rank mod {r['prime']} = {r['rank_mod_p']} of "
                               f"{r['functions']} at an integer-seeded rational point (a lower bound "

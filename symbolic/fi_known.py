@@ -90,7 +90,7 @@ def generators(model: Model, include_new: bool = False) -> list[Generator]:
     out.append(Generator("H", 2, _energy_degrees(model)[0], 1))
     if include_new and model.kind == "axisymmetric" and n % 2:
         out.append(Generator("F", n - 1, 4, 1))
-    if include_new and model.kind == "axisymmetric" and n == 6:
+    if include_new and model.kind == "axisymmetric" and n >= 6:
         out.append(Generator("G", 4, 2, 1))
     return sorted(out, key=lambda g: (g.m_degree, g.name))
 
@@ -174,6 +174,8 @@ def values(model: Model, z: np.ndarray, p: int, include_new: bool = False) -> np
             cols["F"] = w * w % p * fi_field.inv_mod(delta, p) % p
     if include_new and model.kind == "axisymmetric" and n == 6:
         cols["G"] = _g6(M, g, model, p)
+    elif include_new and model.kind == "axisymmetric" and n > 6:
+        cols["G"] = _g_general(M, g, model, p)
     f = fi_field.field_at(model, z, p)
     Om = f["Omega"]
     cols["H"] = sum(M[:, i, j] * Om[:, i, j] % p for i, j in pairs) % p * pow(2, p - 2, p) % p
@@ -208,6 +210,35 @@ def _g6(M, g, model: Model, p: int) -> np.ndarray:
     pg = (P * g % p).sum(1) % p
     num = (2 * a * (a + 2) % p * pp + 4 * a * b % p * x % p * pq + 2 * b * (b + 2) % p * qq
            + a * b % p * ((a + b + 4) % p) % p * (pg * pg % p)) % p
+    delta = ((2 + a) * (2 + b) - a * b % p * x % p * x) % p
+    return num * fi_field.inv_mod(delta, p) % p
+
+
+def _g_general(M, g, model: Model, p: int) -> np.ndarray:
+    """G_n of symbolic/fi_new.py ``general_integral`` mod p at the points (numerator / Delta)."""
+    import itertools
+
+    n = model.n
+    w = {S: (M[:, S[0], S[1]] * M[:, S[2], S[3]] - M[:, S[0], S[2]] * M[:, S[1], S[3]]
+             + M[:, S[0], S[3]] * M[:, S[1], S[2]]) % p for S in itertools.combinations(range(n), 4)}
+
+    def wedge(form, deg, vec):
+        return {S: sum((-1) ** (deg - t) * form[S[:t] + S[t + 1:]] * vec[:, S[t]] % p
+                       for t in range(deg + 1)) % p
+                for S in itertools.combinations(range(n), deg + 1)}
+
+    e = np.zeros_like(g)
+    e[:, -1] = 1
+    we, wg = wedge(w, 4, e), wedge(w, 4, g)
+    weg = wedge(we, 5, g)
+
+    def dot(A, B):
+        return sum(A[S] * B[S] % p for S in A) % p
+
+    a, b = fi_field.mod(model.a, p), fi_field.mod(model.b, p)
+    x = g[:, -1]
+    num = (2 * a * (a + 2) % p * dot(we, we) + 4 * a * b % p * x % p * dot(we, wg)
+           + 2 * b * (b + 2) % p * dot(wg, wg) + a * b % p * ((a + b + 4) % p) % p * dot(weg, weg)) % p
     delta = ((2 + a) * (2 + b) - a * b % p * x % p * x) % p
     return num * fi_field.inv_mod(delta, p) % p
 
