@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 CLI := $(VENV)/bin/chaplygin
 STAMP := $(VENV)/.installed
 
-.PHONY: setup verify test typecheck generate bench mutate mutate-derivations clean docs docs-html docs-test
+.PHONY: setup verify verify-deep test typecheck generate bench mutate mutate-derivations clean docs docs-html docs-test
 
 setup: $(STAMP)
 
@@ -22,6 +22,11 @@ $(STAMP): pyproject.toml
 SEED ?=
 verify: setup
 	$(CLI) verify --check-generated $(if $(SEED),--seed $(SEED))
+
+## verify-deep: the heavy boxes of the first-integral search (S6:first-integrals: n = 5 to
+## M-degree 6, n = 6, 7) and the symbolic n = 5 proof of the new integral; tens of minutes.
+verify-deep: setup
+	CHAPLYGIN_ND_DEEP=1 $(CLI) prove S6:first-integrals $(if $(SEED),--seed $(SEED))
 
 ## test: the pytest suite (engine, proofs, kernels against mpmath, hard cases).
 test: setup

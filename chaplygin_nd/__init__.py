@@ -34,7 +34,7 @@ _os.environ.setdefault("SYMPY_GROUND_TYPES", "gmpy")
 __version__ = "0.2.0"
 
 _API = ("decide", "simulate", "Simulation", "angular_velocity", "L_gamma", "vector_field",
-        "energy", "zeta")
+        "energy", "zeta", "first_integrals")
 __all__ = ["__version__", *_API]
 
 

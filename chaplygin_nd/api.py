@@ -29,7 +29,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from chaplygin_nd.simulate.scene.spec import Scene
 
 __all__ = ["decide", "simulate", "Simulation", "angular_velocity", "L_gamma", "vector_field",
-           "energy", "zeta"]
+           "energy", "zeta", "first_integrals"]
 
 
 def decide(claim_id: str, *, seed: int | None = None) -> Result:
@@ -340,3 +340,38 @@ def zeta(M0: Any, gamma0: Any, a: Any, b: Any) -> np.ndarray:
 
     M0, gamma0 = _checked("M0", M0, gamma0, a, b, vertical=True)
     return kernel(M0, gamma0, a, b)
+
+
+def first_integrals(n: int, degree: int, a: Any = None, b: Any = None, *, J: Any = None,
+                    d_gamma: int | None = None, k: int = 1, paper_only: bool = False) -> list:
+    r"""The exact first-integral search of row S6:first-integrals for M-degrees ``1..degree``:
+    integrals $P/D^k$ of eq:motion-general with $P$ of $\gamma$-degree $\le$ ``d_gamma``
+    (default $d + 2k$) on the sphere, $D = \Delta$ (eq:Delta) for the axisymmetric sphere
+    (``a``, ``b``; eq:axisymm) or $\det L_\gamma$ for a diagonal mass tensor ``J`` (eq:Inertia).
+    Returns one :class:`~chaplygin_nd.symbolic.first_integrals.DegreeResult` per degree:
+    ``found`` (an upper bound of the dimension of the integrals), ``known`` (a lower bound: the
+    algebra of the known integrals), ``settled`` when they agree — then *exactly* nothing beyond
+    the known integrals lies in the box. Parameters are exact rationals (``"-1/3"``, ``0.5``);
+    bad input raises ``ValueError`` naming the field. Domain: $n \ge 3$, $b > 0$, $a \ge -1$
+    or ``J`` positive.
+
+    Chaplygin's sphere with a generic mass tensor: $\langle M, \gamma\rangle$ at degree 1, then
+    $\|M\|^2$, $\langle M, \gamma\rangle^2$ and the energy at degree 2, and nothing else:
+
+    >>> import chaplygin_nd as cn
+    >>> rows = cn.first_integrals(3, 2, J=(1, "3/2", "7/3"), b="1/2")
+    >>> [(r.d, r.found) for r in rows], all(r.settled and r.recovered for r in rows)
+    ([(1, 1), (2, 3)], True)
+    """
+    from chaplygin_nd.symbolic import first_integrals as fi
+    from chaplygin_nd.symbolic.fi_cli import parse_model
+
+    if not isinstance(degree, int) or degree < 1:
+        raise ValueError(f"degree = {degree!r}: an integer >= 1")
+    if not isinstance(k, int) or k < 0 or (d_gamma is not None and (not isinstance(d_gamma, int)
+                                                                    or d_gamma < 0)):
+        raise ValueError("k and d_gamma must be integers >= 0")
+    Jtext = None if J is None else [str(j) for j in J]
+    model = parse_model(n, None if a is None else str(a), None if b is None else str(b), Jtext)
+    return [fi.search_degree(model, d, d + 2 * k if d_gamma is None else d_gamma, k,
+                             include_new=not paper_only) for d in range(1, degree + 1)]

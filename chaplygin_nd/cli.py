@@ -31,6 +31,8 @@ COMMANDS = {
     "bench": ("chaplygin_nd.bench.__main__", "main", "run the benchmarks"),
     "generate": ("chaplygin_nd.symbolic.codegen", "main", "rewrite generated/ from the proofs"),
     "mutate": ("chaplygin_nd.ledger.mutate", "main", "mutation testing of the printed formulas"),
+    "first-integrals": ("chaplygin_nd.symbolic.fi_cli", "main",
+                        "exact search for first integrals, degree by degree"),
     "docs": ("chaplygin_nd.cli", "docs", "build the reading site (a source checkout)"),
 }
 

@@ -115,6 +115,9 @@ class Verdict:
     #: argued in prose, not computed (counted and listed apart; never a machine-checked pass)
     argued: bool = False
     evidence: dict | None = None  # for ``evidence`` rows: see :meth:`Verdict.numerical`
+    #: machine-readable results of a row beyond the paper (e.g. the degree table of
+    #: S6:first-integrals), written to verification.json as they are
+    data: dict | None = None
 
     def __post_init__(self):
         if self.verdict not in VERDICTS:

@@ -1,0 +1,167 @@
+"""The exact first-integral search (row S6:first-integrals): controls, the exactness bounds on a
+planted case, the field modulo p, reconstruction over QQ, the new n = 5 integral, bad input."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import sympy as sp
+from chaplygin_nd.symbolic import fi_field, fi_known, fi_new, fi_reconstruct
+from chaplygin_nd.symbolic import first_integrals as fi
+from chaplygin_nd.symbolic.fi_cli import main
+
+from tests.cli_helpers import exit_code, one_error_line
+
+A, B = sp.Rational(-1, 3), sp.Rational(3, 2)
+
+
+def test_axisymmetric_field_equals_the_solve_of_the_definition():
+    """The derived inverse (P:inversion) and the mod-p solve of eq:M-O give the same field."""
+    p = fi_field.PRIMES[0]
+    m1 = fi_field.axisymmetric(5, A, B)
+    s = fi_field.sample(m1, 40, p, np.random.default_rng(3))
+    f2 = fi_field.field_at(fi_field.general(m1.J, m1.b), s["z"], p)
+    assert f2["ok"].all() and (s["zdot"] == f2["zdot"]).all()
+
+
+@pytest.mark.parametrize("n, box, found", [
+    (3, (1, 2, 0), 1),           # <M, gamma> (generic J)
+    (3, (2, 4, 1), 3),           # |M|^2, <M, gamma>^2, H
+    (4, (2, 4, 1), 4),           # F1, F2, F3, H (eq:motion-n4)
+    (5, (2, 4, 1), 4),           # two coefficients of p, <v, gamma>, H
+    (5, (3, 5, 1), 0),
+])
+def test_controls_recover_the_known_integrals_and_nothing_more(n, box, found):
+    model = (fi_field.general((1, sp.Rational(3, 2), sp.Rational(7, 3)), sp.Rational(1, 2))
+             if n == 3 else fi_field.axisymmetric(n, A, B))
+    r = fi.search_degree(model, *box)
+    assert (r.found, r.known, r.settled) == (found, found, True)
+    assert r.recovered is not False
+
+
+def test_exactness_bounds_on_the_planted_n5_integral():
+    """Without F among the known integrals the search shows exactly one more (the upper bound
+    exceeds the lower bound by one); with F the bounds meet."""
+    model = fi_field.axisymmetric(5, A, B)
+    with_f = fi.search_degree(model, 4, 4, 1)
+    paper = sum(fi.known_ranks(model, 4, 4, 1, False).values())
+    assert with_f.settled and with_f.found == with_f.known == paper + 1
+    for blk in with_f.blocks:
+        assert blk.nullity >= blk.known_rank      # the exact inequality, block by block
+
+
+def test_reconstruction_over_qq_gives_proved_integrals():
+    """n = 4, M-degree 2, Delta^1: the kernel of the trivial block over QQ, each vector proved."""
+    model = fi_field.axisymmetric(4, A, B)
+    rows, B_, blk, cols = fi_reconstruct.reconstruct(model, 2, 4, 1, 0, primes=3)
+    assert len(rows) == 3                           # F2, F3, H (F1 = Pf M is odd)
+    for r in rows:
+        expr = fi_reconstruct.to_expression(B_, blk, cols, r)
+        assert fi_reconstruct.prove_integral(expr, model, 1).ok
+
+
+def test_new_integral_exact():
+    assert fi_new.prove_symbolic(3).ok
+    assert fi_new.prove_at_points(5, 1).ok
+    text = fi_new.new_integral_text(5)
+    assert sp.sympify(text).free_symbols >= {sp.Symbol("a"), sp.Symbol("b"), sp.Symbol("M_12")}
+
+
+def test_new_integral_is_independent_for_n5_only():
+    m5 = fi_field.axisymmetric(5, A, B)
+    assert fi_known.jacobian_rank(m5, 1, include_new=True)["rank"] == 6
+    m3 = fi_field.axisymmetric(3, A, B)
+    assert fi_known.jacobian_rank(m3, 1, include_new=True)["rank"] == 3
+
+
+@pytest.mark.parametrize("argv, needle", [
+    (["2", "2", "--a", "0", "--b", "1"], "n >= 3"),
+    (["4", "2", "--a", "-2", "--b", "1"], "a >= -1"),
+    (["4", "2", "--a", "x", "--b", "1"], "not a rational"),
+    (["4", "2", "--a", "0"], "b is required"),
+    (["3", "2", "--J", "1,2", "--b", "1"], "3 positive rationals"),
+    (["4", "2", "--a", "0", "--J", "1,1,1,1", "--b", "1"], "not both"),
+])
+def test_bad_input_is_one_line(capsys, argv, needle):
+    assert exit_code(main, argv) == 2
+    assert needle in one_error_line(capsys)
+
+
+def test_api_bad_input():
+    import chaplygin_nd as cn
+
+    with pytest.raises(ValueError, match="b > 0"):
+        cn.first_integrals(4, 2, a=0, b=-1)
+    with pytest.raises(ValueError, match="degree"):
+        cn.first_integrals(4, 0, a=0, b=1)
+
+
+def test_jacobian_mod_p_is_a_lower_bound_that_matches_the_exact_rank():
+    """rank mod p <= rank over QQ; at n = 4, 5 it equals the exact rank (4, then 6 with F)."""
+    for n, rank in ((4, 4), (5, 6)):
+        r = fi_known.jacobian_rank_mod_p(fi_field.axisymmetric(n, A, B), True)
+        assert r["rank_mod_p"] == rank == r["functions"]
+
+
+def test_n6_integral_at_an_exact_point_and_counted_in_the_box():
+    """G (n = 6) vanishes under X at an exact rational point (random a, b); the known ranks of
+    the box (4, 4, 1) grow by one when G is counted."""
+    assert fi_new.prove_at_points(6, 1, builder=fi_new.new_integral_6).ok
+    m6 = fi_field.axisymmetric(6, A, B)
+    with_g = sum(fi.known_ranks(m6, 4, 4, 1, True).values())
+    assert with_g == sum(fi.known_ranks(m6, 4, 4, 1, False).values()) + 1
+
+
+def _orbit_values(n, builder, a, b, T=4.0):
+    """F (or G) along a float orbit of eq:motion-general (DOP853, rtol 1e-12): max relative drift."""
+    from scipy.integrate import solve_ivp
+
+    pairs = [(i, j) for i in range(n) for j in range(i + 1, n)]
+    J = np.ones(n)
+    J[-1] += a
+
+    def omega(M, g):
+        L = np.zeros((len(pairs), len(pairs)))
+        for c, (i, j) in enumerate(pairs):
+            B_ = np.zeros((n, n))
+            B_[i, j], B_[j, i] = 1, -1
+            Bg = B_ @ g
+            img = J[:, None] * B_ + B_ * J[None, :] + b * (np.outer(Bg, g) - np.outer(g, Bg))
+            L[:, c] = [img[k, l] for k, l in pairs]
+        w = np.linalg.solve(L, [M[i, j] for i, j in pairs])
+        Om = np.zeros((n, n))
+        for c, (i, j) in enumerate(pairs):
+            Om[i, j], Om[j, i] = w[c], -w[c]
+        return Om
+
+    def rhs(_, y):
+        M, g = y[: n * n].reshape(n, n), y[n * n:]
+        Om = omega(M, g)
+        return np.concatenate([(M @ Om - Om @ M).ravel(), -Om @ g])
+
+    rng = np.random.default_rng(0)
+    M0 = rng.normal(size=(n, n))
+    M0 = M0 - M0.T
+    g0 = rng.normal(size=n)
+    g0 /= np.linalg.norm(g0)
+    sol = solve_ivp(rhs, (0, T), np.concatenate([M0.ravel(), g0]), method="DOP853",
+                    rtol=1e-12, atol=1e-12, t_eval=np.linspace(0, T, 5))
+    vals = []
+    for y in sol.y.T:
+        num, den = builder(sp.Matrix(y[: n * n].reshape(n, n)), sp.Matrix(y[n * n:]), a, b)
+        vals.append(float(num) / float(den))
+    vals = np.array(vals)
+    return np.max(np.abs(vals - vals[0])) / abs(vals[0])
+
+
+def test_new_integrals_stay_constant_along_a_float_orbit():
+    """Numerical, not a verdict: F (n = 5) and G (n = 6) along an orbit, DOP853 at rtol 1e-12,
+    T = 4; the relative drift stays at the integrator's level (a non-integral such as the
+    numerator of F alone drifts by order one on the same orbit)."""
+    assert _orbit_values(5, fi_new.new_integral, -0.4, 1.5) < 1e-8
+    assert _orbit_values(6, fi_new.new_integral_6, 0.6, 0.8) < 1e-8
+
+    def numerator_only(M, g, a, b):
+        return fi_new.new_integral(M, g, a, b)[0], sp.Integer(1)
+
+    assert _orbit_values(5, numerator_only, -0.4, 1.5) > 1e-3
