@@ -193,8 +193,8 @@ def s6_first_integrals() -> Verdict:
     return replace(v, data=data)
 
 
-@claim("S6:euler-jacobi-n5", uses=("S6:first-integrals", "S6:open-reduced-n5", "P:Measure",
-                                   "S5:EJ-tori"),
+@claim("S6:euler-jacobi-n5", uses=("S6:first-integrals", "S6:sixth-integral-n5", "S6:reduced-n5",
+                                   "S6:open-reduced-n5", "P:Measure", "S5:EJ-tori"),
        adds=(SECTION, "for n = 5 the reduced system on P/SO(4) (dimension 8) has an invariant "
                       "measure and 6 = 8 - 2 independent first integrals: the hypotheses of the "
                       "Euler-Jacobi theorem"))

@@ -21,7 +21,11 @@ $P/SO(4)$. (3) At a seeded rational point the differentials of the five known in
 restricted to $TP$, have rank 6 (SymPy and FLINT). (4) The text form of ``verification.json`` equals
 $F$ (both engines).
 
-**Argued (not computed).** With (1)-(3), S6:reduced-n5 ($\dim P/SO(4) = 8$) and the invariant measure
+(5) The integral found by the exact search on $P$ (S6:first-integrals),
+$F_s = \langle w, (2+a)E_5 + bx\gamma\rangle^2/\Delta$, satisfies $aF_s - (2+a)F = -b\langle w,\gamma\rangle^2$
+(a known integral): the two routes found one and the same new integral.
+
+**What follows (row S6:euler-jacobi-n5, argued there, not here).** With (1)-(3), S6:reduced-n5 ($\dim P/SO(4) = 8$) and the invariant measure
 of P:Measure (which is $SO(4)$-invariant and so descends to the quotient), the Euler–Jacobi theorem (as
 the paper uses it for $n = 4$: an $m$-dimensional system with an invariant measure and $m - 2$
 independent integrals) gives: the reduced system on $P/SO(4)$ is integrable; its regular compact
@@ -124,6 +128,23 @@ def independence() -> tuple[Check, dict]:
             {"a": str(a), "b": str(b), "rank_known": known, "rank_with_F": r_sympy})
 
 
+def same_as_search() -> Check:
+    r"""Part (5): the integral the exact search finds (S6:first-integrals,
+    :func:`symbolic.fi_new.new_integral`: $F_s = \langle w, (2+a)E_5 + bx\gamma\rangle^2/\Delta$) and $F$
+    are one integral modulo the known ones: $aF_s - (2+a)F = -b\langle w,\gamma\rangle^2$ (the last is the
+    known $c_{\sigma\lambda^0}$), a polynomial identity after multiplying by $\Delta$ (both engines).
+    Two independent routes (the numerical guide with an ansatz in the invariants here, the
+    mod-$p$ search on $P$ there) found it."""
+    from chaplygin_nd.symbolic import fi_new
+
+    N_search, Dl = fi_new.new_integral(ri5.M, ri5.gamma, r5.a, r5.b)
+    N_here = si.numerator_expr(ri5.M, ri5.gamma, r5.a, r5.b)
+    w = sp.Matrix(si.pfaffian_vector([[ri5.M[i, j] for j in range(5)] for i in range(5)]))
+    L = (w.T * ri5.gamma)[0, 0]
+    residual = r5.a * N_search - (2 + r5.a) * N_here + r5.b * L**2 * Dl
+    return rational_identity([sp.expand(residual)], label="S6:sixth-integral-n5 = search's F")
+
+
 def text_form() -> Check:
     """Part (4): the SymPy-parsable text of ``verification.json`` is $F$ (both engines)."""
     parsed = sp.sympify(si.integral_text(), locals={f"M_{i + 1}{j + 1}": ri5.M[i, j] for i, j in _PAIRS}
@@ -138,24 +159,21 @@ def text_form() -> Check:
                                       "eq:pol-first-integrals", "P:Measure", "eq:action"),
        adds=(SECTION, "a sixth first integral of the axisymmetric n = 5 sphere, F = <w, B(2+B)w>/Delta "
                       "with w = *(M^M)/2 and B = a E_n E_n^T + b gamma gamma^T, proved exactly and "
-                      "independent of the five known; with Euler-Jacobi (argued) the reduced system "
-                      "on P/SO(4) is integrable"))
+                      "independent of the five known; the same integral as the exact search's "
+                      "(S6:first-integrals), up to the known c_sigma_lambda0; what follows for the "
+                      "reduced system: S6:euler-jacobi-n5"))
 def s6_sixth_integral_n5() -> Verdict:
     indep, where = independence()
     parts = [Verdict.all_of([("dF/dt = 0 on P", conservation())], n_values=(5,)).as_part("first integral"),
              Verdict.all_of([("F descends", descends())], n_values=(5,)).as_part("SO(4)-invariant"),
              Verdict.all_of([("rank 6", indep)], n_values=(5,)).as_part("independent of the known five"),
              Verdict.all_of([("text", text_form())], n_values=(5,)).as_part("text form"),
-             Verdict.by_argument(
-                 "Euler-Jacobi on P/SO(4): dimension 8 (S6:reduced-n5), the invariant measure of "
-                 "P:Measure descends (SO(4)-invariant), 6 = 8 - 2 independent integrals (this row): "
-                 "the reduced system is integrable, regular compact connected level sets without "
-                 "equilibria are 2-tori with quasi-periodic motion after a time reparametrisation",
-                 n_values=(5,)).as_part("integrability of the reduced system (Euler-Jacobi)")]
+             Verdict.all_of([("a F_search - (2+a) F = -b <w, gamma>^2", same_as_search())],
+                            n_values=(5,)).as_part("the exact search's integral is this one")]
     notes = ("F = " + si.integral_text() + " ; in the reduced coordinates of S6:reduced-n5: "
              "Delta F = " + sp.sstr(sp.factor(si.numerator_in_invariants().as_expr()))
              + f"; independence point: {where}")
     return Verdict.of_parts(parts, n_values=(5,), notes=notes, method=(
         "exact: dF/dt = 0 as a sparse-polynomial identity modulo |gamma|^2 = 1 for symbolic a, b "
         "(SymPy and FLINT), invariant-theory normal form, exact Jacobian rank at a seeded rational "
-        "point (SymPy and FLINT); Euler-Jacobi argued"))
+        "point (SymPy and FLINT); the search's form of the integral by a polynomial identity"))
