@@ -8,7 +8,6 @@ import signal
 import time
 import traceback
 from collections.abc import Callable, Sequence
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, replace
 
 from chaplygin_nd.ledger.catalog import Row, all_rows, discover, pending_reason
@@ -16,6 +15,8 @@ from chaplygin_nd.ledger.reach import Recorder
 from chaplygin_nd.ledger.registry import Verdict, registry
 from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.exact import engine_note, engine_tally, point_timings, reset_engine_tally
+
+from chaplygin_nd import processes
 
 
 @dataclass(frozen=True)
@@ -143,7 +144,7 @@ def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFA
         iterator = map(_run_one, todo, seeds, freshness)
         pool = None
     else:
-        pool = ProcessPoolExecutor(jobs, mp_context=_context(), initializer=_init_worker)
+        pool = processes.pool(jobs, _context(), _init_worker)
         iterator = pool.map(_run_one, todo, seeds, freshness)
     results = []
     try:

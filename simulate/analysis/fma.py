@@ -31,7 +31,6 @@ from __future__ import annotations
 
 import os
 import threading
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import asdict, dataclass
 
 import numpy as np
@@ -40,6 +39,8 @@ from chaplygin_nd.simulate.analysis.control import general_inertia_kernels
 from chaplygin_nd.simulate.dynamics import so
 from chaplygin_nd.simulate.dynamics.so import reduced_invariants
 from chaplygin_nd.simulate.integrators import heyoka_systems
+
+from chaplygin_nd import processes
 
 __all__ = ["MapSpec", "control_system", "control_omega", "initial_conditions", "run_map",
            "diffusion_of_chunk"]
@@ -244,8 +245,8 @@ def run_map(spec: MapSpec, workers: int | None = None, scheduler: str | None = N
     else:
         import multiprocessing as mp
 
-        with ProcessPoolExecutor(max_workers=min(workers or os.cpu_count() or 1, len(chunks)),
-                                 mp_context=mp.get_context("spawn")) as pool:
+        with processes.pool(min(workers or os.cpu_count() or 1, len(chunks)),
+                            mp.get_context("spawn")) as pool:
             parts = list(pool.map(_task, chunks))
     return np.concatenate(parts).reshape(spec.size, spec.size)
 
@@ -260,6 +261,7 @@ def _on_dask(chunks, scheduler: str, workers: int | None):
     if scheduler == "local":
         with LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
                           processes=True, dashboard_address=None) as cluster, Client(cluster) as client:
+            client.run(processes.die_with_parent, os.getpid())  # its workers are ours: see processes
             return client.gather(client.map(_task, chunks, pure=False))
     try:
         client = Client(scheduler, timeout="20s")
