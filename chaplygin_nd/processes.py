@@ -21,21 +21,26 @@ parent alone decides what an interrupt means (one line ``interrupted``, the pool
 the parent). A worker started by a thread other than the main one would be killed when that
 thread ends (the kernel's "parent" is the thread): every pool here is made by the main thread.
 
-:func:`pool` is the project's :class:`~concurrent.futures.ProcessPoolExecutor`; :func:`popen_kwargs`
-gives a :mod:`subprocess` child the same guarantee.
+:func:`pool` is the project's :class:`~concurrent.futures.ProcessPoolExecutor` (:class:`Pool`: its
+workers are all started, with Ctrl-C held, before it is used); :func:`popen_kwargs` gives a
+:mod:`subprocess` child the same guarantee.
 """
 
 from __future__ import annotations
 
+import contextlib
 import ctypes
+import multiprocessing as mp
 import os
 import signal
 import sys
 import threading
+import time
 from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor
 
-__all__ = ["die_with_parent", "worker_start", "pool", "popen_kwargs", "alive"]
+__all__ = ["die_with_parent", "worker_start", "held_signals", "Pool", "pool", "popen_kwargs",
+           "alive"]
 
 #: ``<linux/prctl.h>``: the signal a process gets when its parent dies.
 PR_SET_PDEATHSIG = 1
@@ -113,23 +118,99 @@ def _release_fork_server() -> None:
         server._forkserver_address = None
 
 
-def worker_start(owner: int, then: Callable[..., object] | None = None, *args) -> None:
+def worker_start(owner: int, ready=None, then: Callable[..., object] | None = None,
+                 *args) -> None:
     """The initializer of every pool worker: ignore Ctrl-C (the parent's), :func:`die_with_parent`
-    ``owner``, then run the pool's own initializer ``then(*args)``."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    ``owner``, let go of the signals the parent held while it started the pool (inherited as
+    blocked; a SIGTERM the parent sent in the meantime ends the worker here), tell the parent
+    (``ready``), then run the pool's own initializer ``then(*args)``."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # drops a Ctrl-C held since the fork
     if os.getpid() != owner:
         _release_fork_server()
     die_with_parent(owner)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, HELD)
+    if ready is not None:
+        ready.release()
     if then is not None:
         then(*args)
 
 
+#: The signals held back while a pool starts.
+HELD = {signal.SIGINT, signal.SIGTERM}
+
+
+@contextlib.contextmanager
+def held_signals():
+    """Within the block Ctrl-C and SIGTERM wait (main thread only): they are blocked, so the
+    processes started here inherit them blocked, and a signal that reaches another thread is
+    recorded; after the block the first one is raised again, with the handlers of before."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    held: list[int] = []
+
+    def hold(signum, frame):
+        held.append(signum)
+
+    old = {s: signal.signal(s, hold) for s in HELD}
+    mask = signal.pthread_sigmask(signal.SIG_BLOCK, HELD)
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, mask)  # a pending one runs hold() now
+        for s, handler in old.items():
+            signal.signal(s, handler if handler is not None else signal.SIG_DFL)
+        if held:
+            signal.raise_signal(held[0])
+
+
+class Pool(ProcessPoolExecutor):
+    """A :class:`~concurrent.futures.ProcessPoolExecutor` whose workers die with this process
+    (:func:`worker_start`), all started before the constructor returns, with Ctrl-C and SIGTERM
+    held until every worker is past its start-up (:func:`held_signals`): an interrupt never
+    tears the pool down under a worker that is still unpickling its queues (a starting
+    forkserver worker then printed a ``FileNotFoundError`` traceback from ``SemLock._rebuild``).
+    Leaving a ``with`` block by an exception (Ctrl-C included) ends the workers at once instead
+    of waiting for the tasks in progress."""
+
+    def __init__(self, workers: int, context=None, initializer=None, initargs: tuple = ()):
+        context = context or mp.get_context()
+        self._ready = context.Semaphore(0)
+        super().__init__(workers, mp_context=context, initializer=worker_start,
+                         initargs=(os.getpid(), self._ready, initializer, *initargs))
+        with held_signals():
+            self._launch_processes()
+            started = 0
+            deadline = time.monotonic() + START_SECONDS
+            while started < workers and time.monotonic() < deadline:
+                if self._ready.acquire(timeout=0.1):
+                    started += 1
+                elif any(p.exitcode is not None for p in list(self._processes.values())):
+                    break  # a worker that died starting: the pool reports it as broken
+
+    def stop(self) -> None:
+        """End the workers now (SIGTERM) and drop the tasks not yet done."""
+        for process in list((self._processes or {}).values()):
+            process.terminate()
+        self.shutdown(wait=True, cancel_futures=True)
+
+    def __exit__(self, exc_type, exc, tb):
+        if exc_type is None:
+            self.shutdown(wait=True)
+        else:
+            self.stop()
+        return False
+
+
+#: The longest wait for a pool's workers to start (a loaded machine; spawn imports NumPy).
+START_SECONDS = 300.0
+
+
 def pool(workers: int, context=None, initializer: Callable[..., object] | None = None,
-         initargs: tuple = ()) -> ProcessPoolExecutor:
-    """A :class:`~concurrent.futures.ProcessPoolExecutor` of ``workers`` processes (start method
-    ``context``, a :mod:`multiprocessing` context) whose workers die with this process."""
-    return ProcessPoolExecutor(workers, mp_context=context, initializer=worker_start,
-                               initargs=(os.getpid(), initializer, *initargs))
+         initargs: tuple = ()) -> Pool:
+    """A :class:`Pool` of ``workers`` processes (start method ``context``, a :mod:`multiprocessing`
+    context; default the platform's) running ``initializer(*initargs)`` after their start."""
+    return Pool(workers, context, initializer, initargs)
 
 
 def popen_kwargs() -> dict:

@@ -162,9 +162,7 @@ def _main(argv: list[str] | None, command: str) -> int:
         try:
             text = graph.render(results)
             changed = not svg.exists() or svg.read_text(encoding="utf-8") != text
-            report.write_pair(results, md, js, info)
-            if changed:
-                report.write_files({svg: text})
+            report.write_pair(results, md, js, info, {svg: text} if changed else None)
         except OSError as exc:
             return fail(f"writing the report {exc.filename}: {exc.strerror or exc} "
                         "(give --report-dir DIR for a writable folder)")
@@ -192,12 +190,14 @@ def _report_paths(report_dir: str | Path | None, whole: bool):
     folder = Path(report_dir)
     if folder.exists() and not folder.is_dir():
         return fail(f"--report-dir {report_dir}: exists and is not a folder")
-    try:
-        folder.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        return fail(f"--report-dir {report_dir}: cannot create it ({exc.strerror or exc})")
-    if not os.access(folder, os.W_OK | os.X_OK):
-        return fail(f"--report-dir {report_dir}: the folder is not writable")
+    # created only when the reports are written (an interrupted run leaves no empty folder):
+    # here the nearest existing ancestor must be a writable folder
+    base = next(p for p in (folder, *folder.absolute().parents) if p.exists() or p.is_symlink())
+    if not base.is_dir():
+        return fail(f"--report-dir {report_dir}: cannot create it ({base} is not a folder)")
+    if not os.access(base, os.W_OK | os.X_OK):
+        return fail(f"--report-dir {report_dir}: " + ("the folder is not writable" if base == folder
+                    else f"cannot create it ({base} is not writable)"))
     targets = folder / "VERIFICATION.md", folder / "verification.json", folder / "claim-graph.svg"
     foreign = _foreign_reports(*targets)
     if foreign:

@@ -104,8 +104,7 @@ def _context():
 
 
 def _init_worker():
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's: one line, exit 130
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # Ctrl-C is the parent's (processes.worker_start)
     discover()
 
 
@@ -140,14 +139,14 @@ def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFA
     seeds = [seed] * len(todo)
     freshness = [fresh] * len(todo)
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(todo) or 1))
-    if jobs == 1:
-        iterator = map(_run_one, todo, seeds, freshness)
-        pool = None
-    else:
-        pool = processes.pool(jobs, _context(), _init_worker)
-        iterator = pool.map(_run_one, todo, seeds, freshness)
+    pool = None
     results = []
     try:
+        if jobs == 1:
+            iterator = map(_run_one, todo, seeds, freshness)
+        else:  # started whole before a Ctrl-C is taken (chaplygin_nd.processes.Pool)
+            pool = processes.pool(jobs, _context(), _init_worker)
+            iterator = pool.map(_run_one, todo, seeds, freshness)
         pending = iter(todo)
         for row in rows:
             if row.id in specs:
@@ -164,11 +163,10 @@ def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFA
                 result = Result(row, verdict, 0.0)
             results.append(result)
             on_result(result)
-    except KeyboardInterrupt:  # do not wait for the rows in progress
-        for proc in list((getattr(pool, "_processes", None) or {}).values()):
-            proc.terminate()
-        raise
-    finally:
+    except BaseException:  # Ctrl-C, SIGTERM or an error: do not wait for the rows in progress
         if pool is not None:
-            pool.shutdown(cancel_futures=True)
+            pool.stop()
+        raise
+    if pool is not None:
+        pool.shutdown()
     return results

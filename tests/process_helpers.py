@@ -76,3 +76,16 @@ def kill_all(pids) -> None:
                 os.kill(p, signal.SIGKILL)
             except OSError:
                 pass
+
+
+def takes_signals(pid: int) -> bool:
+    """Whether ``pid`` catches SIGTERM (``SigCgt`` in /proc): the ``chaplygin`` program has
+    installed its handlers (chaplygin_nd.console.take_signals, SIGTERM last)."""
+    import signal
+
+    try:
+        status = Path(f"/proc/{pid}/status").read_text()
+    except OSError:
+        return False
+    mask = int(next(line.split()[1] for line in status.splitlines() if line.startswith("SigCgt:")), 16)
+    return bool(mask >> (signal.SIGTERM - 1) & 1)
