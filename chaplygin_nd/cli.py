@@ -115,7 +115,7 @@ def main(argv: list[str] | None = None) -> int:
     exit status (the interpreter's shutdown ignores it)."""
     import signal
 
-    from chaplygin_nd import console
+    from chaplygin_nd import console, signals
 
     try:
         status = _main(argv)
@@ -124,7 +124,7 @@ def main(argv: list[str] | None = None) -> int:
     finally:
         for sig in (signal.SIGINT, signal.SIGTERM):
             signal.signal(sig, signal.SIG_IGN)
-    first = console.received()
+    first = signals.received()
     if first is not None:
         if status != 130:
             console.fail("interrupted", 130)
@@ -140,9 +140,9 @@ def entry() -> None:
     crashed with SIGSEGV in 4 of 40 seeded trials, turning exit 130 into -11."""
     import os
 
-    from chaplygin_nd import console
+    from chaplygin_nd.signals import take_signals
 
-    console.take_signals()  # before any heavy import: an interrupt is one line from here on
+    take_signals()  # first, before any heavy import: an interrupt is one line from here on
     status = main()
     if status in (130, 143):
         for stream in (sys.stdout, sys.stderr):

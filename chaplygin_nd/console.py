@@ -7,10 +7,8 @@
 * :func:`interruptible` turns SIGTERM into the same :class:`Interrupted` (a
   :class:`KeyboardInterrupt`) as Ctrl-C, so the ``finally`` clauses that keep an output folder whole
   run on both; the commands then print ``interrupted`` and exit 130 (the ``chaplygin`` program
-  makes it 143 for SIGTERM: :func:`received`). A signal that lands while a module is being
-  imported waits until the import is done (an import cut half-way leaves a half-made module: NumPy
-  then says its C extensions are broken, SymPy has no ``core``): it is raised at the first moment
-  outside every import, and never lost (:func:`received` remembers it).
+  makes it 143 for SIGTERM). The handler is :func:`chaplygin_nd.signals.handler`: a signal that
+  lands in an import waits for the import to end, and none is lost.
 * :func:`usable_backend` replaces a bogus ``MPLBACKEND`` (which makes ``import matplotlib`` raise)
   by ``Agg``, with a one-line warning (the figures are drawn with Agg in any case).
 * :class:`OneLineParser` is argparse with one-line usage errors (``error: PROG: --option: ...``,
@@ -33,8 +31,11 @@ import threading
 import warnings
 from pathlib import Path
 
+from chaplygin_nd.signals import Interrupted, forget_received, received, take_signals
+from chaplygin_nd.signals import handler as _raise
+
 __all__ = ["Interrupted", "say", "fail", "interruptible", "take_signals", "received",
-           "usable_backend", "ascii_text",
+           "forget_received", "usable_backend", "ascii_text",
            "OneLineParser", "path_argument", "OneLineWarning"]
 
 _ASCII = str.maketrans({"—": "-", "–": "-", "−": "-", "×": "x", "≤": "<=", "≥": ">=",
@@ -45,10 +46,6 @@ _ASCII = str.maketrans({"—": "-", "–": "-", "−": "-", "×": "x", "≤": "<
 BACKENDS = {"gtk3agg", "gtk3cairo", "gtk4agg", "gtk4cairo", "macosx", "nbagg", "notebook",
             "qtagg", "qtcairo", "qt5agg", "qt5cairo", "tkagg", "tkcairo", "webagg", "wx",
             "wxagg", "wxcairo", "agg", "cairo", "pdf", "pgf", "ps", "svg", "template", "inline"}
-
-
-class Interrupted(KeyboardInterrupt):
-    """Ctrl-C or SIGTERM."""
 
 
 def ascii_text(text: str) -> str:
@@ -92,59 +89,6 @@ def fail(message: str, status: int = 2) -> int:
     except (BrokenPipeError, ValueError, OSError):
         pass
     return status
-
-
-#: The first ending signal (SIGINT or SIGTERM) the handler saw in this process, or None.
-_received: list[int] = []
-_retry = threading.Event()  # set while a deferred signal waits for its import to end
-#: How often a signal that landed in an import looks again whether the import is done (s).
-RETRY_SECONDS = 0.02
-
-
-def received() -> int | None:
-    """The first SIGINT or SIGTERM this process received through the handler, or ``None``."""
-    return _received[0] if _received else None
-
-
-def forget_received() -> None:
-    """Start a new command: no signal received yet (see :func:`received`)."""
-    _received.clear()
-
-
-def _importing(frame) -> bool:
-    while frame is not None:
-        if frame.f_code.co_filename.startswith("<frozen importlib"):
-            return True
-        frame = frame.f_back
-    return False
-
-
-def _again(signum: int) -> None:
-    import _thread
-
-    _retry.clear()
-    _thread.interrupt_main(signum)  # the handler runs again, in the main thread
-
-
-def _raise(signum, frame):
-    if not _received:
-        _received.append(signum)
-    if _importing(frame):  # let the import finish (module docstring); look again shortly
-        if not _retry.is_set():
-            _retry.set()
-            timer = threading.Timer(RETRY_SECONDS, _again, (signum,))
-            timer.daemon = True
-            timer.start()
-        return
-    raise Interrupted(signal.Signals(signum).name)
-
-
-def take_signals() -> None:
-    """From now on Ctrl-C and SIGTERM raise :class:`Interrupted` (main thread; the ``chaplygin``
-    program calls this before it imports anything heavy)."""
-    if threading.current_thread() is threading.main_thread():
-        for s in (signal.SIGINT, signal.SIGTERM):  # SIGTERM last: caught => both are ours
-            signal.signal(s, _raise)
 
 
 @contextlib.contextmanager
