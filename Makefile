@@ -23,9 +23,12 @@ SEED ?=
 verify: setup
 	$(CLI) verify --check-generated $(if $(SEED),--seed $(SEED))
 
-## test: the pytest suite (engine, proofs, kernels against mpmath, hard cases).
+## test: the pytest suite (engine, proofs, kernels against mpmath, hard cases), on every core
+## (pytest-xdist; each worker has its own caches: tests/conftest.py). `make test PYTEST_ARGS=-n0`
+## runs it in one process.
+PYTEST_ARGS ?= -n auto --dist worksteal
 test: setup
-	$(PY) -m pytest -q
+	$(PY) -m pytest -q $(PYTEST_ARGS)
 
 ## mutate: mutation testing of every printed formula (one-symbol AST mutants, each run against the
 ## rows that reach it); writes mutation.json and ledger/reach.json; fails on a surviving mutant.

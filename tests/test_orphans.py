@@ -101,14 +101,21 @@ def _command_workers(proc, marker: str, count: int):
      "spawn", 2),
 ], ids=["verify-jobs", "fma-workers", "dask-local"])
 def test_the_commands_pools_die_with_a_killed_parent(tmp_path, argv, marker, count):
+    """The frequency maps are killed mid-run: once their progress line (orbits done / total)
+    shows that the workers compute."""
     if argv[0] == "simulate":
         argv = [*argv, "--out", str(tmp_path / "out"), "--force"]
-    proc = subprocess.Popen([sys.executable, "-m", "chaplygin_nd", *argv], cwd=tmp_path,
-                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                            env=dict(os.environ))
+    log = tmp_path / "stderr.txt"
+    with open(log, "w") as err:
+        proc = subprocess.Popen([sys.executable, "-m", "chaplygin_nd", *argv], cwd=tmp_path,
+                                stdout=subprocess.DEVNULL, stderr=err, env=dict(os.environ))
     try:
         workers = wait_for(_command_workers(proc, marker, count), f"{count} {marker} processes",
                            process=proc)
+        if argv[0] == "simulate":
+            wait_for(lambda: "frequency map: orbits" in log.read_text(), "the progress line",
+                     process=proc)
+            workers = _command_workers(proc, marker, count)() or workers
     except BaseException:
         kill_all(descendants(proc.pid) | {proc.pid})
         raise
