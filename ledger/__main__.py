@@ -5,7 +5,8 @@ repository root) and the claim graph ``docs/claim-graph.svg`` — or, with ``--r
 three into ``DIR`` (for an installed package or a read-only checkout; an installed package writes
 nothing without it). The two reports are one result (:func:`ledger.report.write_pair`) and name the
 run (seed, commit, time, generation id). Ids are checked before any proof is imported (blanks
-stripped, "did you mean" for near misses). Ctrl-C or SIGTERM: one line ``interrupted``, exit 130; a
+stripped, "did you mean" for near misses). Ctrl-C or SIGTERM: one line ``interrupted``, exit 130 (the
+``chaplygin`` program exits 143 for SIGTERM); a
 closed stdout (``| head -1``) does not stop the run. ``--seed N`` is the seed of every
 seeded check (recorded in both reports). Exit status 1 when a row fails, a proof raises, an open row
 gives no reason, a finding has no kind, a proof registers an id that is not a ledger row, or

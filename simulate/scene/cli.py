@@ -3,7 +3,8 @@
 ``SCENE`` is a scene file or the name of a built-in scene (``generic4d``; ``--list`` shows them).
 Exit status: 0 done (and the cross-check, if asked, passed); 1 the cross-check failed; 2 the scene,
 ``--out`` or the run cannot give a right answer (one line on stderr, nothing written); 3 a kernel
-is missing from ``generated/``; 130 interrupted (Ctrl-C or SIGTERM: one line, ``--out`` keeps its
+is missing from ``generated/``; 130 interrupted (Ctrl-C; SIGTERM: 143 from the ``chaplygin``
+program, 130 from this function) — one line, ``--out`` keeps its
 previous result, :mod:`simulate.scene.outdir`). A closed stdout (``| head -1``) does not stop the run.
 """
 
