@@ -28,9 +28,12 @@ verify: setup
 verify-deep: setup
 	CHAPLYGIN_ND_DEEP=1 $(CLI) prove S6:first-integrals $(if $(SEED),--seed $(SEED))
 
-## test: the pytest suite (engine, proofs, kernels against mpmath, hard cases).
+## test: the pytest suite (engine, proofs, kernels against mpmath, hard cases), on every core
+## (pytest-xdist; each worker has its own caches: tests/conftest.py). `make test PYTEST_ARGS=-n0`
+## runs it in one process.
+PYTEST_ARGS ?= -n auto --dist worksteal
 test: setup
-	$(PY) -m pytest -q
+	$(PY) -m pytest -q $(PYTEST_ARGS)
 
 ## typecheck: mypy over the package as Python imports it (.ci/typecheck.py assembles the
 ## chaplygin_nd namespace outside the tree); the level is [tool.mypy] in pyproject.toml: mypy's

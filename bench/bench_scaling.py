@@ -33,6 +33,8 @@ from pathlib import Path
 import numpy as np
 from chaplygin_nd.bench.report import save_figure, target, write_atomic, write_rows
 
+from chaplygin_nd import processes
+
 ROOT = Path(__file__).resolve().parents[1]
 T_END = 10.0
 ERROR = 1e-10
@@ -156,7 +158,7 @@ def _run_cli(scene_file: Path, env: dict, out: Path) -> dict:
     start = time.perf_counter()
     proc = subprocess.run([sys.executable, "-m", "chaplygin_nd", "simulate", str(scene_file),
                            "--out", str(out), "--no-plots"], env=env, capture_output=True,
-                          text=True)
+                          text=True, **processes.popen_kwargs())
     wall = time.perf_counter() - start
     text = proc.stdout + proc.stderr
     integ = re.search(r"([0-9.eE+-]+) s integrating", text)

@@ -4,7 +4,7 @@ import sys
 
 try:
     from chaplygin_nd.cli import entry
-except KeyboardInterrupt:  # Ctrl-C while the command is still being imported
+except KeyboardInterrupt:  # Ctrl-C in the few lines before entry() takes the signals
     print("interrupted", file=sys.stderr)
     sys.exit(130)
 

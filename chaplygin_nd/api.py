@@ -167,7 +167,8 @@ def simulate(scene: str | Path, *, force: bool = False, progress: bool = False) 
 TOLERANCE = 1e-10
 
 
-def _checked(name: str, X: Any, gamma: Any, a: Any, b: Any, *, vertical: bool = False):
+def _checked(name: str, X: Any, gamma: Any, a: Any, b: Any, *, vertical: bool = False,
+             sphere: bool = True):
     r"""``(X, gamma)`` as float arrays after the domain checks of the kernels below, or
     ``ValueError`` naming the argument and its domain: ``X`` (``M``, ``Omega`` or ``M0``)
     ``(..., n, n)``, $n \ge 3$, real, finite and skew-symmetric ($\mathfrak{so}(n)$, eq:M-O)
@@ -175,7 +176,10 @@ def _checked(name: str, X: Any, gamma: Any, a: Any, b: Any, *, vertical: bool = 
     and finite, $a \ge -1$ (eq:axisymm:
     $\mathbb{J} = \mathrm{Id} + aE_nE_n^T$ is a mass tensor; the paper assumes $-1 \le a \le 1$,
     $a > 1$ is a prolate body and allowed), $b > 0$ ($b = mr^2$, eq:M-O); with ``vertical``,
-    $X\gamma = 0$ (the set $\mathcal{V}$ of Th:Re). These hypotheses give $\Delta(x) > 0$ and
+    $X\gamma = 0$ (the set $\mathcal{V}$ of Th:Re); with ``sphere`` (all but :func:`L_gamma`),
+    $\gamma \in S^{n-1}$: $|\lVert\gamma\rVert - 1| \le$ :data:`TOLERANCE` (off the sphere the
+    kernels, which reduce modulo $\lVert\gamma\rVert^2 = 1$, return a wrong $\Omega$ silently:
+    $\gamma = 2E_4$ gave $\Omega_{03} = -0.667$). These hypotheses give $\Delta(x) > 0$ and
     $2 + a + b > 0$ for $|x| \le 1$ (eq:Delta), so $L_\gamma$ is invertible."""
     import numpy as np
 
@@ -208,6 +212,12 @@ def _checked(name: str, X: Any, gamma: Any, a: Any, b: Any, *, vertical: bool = 
     if not np.all(b > 0.0) or not np.all(np.isfinite(b)):
         raise ValueError(f"b = {_first_bad(b, b > 0.0)} is outside the domain: a finite b > 0 "
                          "(b = m r^2, eq:M-O)")
+    if sphere:
+        off = np.abs(np.linalg.norm(gamma, axis=-1) - 1.0)
+        if not np.all(off <= TOLERANCE):
+            raise ValueError(f"gamma is off the unit sphere (max | |gamma| - 1 | = {np.max(off):.3g} "
+                             f"> {TOLERANCE:g}): the domain is gamma in S^(n-1), |gamma| = 1 "
+                             "(normalise it: gamma / |gamma|)")
     if vertical:
         Xg = np.einsum("...ij,...j->...i", X, gamma)
         off = np.linalg.norm(Xg, axis=-1) / scale
@@ -267,7 +277,7 @@ def L_gamma(Omega: Any, gamma: Any, a: Any, b: Any) -> np.ndarray:
     """
     from chaplygin_nd.runtime import L_gamma as kernel
 
-    Omega, gamma = _checked("Omega", Omega, gamma, a, b)
+    Omega, gamma = _checked("Omega", Omega, gamma, a, b, sphere=False)
     return kernel(Omega, gamma, a, b)
 
 

@@ -17,9 +17,7 @@ import their module only when chosen, so ``chaplygin --version`` imports neither
 from __future__ import annotations
 
 import importlib
-import subprocess
 import sys
-from pathlib import Path
 
 from chaplygin_nd import __version__
 
@@ -43,6 +41,8 @@ def docs(argv: list[str]) -> int:
     errors, the internal link check. Only in a source checkout (the site's sources are not
     installed)."""
     import importlib.util
+    import subprocess
+    from pathlib import Path
 
     from chaplygin_nd.console import OneLineParser, fail, path_argument
 
@@ -77,6 +77,9 @@ def docs(argv: list[str]) -> int:
 def commit() -> str | None:
     """The checkout's commit (short hash, ``+dirty`` when the tree has changes), or ``None`` when
     this is not a git checkout (an installed wheel)."""
+    import subprocess
+    from pathlib import Path
+
     root = Path(__file__).resolve().parent.parent
     if not (root / ".git").exists() or not (root / "pyproject.toml").is_file():
         return None
@@ -105,20 +108,30 @@ def _usage() -> str:
 
 def main(argv: list[str] | None = None) -> int:
     """Run the ``chaplygin`` command; the exit status of the subcommand (2 on a usage error,
-    130 when interrupted). Ctrl-C or SIGTERM at any moment of the command — while a module is
-    imported, while the subcommand runs or while it prints its last line — ends it with one line,
-    ``interrupted``; once the subcommand has returned, its files are whole and a late signal no
-    longer changes the exit status (the interpreter's shutdown ignores it)."""
+    130 when interrupted by Ctrl-C, 143 by SIGTERM). Ctrl-C or SIGTERM at any moment of the
+    command — while a module is imported (the signal then waits for the import to end:
+    :mod:`chaplygin_nd.console`), while the subcommand runs or while it prints its last line —
+    ends it with one line, ``interrupted``; a signal received before the subcommand returned is
+    never lost, even if something on the way swallowed it (the run then says ``interrupted``);
+    once the subcommand has returned, its files are whole and a late signal no longer changes the
+    exit status (the interpreter's shutdown ignores it)."""
     import signal
 
+    from chaplygin_nd import console, signals
+
     try:
-        return _main(argv)
+        status = _main(argv)
     except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
-        return 130
+        status = console.fail("interrupted", 130)
     finally:
         for sig in (signal.SIGINT, signal.SIGTERM):
             signal.signal(sig, signal.SIG_IGN)
+    first = signals.received()
+    if first is not None:
+        if status != 130:
+            console.fail("interrupted", 130)
+        status = 128 + first
+    return status
 
 
 def entry() -> None:
@@ -129,14 +142,17 @@ def entry() -> None:
     crashed with SIGSEGV in 4 of 40 seeded trials, turning exit 130 into -11."""
     import os
 
+    from chaplygin_nd.signals import take_signals
+
+    take_signals()  # first, before any heavy import: an interrupt is one line from here on
     status = main()
-    if status == 130:
+    if status in (130, 143):
         for stream in (sys.stdout, sys.stderr):
             try:
                 stream.flush()
             except (OSError, ValueError, AttributeError):
                 pass
-        os._exit(130)
+        os._exit(status)
     sys.exit(status)
 
 

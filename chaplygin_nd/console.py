@@ -6,7 +6,9 @@
 * :func:`fail` prints one line ``error: ...`` on stderr and returns the exit status.
 * :func:`interruptible` turns SIGTERM into the same :class:`Interrupted` (a
   :class:`KeyboardInterrupt`) as Ctrl-C, so the ``finally`` clauses that keep an output folder whole
-  run on both; the commands then print ``interrupted`` and exit 130.
+  run on both; the commands then print ``interrupted`` and exit 130 (the ``chaplygin`` program
+  makes it 143 for SIGTERM). The handler is :func:`chaplygin_nd.signals.handler`: a signal that
+  lands in an import waits for the import to end, and none is lost.
 * :func:`usable_backend` replaces a bogus ``MPLBACKEND`` (which makes ``import matplotlib`` raise)
   by ``Agg``, with a one-line warning (the figures are drawn with Agg in any case).
 * :class:`OneLineParser` is argparse with one-line usage errors (``error: PROG: --option: ...``,
@@ -29,7 +31,11 @@ import threading
 import warnings
 from pathlib import Path
 
-__all__ = ["Interrupted", "say", "fail", "interruptible", "usable_backend", "ascii_text",
+from chaplygin_nd.signals import Interrupted, forget_received, received, take_signals
+from chaplygin_nd.signals import handler as _raise
+
+__all__ = ["Interrupted", "say", "fail", "interruptible", "take_signals", "received",
+           "forget_received", "usable_backend", "ascii_text",
            "OneLineParser", "path_argument", "OneLineWarning"]
 
 _ASCII = str.maketrans({"—": "-", "–": "-", "−": "-", "×": "x", "≤": "<=", "≥": ">=",
@@ -40,10 +46,6 @@ _ASCII = str.maketrans({"—": "-", "–": "-", "−": "-", "×": "x", "≤": "<
 BACKENDS = {"gtk3agg", "gtk3cairo", "gtk4agg", "gtk4cairo", "macosx", "nbagg", "notebook",
             "qtagg", "qtcairo", "qt5agg", "qt5cairo", "tkagg", "tkcairo", "webagg", "wx",
             "wxagg", "wxcairo", "agg", "cairo", "pdf", "pgf", "ps", "svg", "template", "inline"}
-
-
-class Interrupted(KeyboardInterrupt):
-    """Ctrl-C or SIGTERM."""
 
 
 def ascii_text(text: str) -> str:
@@ -87,10 +89,6 @@ def fail(message: str, status: int = 2) -> int:
     except (BrokenPipeError, ValueError, OSError):
         pass
     return status
-
-
-def _raise(signum, frame):
-    raise Interrupted(signal.Signals(signum).name)
 
 
 @contextlib.contextmanager

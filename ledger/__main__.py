@@ -5,7 +5,8 @@ repository root) and the claim graph ``docs/claim-graph.svg`` — or, with ``--r
 three into ``DIR`` (for an installed package or a read-only checkout; an installed package writes
 nothing without it). The two reports are one result (:func:`ledger.report.write_pair`) and name the
 run (seed, commit, time, generation id). Ids are checked before any proof is imported (blanks
-stripped, "did you mean" for near misses). Ctrl-C or SIGTERM: one line ``interrupted``, exit 130; a
+stripped, "did you mean" for near misses). Ctrl-C or SIGTERM: one line ``interrupted``, exit 130 (the
+``chaplygin`` program exits 143 for SIGTERM); a
 closed stdout (``| head -1``) does not stop the run. ``--seed N`` is the seed of every
 seeded check (recorded in both reports). Exit status 1 when a row fails, a proof raises, an open row
 gives no reason, a finding has no kind, a proof registers an id that is not a ledger row, or
@@ -162,9 +163,7 @@ def _main(argv: list[str] | None, command: str) -> int:
         try:
             text = graph.render(results)
             changed = not svg.exists() or svg.read_text(encoding="utf-8") != text
-            report.write_pair(results, md, js, info)
-            if changed:
-                report.write_files({svg: text})
+            report.write_pair(results, md, js, info, {svg: text} if changed else None)
         except OSError as exc:
             return fail(f"writing the report {exc.filename}: {exc.strerror or exc} "
                         "(give --report-dir DIR for a writable folder)")
@@ -192,12 +191,14 @@ def _report_paths(report_dir: str | Path | None, whole: bool):
     folder = Path(report_dir)
     if folder.exists() and not folder.is_dir():
         return fail(f"--report-dir {report_dir}: exists and is not a folder")
-    try:
-        folder.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        return fail(f"--report-dir {report_dir}: cannot create it ({exc.strerror or exc})")
-    if not os.access(folder, os.W_OK | os.X_OK):
-        return fail(f"--report-dir {report_dir}: the folder is not writable")
+    # created only when the reports are written (an interrupted run leaves no empty folder):
+    # here the nearest existing ancestor must be a writable folder
+    base = next(p for p in (folder, *folder.absolute().parents) if p.exists() or p.is_symlink())
+    if not base.is_dir():
+        return fail(f"--report-dir {report_dir}: cannot create it ({base} is not a folder)")
+    if not os.access(base, os.W_OK | os.X_OK):
+        return fail(f"--report-dir {report_dir}: " + ("the folder is not writable" if base == folder
+                    else f"cannot create it ({base} is not writable)"))
     targets = folder / "VERIFICATION.md", folder / "verification.json", folder / "claim-graph.svg"
     foreign = _foreign_reports(*targets)
     if foreign:

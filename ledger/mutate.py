@@ -48,7 +48,6 @@ import sys
 import textwrap
 import time
 import traceback
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 from types import FunctionType
@@ -66,6 +65,7 @@ from chaplygin_nd.ledger.reach import (
 from chaplygin_nd.ledger.reach import save as save_reach
 from chaplygin_nd.symbolic.flint_engine import ENGINES_ENV, active_engines, engine_label
 
+from chaplygin_nd import processes
 from chaplygin_nd.console import OneLineParser, fail, path_argument, positive_int, say
 
 OUT_PATH = ROOT / "mutation.json"
@@ -528,7 +528,7 @@ def run_mutants(tasks, jobs: int = 2, on_record=lambda r: None) -> list[dict]:
             on_record(out[-1])
         return out
     ctx = mp.get_context("fork")
-    with ProcessPoolExecutor(jobs, mp_context=ctx, initializer=_init_worker) as pool:
+    with processes.pool(jobs, ctx, _init_worker) as pool:
         out = []
         for rec in pool.map(evaluate, tasks):
             out.append(rec)

@@ -35,7 +35,6 @@ import re
 import sys
 import time
 import traceback
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from types import FunctionType
 from typing import Any
@@ -44,6 +43,7 @@ from chaplygin_nd.ledger import mutate as mu
 from chaplygin_nd.ledger.catalog import ROOT, is_checkout
 from chaplygin_nd.ledger.reach import derivation_functions, load_derived, write_json_atomic
 
+from chaplygin_nd import processes
 from chaplygin_nd.console import OneLineParser, fail, path_argument, say
 
 OUT_PATH = ROOT / "mutation-derivations.json"
@@ -356,8 +356,7 @@ def main(argv: list[str] | None = None) -> int:
         tasks = plan(target, selection, args.jobs)
         print(f"{target}: {len(tasks)} mutants to run", flush=True)
         t0 = time.perf_counter()
-        with ProcessPoolExecutor(args.jobs, mp_context=mp.get_context("fork"),
-                                 initializer=_init_worker) as pool:
+        with processes.pool(args.jobs, mp.get_context("fork"), _init_worker) as pool:
             for rec in pool.map(evaluate, tasks):
                 records.append(rec)
                 if rec["outcome"] != "killed":

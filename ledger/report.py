@@ -141,24 +141,33 @@ def write_markdown(results: Sequence[Result], path: Path, info: RunInfo) -> None
     write_files({Path(path): markdown_text(results, info)})
 
 
-def write_pair(results: Sequence[Result], markdown: Path, json_path: Path, info: RunInfo) -> None:
+def write_pair(results: Sequence[Result], markdown: Path, json_path: Path, info: RunInfo,
+               extra: dict[Path, str] | None = None) -> None:
     """VERIFICATION.md and verification.json as one result: both carry ``info``'s generation id,
     the JSON names the Markdown's SHA-256, and both are written to unique temporary names first
-    and then moved into place together (:func:`write_files`)."""
+    and then moved into place together (:func:`write_files`), with the files of ``extra`` (the
+    claim graph)."""
     md = markdown_text(results, info)
     sha = hashlib.sha256(md.encode("utf-8")).hexdigest()
-    write_files({Path(markdown): md, Path(json_path): json_text(results, info, sha)})
+    write_files({Path(markdown): md, Path(json_path): json_text(results, info, sha),
+                 **(extra or {})})
 
 
 def write_files(texts: dict[Path, str]) -> None:
     """Write every ``path -> text`` through a unique temporary file in the same folder, then move
     them all into place with Ctrl-C and SIGTERM held back, so that an interrupted run leaves all
     old or all new files (never one of each) and two concurrent runs never share a temporary.
-    An ``OSError`` names the path that failed (``exc.filename``)."""
+    The folders it had to create are removed again when it does not get to the end (an
+    interrupted ``verify --report-dir NEW`` leaves nothing it created). An ``OSError`` names the
+    path that failed (``exc.filename``)."""
     temps: list[tuple[str, Path]] = []
+    created: list[Path] = []
+    done = False
     try:
         for path, text in texts.items():
+            missing = [p for p in (path.parent, *path.parent.parents) if not p.exists()]
             path.parent.mkdir(parents=True, exist_ok=True)
+            created += [p for p in missing if p not in created]
             fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
             temps.append((tmp, path))
             with os.fdopen(fd, "w", encoding="utf-8") as fh:
@@ -171,6 +180,7 @@ def write_files(texts: dict[Path, str]) -> None:
         try:
             for tmp, path in temps:
                 os.replace(tmp, path)
+            done = True
         finally:
             signal.pthread_sigmask(signal.SIG_SETMASK, old)
     except OSError as exc:
@@ -180,6 +190,12 @@ def write_files(texts: dict[Path, str]) -> None:
     finally:
         for tmp, _ in temps:
             Path(tmp).unlink(missing_ok=True)
+        if not done:
+            for folder in sorted(created, key=lambda p: len(p.parts), reverse=True):
+                try:
+                    folder.rmdir()  # only if empty: never another process's files
+                except OSError:
+                    pass
 
 
 _MARKDOWN_SPECIAL = str.maketrans({c: "\\" + c for c in "\\`*_[]<>|$#"})

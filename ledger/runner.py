@@ -7,8 +7,7 @@ import os
 import signal
 import time
 import traceback
-from collections.abc import Callable, Iterator, Sequence
-from concurrent.futures import ProcessPoolExecutor
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 
 from chaplygin_nd.ledger.catalog import Row, all_rows, discover, pending_reason
@@ -16,6 +15,8 @@ from chaplygin_nd.ledger.reach import Recorder
 from chaplygin_nd.ledger.registry import Verdict, registry
 from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.exact import engine_note, engine_tally, point_timings, reset_engine_tally
+
+from chaplygin_nd import processes
 
 
 @dataclass(frozen=True)
@@ -110,8 +111,7 @@ def _context():
 
 
 def _init_worker():
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's: one line, exit 130
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # Ctrl-C is the parent's (processes.worker_start)
     discover()
 
 
@@ -146,14 +146,14 @@ def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFA
     seeds = [seed] * len(todo)
     freshness = [fresh] * len(todo)
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(todo) or 1))
-    if jobs == 1:
-        iterator: Iterator = map(_run_one, todo, seeds, freshness)
-        pool = None
-    else:
-        pool = ProcessPoolExecutor(jobs, mp_context=_context(), initializer=_init_worker)
-        iterator = pool.map(_run_one, todo, seeds, freshness)
+    pool = None
     results = []
     try:
+        if jobs == 1:
+            iterator = map(_run_one, todo, seeds, freshness)
+        else:  # started whole before a Ctrl-C is taken (chaplygin_nd.processes.Pool)
+            pool = processes.pool(jobs, _context(), _init_worker)
+            iterator = pool.map(_run_one, todo, seeds, freshness)
         pending = iter(todo)
         for row in rows:
             if row.id in specs:
@@ -170,11 +170,10 @@ def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFA
                 result = Result(row, verdict, 0.0)
             results.append(result)
             on_result(result)
-    except KeyboardInterrupt:  # do not wait for the rows in progress
-        for proc in list((getattr(pool, "_processes", None) or {}).values()):
-            proc.terminate()
-        raise
-    finally:
+    except BaseException:  # Ctrl-C, SIGTERM or an error: do not wait for the rows in progress
         if pool is not None:
-            pool.shutdown(cancel_futures=True)
+            pool.stop()
+        raise
+    if pool is not None:
+        pool.shutdown()
     return results

@@ -19,6 +19,8 @@ import numpy as np
 import pytest
 from chaplygin_nd.simulate.scene.outdir import MANIFEST, SIBLING, lock_file
 
+ROOT = Path(__file__).resolve().parent.parent
+
 SCENE = """title = "run {tag}"
 n = 3
 a = 0.5
@@ -144,3 +146,39 @@ def test_a_second_run_into_a_locked_folder_is_refused(tmp_path):
     err = log.read_text()
     assert first.returncode == 130 and err.strip().splitlines()[-1] == "interrupted", err
     assert not out.exists()  # interrupted before writing: nothing, not half a result
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+def test_seeded_interrupts_at_0_to_2_s_are_one_line(tmp_path, sig):
+    """A handful of seeded trials (issue 25; the 300-trial runs are in notes/r21-loop.md): a run
+    of a long scene, from an empty cache, is sent ``sig`` at a seeded moment 0-2 s after the
+    program has taken the signals (observed in /proc) — during the imports, the planning, the
+    compile or the integration. Every trial ends with the one line ``interrupted`` and exit 130
+    (SIGINT) or 143 (SIGTERM): no traceback, no crash, no lost interrupt (the scene lasts
+    minutes, so exit 0 would be one), no output folder."""
+    from process_helpers import takes_signals, wait_for
+
+    scene = tmp_path / "long.toml"
+    scene.write_text((ROOT / "scenes" / "generic4d.toml").read_text()
+                     .replace("t_end = 100.0", "t_end = 1000000.0"))
+    rng = random.Random(25 + sig)
+    for trial in range(4):
+        out = tmp_path / f"out-{trial}"
+        env = dict(os.environ, CHAPLYGIN_ND_CACHE=str(tmp_path / f"cache-{trial}"),
+                   PYTHONFAULTHANDLER="1")
+        proc = subprocess.Popen([sys.executable, "-m", "chaplygin_nd", "simulate", str(scene),
+                                 "--out", str(out), "--no-plots", "--force"],
+                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+                                env=env)
+        delay = rng.uniform(0.0, 2.0)
+        try:
+            wait_for(lambda p=proc.pid: takes_signals(p), "the program's signal handlers",
+                     process=proc)
+            time.sleep(delay)  # the seeded moment of this trial, after the observed state
+        finally:
+            proc.send_signal(sig)
+            _, err = proc.communicate(timeout=300)
+        assert proc.returncode == 128 + sig and err.strip().splitlines() == ["interrupted"], \
+            (trial, delay, proc.returncode, err)
+        assert not out.exists(), (trial, delay)

@@ -11,7 +11,6 @@ import os
 import signal
 import subprocess
 import sys
-import time
 
 import pytest
 from chaplygin_nd.ledger import report
@@ -70,13 +69,62 @@ def test_an_unwritable_report_is_named(tmp_path, capsys):
     assert blocker.read_text() == "mine"
 
 
-def test_ctrl_c_is_one_line_and_exit_130():
+@pytest.mark.parametrize("moment", ["signals-taken", "pool-starting", "rows-running"])
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+def test_ctrl_c_is_one_line_and_exit_130(sig, moment):
+    """Ctrl-C (130) or SIGTERM (143) at an observed moment of ``prove --jobs 2``: once the program
+    has taken the signals (imports still running), while its pool starts (the fork server is
+    there: issue 25's traceback of a starting worker), while the rows run (two workers)."""
+    from process_helpers import cmdline, descendants, takes_signals, wait_for
+
     proc = subprocess.Popen([sys.executable, "-m", "chaplygin_nd", "prove", "eq:invL3D",
                              "P:inversion", "--jobs", "2"], stdout=subprocess.DEVNULL,
                             stderr=subprocess.PIPE, text=True, env=dict(os.environ))
-    time.sleep(4)
-    proc.send_signal(signal.SIGINT)
-    _, err = proc.communicate(timeout=120)
+
+    def servers(count):
+        return lambda: len([p for p in descendants(proc.pid) if "forkserver" in cmdline(p)]) >= count
+
+    try:
+        wait_for(lambda: takes_signals(proc.pid), "the program's signal handlers", process=proc)
+        if moment != "signals-taken":
+            wait_for(servers(1 if moment == "pool-starting" else 3), moment, process=proc)
+    finally:
+        proc.send_signal(sig)
+        _, err = proc.communicate(timeout=120)
     assert "Traceback" not in err, err
     if proc.returncode != 0:  # not already done
-        assert proc.returncode == 130 and err.strip().splitlines()[-1] == "interrupted", err
+        assert proc.returncode == 128 + sig and err.strip().splitlines() == ["interrupted"], err
+
+
+def test_an_interrupted_verify_leaves_no_report_folder(tmp_path):
+    """``verify --report-dir NEW`` interrupted while its rows run leaves nothing it created."""
+    from process_helpers import wait_for
+
+    new = tmp_path / "new" / "reports"
+    proc = subprocess.Popen([sys.executable, "-m", "chaplygin_nd", "verify", "--jobs", "1",
+                             "--report-dir", str(new)], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, env=dict(os.environ))
+    try:
+        wait_for(lambda: proc.stdout.readline().startswith("id "), "the ledger's header line",
+                 process=proc)  # the rows run now
+    finally:
+        proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 130 and err.strip().splitlines() == ["interrupted"], err
+    assert list(tmp_path.iterdir()) == [], list(tmp_path.rglob("*"))
+
+
+def test_report_files_cut_short_remove_the_folders_they_created(tmp_path, monkeypatch):
+    """An interrupt (or an error) before the files are in place: the new folders go again."""
+    def interrupted(*args):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(report.os, "replace", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        report.write_files({tmp_path / "a" / "b" / "VERIFICATION.md": "x",
+                            tmp_path / "a" / "b" / "verification.json": "{}"})
+    assert list(tmp_path.iterdir()) == []
+    (tmp_path / "kept").mkdir()
+    with pytest.raises(KeyboardInterrupt):
+        report.write_files({tmp_path / "kept" / "new" / "VERIFICATION.md": "x"})
+    assert [p.name for p in tmp_path.rglob("*")] == ["kept"]

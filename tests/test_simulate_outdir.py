@@ -189,7 +189,8 @@ def test_empty_folder_and_symlink(tmp_path):
 
 def test_refusal_costs_no_computation():
     """A refused --out returns at once although the scene would run for minutes."""
-    code = ("import sys, time; from chaplygin_nd.simulate.scene import cli; t = time.perf_counter(); "
+    code = ("import sys, time; from chaplygin_nd.simulate.scene import cli; "
+            "t = time.perf_counter(); "
             "c = cli.main(['long4d', '--out', '/dev/null']); "
             "sys.exit(c if time.perf_counter() - t < 5 else 99)")
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT,

@@ -33,7 +33,7 @@ from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
 import numpy as np
-from chaplygin_nd.simulate.analysis import chaos, draws, naff
+from chaplygin_nd.simulate.analysis import chaos, draws, naff, result_cache
 from chaplygin_nd.simulate.analysis.draws import Ensemble
 from chaplygin_nd.simulate.analysis.frequencies import REGULAR
 from chaplygin_nd.simulate.dynamics import so
@@ -258,7 +258,10 @@ def measure(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int,
     with open(path.with_suffix(".lock"), "w") as lock:   # one process computes, the others wait
         fcntl.flock(lock, fcntl.LOCK_EX)
         if path.exists():
-            return [OrbitResult(**d) for d in json.loads(path.read_text())]
+            found = result_cache.read_entry(
+                path, lambda text: [OrbitResult(**d) for d in json.loads(text)])
+            if found is not None:
+                return found
         out = _measure(s, ens, y0, seed)
         fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", dir=path.parent)
         with os.fdopen(fd, "w") as fh:

@@ -31,7 +31,6 @@ from __future__ import annotations
 
 import os
 import threading
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import asdict, dataclass
 
 import numpy as np
@@ -40,6 +39,8 @@ from chaplygin_nd.simulate.analysis.control import general_inertia_kernels
 from chaplygin_nd.simulate.dynamics import so
 from chaplygin_nd.simulate.dynamics.so import reduced_invariants
 from chaplygin_nd.simulate.integrators import heyoka_systems
+
+from chaplygin_nd import processes
 
 __all__ = ["MapSpec", "control_system", "control_omega", "initial_conditions", "run_map",
            "diffusion_of_chunk"]
@@ -226,46 +227,65 @@ def _task(args):
     return diffusion_of_chunk(MapSpec(**spec_dict), y0)
 
 
-def run_map(spec: MapSpec, workers: int | None = None, scheduler: str | None = None) -> np.ndarray:
+def run_map(spec: MapSpec, workers: int | None = None, scheduler: str | None = None,
+            on_orbits=None) -> np.ndarray:
     r"""The frequency map of ``spec``: $D$ ``(size, size)`` (rows $\varphi$, columns $x_0$). Chunks
     run here (``workers = 1``), in ``workers`` processes (default: the CPU count), or on a Dask
     cluster (``scheduler``: its address, or ``"local"`` for a local cluster of ``workers``
-    single-threaded processes). Requires heyoka (extra ``fast``) and, for a cluster, Dask
-    (extra ``cluster``)."""
+    single-threaded processes). ``on_orbits(k)`` is called as each chunk of ``k`` orbits is done
+    (the progress line). Requires heyoka (extra ``fast``) and, for a cluster, Dask (extra
+    ``cluster``)."""
     from chaplygin_nd.simulate.integrators import heyoka_taylor
     from chaplygin_nd.simulate.integrators.stops import RunStopped
 
     if not heyoka_taylor.available():
         raise RunStopped("frequency maps need heyoka: pip install 'chaplygin-nd[fast]'")
+    on_orbits = on_orbits or (lambda k: None)
     y0, _, _ = initial_conditions(spec)
     chunks = [(asdict(spec), y0[s:s + spec.chunk]) for s in range(0, len(y0), spec.chunk)]
     if scheduler is not None:
-        parts = _on_dask(chunks, scheduler, workers)
+        parts = _on_dask(chunks, scheduler, workers, on_orbits)
     elif (workers or os.cpu_count() or 1) == 1:
-        parts = [_task(c) for c in chunks]
+        parts = []
+        for c in chunks:
+            parts.append(_task(c))
+            on_orbits(len(c[1]))
     else:
         import multiprocessing as mp
+        from concurrent.futures import as_completed
 
-        with ProcessPoolExecutor(max_workers=min(workers or os.cpu_count() or 1, len(chunks)),
-                                 mp_context=mp.get_context("spawn")) as pool:
-            parts = list(pool.map(_task, chunks))
+        with processes.pool(min(workers or os.cpu_count() or 1, len(chunks)),
+                            mp.get_context("spawn")) as pool:
+            futures = {pool.submit(_task, c): len(c[1]) for c in chunks}
+            for done in as_completed(futures):
+                on_orbits(futures[done])
+            parts = [f.result() for f in futures]
     return np.concatenate(parts).reshape(spec.size, spec.size)
 
 
-def _on_dask(chunks, scheduler: str, workers: int | None):
+def _on_dask(chunks, scheduler: str, workers: int | None, on_orbits):
     from chaplygin_nd.simulate.integrators.stops import RunStopped
 
     try:
-        from distributed import Client, LocalCluster
+        from distributed import Client, LocalCluster, as_completed
     except ImportError:
         raise RunStopped("--scheduler needs Dask: pip install 'chaplygin-nd[cluster]'") from None
+
+    def gather(client):
+        futures = client.map(_task, chunks, pure=False)
+        sizes = {f.key: len(c[1]) for f, c in zip(futures, chunks)}
+        for done in as_completed(futures):
+            on_orbits(sizes[done.key])
+        return client.gather(futures)
+
     if scheduler == "local":
         with LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
                           processes=True, dashboard_address=None) as cluster, Client(cluster) as client:
-            return client.gather(client.map(_task, chunks, pure=False))
+            client.run(processes.die_with_parent, os.getpid())  # its workers are ours: see processes
+            return gather(client)
     try:
         client = Client(scheduler, timeout="20s")
     except (OSError, TimeoutError, ValueError) as exc:
         raise RunStopped(f"cannot reach the Dask scheduler {scheduler!r} ({exc})") from None
     with client:
-        return client.gather(client.map(_task, chunks, pure=False))
+        return gather(client)

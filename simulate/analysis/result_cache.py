@@ -39,7 +39,7 @@ from pathlib import Path
 from chaplygin_nd import cache as project_cache
 
 __all__ = ["ResultCacheWarning", "private_folder", "code_manifest", "code_unchanged",
-           "environment", "write_atomic", "warn_once", "locked"]
+           "environment", "write_atomic", "warn_once", "locked", "read_entry"]
 
 PROJECT = "chaplygin_nd"
 _WARNED: set[str] = set()
@@ -58,6 +58,18 @@ def warn_once(message: str) -> None:
     _WARNED.add(message)
     warnings.warn(f"{message} (the cache folder is set by ${project_cache.ENV}; "
                   "deleting it is always safe)", ResultCacheWarning, stacklevel=3)
+
+
+def read_entry(path: Path, parse):
+    """``parse(text)`` of the cache entry at ``path`` (read as UTF-8), or ``None`` after one
+    warning when the entry cannot be read or parsed (truncated, edited, not this version's
+    format): a damaged entry is recomputed, never trusted, never a traceback (issue 25)."""
+    try:
+        return parse(path.read_text(encoding="utf-8"))
+    except Exception as exc:  # noqa: BLE001 - any unreadable entry is a miss
+        warn_once(f"cache entry {path} is damaged ({type(exc).__name__}: "
+                  f"{str(exc)[:120]}); recomputing it")
+        return None
 
 
 def _unsafe(path: Path) -> str | None:

@@ -32,8 +32,11 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, rtol: float = 1e-10,
     shape = y0.shape
     atol = rtol if atol is None else atol
 
+    calls = [0]
+
     def flat(s, y):
-        if progress is not None:
+        calls[0] += 1
+        if progress is not None and calls[0] != 2:  # call 2: SciPy's probe for the first step
             progress(s)
         return field(s, y.reshape(shape)).ravel()
 

@@ -210,8 +210,8 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, tol: float | None = None,
                 _check(hy, outcome, system, ta.time[lane])
                 steps = max(steps, n)
             out[:, s:s + used] = np.moveaxis(states, 2, 1)[:, :used]
-            if progress is not None:
-                progress(t[-1])
+            if progress is not None:  # the whole work done: this pass of ``passes``
+                progress(float(t[0]) + (s // width + 1) / passes * (float(t[-1]) - float(t[0])))
     else:
         grid = numbers.array(t)
         for e in range(count):
@@ -225,6 +225,7 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, tol: float | None = None,
                 watch.raise_error()
             _check(hy, outcome, system, ta.time)
             steps += n
+            done = e + 1
             if kind == "double":
                 out[:, e] = states
             else:
@@ -234,8 +235,8 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, tol: float | None = None,
                 with mpmath.workprec(bits):
                     high[:, e] = np.vectorize(lambda v: mpmath.mpf(str(v)), otypes=[object])(states)
                 out[:, e] = np.vectorize(float, otypes=[float])(high[:, e])
-            if progress is not None:
-                progress(t[-1])
+            if progress is not None:  # the whole work done: this member of ``count``
+                progress(float(t[0]) + done / count * (float(t[-1]) - float(t[0])))
     seconds = time.perf_counter() - start
     label = {"double": "double", "real128": "real128"}.get(kind, f"real {bits} bits")
     mode = ("compact" if ta.compact_mode else "unrolled") + (f", batch {width}" if width > 1 else "")

@@ -148,7 +148,8 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, dps: int = 30, order: int | 
     start = time.perf_counter()
     out = np.empty((len(t),) + y0.shape, dtype=object)
     steps = 0
-    for e in range(y0.shape[0]):
+    members, span = y0.shape[0], (float(t[-1]) - float(t[0])) or 1.0
+    for e in range(members):
         parts = field.unpack(y0[e])
         state: list[Any] = [fx.array(v) for v in parts] + ([] if field.reconstruct else [None, None])
         T = fx.of(t[0])
@@ -171,8 +172,8 @@ def integrate(field, y0: np.ndarray, t: np.ndarray, dps: int = 30, order: int | 
                     state = new + ([] if field.reconstruct else [None, None])
                     T += H
                     steps += 1
-                    if progress is not None:
-                        progress(T / fx.one)
+                    if progress is not None:  # the whole work: member e of the ensemble
+                        progress(t[0] + (e + (T / fx.one - t[0]) / span) / members * span)
                 flat = [so_vec_obj(state[0], n), state[1]]
                 if field.reconstruct:
                     flat += [state[2].ravel(), state[3]]

@@ -3,12 +3,14 @@
 ``SCENE`` is a scene file or the name of a built-in scene (``generic4d``; ``--list`` shows them).
 Exit status: 0 done (and the cross-check, if asked, passed); 1 the cross-check failed; 2 the scene,
 ``--out`` or the run cannot give a right answer (one line on stderr, nothing written); 3 a kernel
-is missing from ``generated/``; 130 interrupted (Ctrl-C or SIGTERM: one line, ``--out`` keeps its
+is missing from ``generated/``; 130 interrupted (Ctrl-C; SIGTERM: 143 from the ``chaplygin``
+program, 130 from this function) — one line, ``--out`` keeps its
 previous result, :mod:`simulate.scene.outdir`). A closed stdout (``| head -1``) does not stop the run.
 """
 
 from __future__ import annotations
 
+import os
 import sys
 import time
 from pathlib import Path
@@ -101,6 +103,14 @@ def main(argv: list[str] | None = None) -> int:
     with interruptible():
         try:
             scene = find(args.scene, force=args.force)
+            if not isinstance(scene, FrequencyMapScene):  # refused, not silently ignored
+                for option in ("workers", "scheduler"):
+                    if getattr(args, option) is not None:
+                        raise SceneError(args.scene, f"--{option}", "only a frequency-map "
+                                         "scene (one with [fma]) runs in worker processes, and "
+                                         "this scene has no [fma] table",
+                                         f"drop --{option}, or give a frequency-map scene "
+                                         "(e.g. fma4d)")
             out = out or Path("out") / scene.name
             folder = claim(out, scene.name)
             if isinstance(scene, FrequencyMapScene):  # a frequency map (simulate/scene/frequency_map.py)
@@ -153,6 +163,11 @@ def _frequency_map(scene, folder, out, args, start) -> int:
 
     if args.workers is not None and args.workers < 1:
         raise SceneError("--workers", "--workers", f"{args.workers}", "give N >= 1")
+    cores = os.cpu_count() or 1
+    if args.workers is not None and args.workers > cores and args.scheduler in (None, "local"):
+        say(f"note    --workers {args.workers} is more than the {cores} cores of this machine: "
+            f"running {cores} worker processes")
+        args.workers = cores
     where = f"Dask scheduler {args.scheduler}" if args.scheduler else \
         f"{args.workers or 'all'} worker process(es)"
     print(f"plan    frequency map: 2 x {scene.spec.size}^2 orbits of the full field "

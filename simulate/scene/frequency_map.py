@@ -161,13 +161,18 @@ def run(scene: FrequencyMapScene, workers: int | None = None,
         scheduler: str | None = None) -> tuple[dict, str]:
     """Compute both maps; ``({file name: writer(path)}, summary text)``."""
     from chaplygin_nd.simulate.analysis.fma import initial_conditions
+    from chaplygin_nd.simulate.scene.progress import Tally
 
     s = scene.spec
     _, x0, phi = initial_conditions(s)
+    tally = Tally(2 * s.size ** 2, "frequency map: orbits")  # both maps: orbits done / total
     start = time.perf_counter()
-    D_sym = run_map(s, workers=workers, scheduler=scheduler)
-    mid = time.perf_counter()
-    D_ctl = run_map(scene.control, workers=workers, scheduler=scheduler)
+    try:
+        D_sym = run_map(s, workers=workers, scheduler=scheduler, on_orbits=tally.add)
+        mid = time.perf_counter()
+        D_ctl = run_map(scene.control, workers=workers, scheduler=scheduler, on_orbits=tally.add)
+    finally:
+        tally.done()
     end = time.perf_counter()
     where = f"Dask scheduler {scheduler}" if scheduler else f"{workers or 'all'} worker process(es)"
     text = "\n".join([

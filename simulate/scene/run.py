@@ -29,6 +29,7 @@ from chaplygin_nd.simulate.integrators.stops import NonFinite, check_finite, fmt
 from chaplygin_nd.simulate.kernels import active
 from chaplygin_nd.simulate.scene.budget import Projection, refuse_before
 from chaplygin_nd.simulate.scene.planner import Plan, settings
+from chaplygin_nd.simulate.scene.progress import eta
 from chaplygin_nd.simulate.scene.spec import Scene
 
 __all__ = ["Trajectory", "execute", "Progress"]
@@ -49,9 +50,11 @@ class Trajectory:
 
 
 class Progress:
-    """Progress on stderr for runs longer than ``after`` seconds (at most one line a second); it
-    also stops a run whose time became nan and, through ``projection``
-    (:class:`simulate.scene.budget.Projection`), one projected to cost too much."""
+    """Progress on stderr for runs longer than ``after`` seconds (at most one line a second), with
+    an ETA; it also stops a run whose time became nan and, through ``projection``
+    (:class:`simulate.scene.budget.Projection`), one projected to cost too much. The line is
+    monotone: it shows the furthest time reported, so an integrator's probe or rejected step
+    (a time it does not keep) never makes it go back."""
 
     def __init__(self, t_end: float, label: str, after: float = 2.0, stream=sys.stderr,
                  projection=None, t0: float = 0.0):
@@ -60,6 +63,7 @@ class Progress:
         self.start = time.perf_counter()
         self.last = self.start
         self.shown = False
+        self.reached = t0
 
     def restart(self) -> None:
         """The integrator is ready (compiled or loaded): the run's clocks start now."""
@@ -74,12 +78,14 @@ class Progress:
                             "the solution left float64")
         if self.projection is not None:
             self.projection(t)
+        self.reached = max(self.reached, min(t, self.t_end))
         now = time.perf_counter()
         if now - self.start >= self.after and now - self.last >= 1.0:
             span = self.t_end - self.t0
-            frac = (t - self.t0) / span if span else 1.0
-            self.stream.write(f"\r{self.label}: t = {t:.4g} / {self.t_end:.4g} "
-                              f"({100 * frac:5.1f}%, {now - self.start:.0f} s)")
+            frac = (self.reached - self.t0) / span if span else 1.0
+            self.stream.write(f"\r{self.label}: t = {self.reached:.4g} / {self.t_end:.4g} "
+                              f"({100 * frac:5.1f}%, {now - self.start:.0f} s, "
+                              f"{eta(frac, now - self.start)})")
             self.stream.flush()
             self.last, self.shown = now, True
 

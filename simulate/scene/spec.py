@@ -59,6 +59,7 @@ import math
 import os
 import stat
 import tomllib
+import unicodedata
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
@@ -173,6 +174,22 @@ def find(arg: str, force: bool = False) -> Scene | FrequencyMapScene:
     return load(path, force=force)
 
 
+def _check_title(raw: dict, fail) -> None:
+    """A scene's ``title`` is printed on the terminal and drawn in figures: a string without
+    control characters (an escape sequence such as ``\\u001b[2J`` would reach the terminal)."""
+    title = raw.get("title")
+    if title is None:
+        return
+    if not isinstance(title, str):
+        fail("title", f"must be a string, not {type(title).__name__}", 'write title = "..."')
+    bad = next((i for i, c in enumerate(title)
+                if unicodedata.category(c) == "Cc" or c in "\u2028\u2029"), None)
+    if bad is not None:
+        fail("title", f"contains the control character U+{ord(title[bad]):04X} at position "
+             f"{bad + 1} (escape sequences would reach the terminal)",
+             "write the title as plain text, on one line")
+
+
 def load(path: str | Path, force: bool = False) -> Scene | FrequencyMapScene:
     """Read and validate a scene file (see the module docstring); ``force`` lifts the memory
     limit of :mod:`simulate.scene.budget`."""
@@ -222,12 +239,16 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene | Fr
     def fail(where, problem, fix):
         raise SceneError(source, where, problem, fix)
 
+    if text.startswith("\ufeff"):  # tomllib's answer: "Invalid statement (line 1, column 1)"
+        fail("file", "starts with a UTF-8 byte-order mark (BOM: the bytes EF BB BF), which TOML "
+             "does not allow", "save the file as UTF-8 without a BOM")
     try:
         raw = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         fail("TOML", f"not valid TOML ({exc})", "correct the syntax at the position given")
     except RecursionError:
         fail("TOML", "arrays or tables nested too deeply", "write plain arrays of numbers")
+    _check_title(raw, fail)
     if "fma" in raw:  # a frequency map (issue 16): its own keys, validated by simulate/scene/frequency_map.py
         from chaplygin_nd.simulate.scene.frequency_map import load_map
         return load_map(raw, source, fail)
@@ -251,6 +272,11 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene | Fr
     if family not in choices:
         fail("initial.family", f"{family!r} is not a family", f"use one of {', '.join(choices)}"
              + (" or give M (or Omega) and gamma" if family is None else ""))
+    if family == "explicit" and not explicit:  # no family to draw from: the point must be given
+        fail("initial.M", "family = \"explicit\" needs the initial condition itself",
+             f"give M (or Omega), an n x n skew-symmetric matrix, and gamma, a list of {n} "
+             "numbers with |gamma| = 1; or choose a family to draw from: "
+             + ", ".join(families.FAMILIES))
     if family == "steady-rotation" and n != 4:
         fail("initial.family", "steady rotation (P:steady-rot) is a 4D family",
              "set n = 4 or choose another family")

@@ -1,0 +1,79 @@
+"""Progress that can be trusted (issue 25): the progress line of a long run is monotone (an
+integrator's probe, a rejected step or the next pass of an ensemble never makes it go back),
+shows an ETA, and a frequency map counts its orbits done out of the total."""
+
+from __future__ import annotations
+
+import io
+import itertools
+import re
+
+import numpy as np
+import pytest
+from chaplygin_nd.simulate.scene import progress as progress_module
+from chaplygin_nd.simulate.scene import run as run_module
+from chaplygin_nd.simulate.scene.progress import Tally, eta
+
+
+@pytest.fixture
+def ticking(monkeypatch):
+    """A clock that advances 1.5 s at every reading: every report is shown."""
+    clock = itertools.count(0.0, 1.5)
+    for module in (run_module, progress_module):
+        monkeypatch.setattr(module.time, "perf_counter", lambda: next(clock))
+
+
+def _shown(text: str) -> list[float]:
+    return [float(x) for x in re.findall(r"\(\s*([0-9.]+)%", text)]
+
+
+def test_the_progress_line_never_goes_back(ticking):
+    stream = io.StringIO()
+    bar = run_module.Progress(1.0, "full dop853", after=0.0, stream=stream)
+    for t in (0.01, 0.081, 0.008, 0.02, 0.89, 0.243, 0.5, 0.95, 1.0):  # issue 25's jumps
+        bar(t)
+    shown = _shown(stream.getvalue())
+    assert shown == sorted(shown) and shown[-1] == 100.0, shown
+    assert "ETA" in stream.getvalue()
+
+
+def test_eta_and_the_tally_of_pieces(ticking):
+    assert eta(0.0, 10.0) == "ETA ?"
+    assert eta(0.5, 10.0) == "ETA 10 s"
+    assert eta(0.2, 600.0) == "ETA 40 min" and eta(0.1, 600.0) == "ETA 1.5 h"
+    stream = io.StringIO()
+    tally = Tally(100, "frequency map: orbits", after=0.0, stream=stream)
+    for k in (8, 8, -3, 8, 76, 8):  # never more than the total, never fewer than before
+        tally.add(k)
+    tally.done()
+    counts = [int(x) for x in re.findall(r"orbits (\d+) / 100", stream.getvalue())]
+    assert counts == sorted(counts) and counts[-1] == 100, counts
+    assert "ETA" in stream.getvalue() and stream.getvalue().endswith("\n")
+
+
+def test_an_ensemble_in_several_passes_reports_the_whole_work():
+    """heyoka runs an ensemble in passes of the SIMD width: the time reported covers every
+    pass (it went from 100 % back to the next pass's fraction)."""
+    pytest.importorskip("heyoka")
+    from chaplygin_nd.simulate.dynamics import families
+    from chaplygin_nd.simulate.dynamics.field import FullField
+    from chaplygin_nd.simulate.dynamics.so import vec
+    from chaplygin_nd.simulate.integrators import heyoka_taylor
+
+    M0, gamma0 = families.draw("generic", 3, 0.5, 1.0, 1, 5, 1.0)
+    field = FullField(3, 0.5, 1.0)
+    y0 = np.concatenate([vec(M0), gamma0], axis=1)
+    reported = []
+    heyoka_taylor.integrate(field, y0, np.linspace(0.0, 2.0, 5), batch=2,
+                            progress=reported.append)
+    assert reported == sorted(reported) and reported[-1] == pytest.approx(2.0), reported
+
+
+def test_a_frequency_map_counts_its_orbits():
+    pytest.importorskip("heyoka")
+    from chaplygin_nd.simulate.analysis import fma
+    from test_fma import SMALL
+
+    done = []
+    fma.run_map(SMALL, workers=1, on_orbits=done.append)
+    assert sum(done) == SMALL.size ** 2 and all(k > 0 for k in done)
