@@ -79,7 +79,8 @@ def all_rows() -> list[Row]:
     labels = set(paper_labels())
     tail = []
     for spec in added:
-        row = Row(spec.id, spec.adds[0], spec.adds[1])
+        section, statement = spec.adds or ("", "")
+        row = Row(spec.id, section, statement)
         if spec.id in labels:
             last = max((i for i, r in enumerate(rows) if r.section == row.section),
                        default=len(rows) - 1)
