@@ -9,6 +9,10 @@ the rows grouped by the paper's sections and then *Beyond the paper* (:mod:`site
 and the sidebar's toctrees), one page ``claims/<page_name(id)>.md`` per ledger row
 (:mod:`sitegen.claims`), the manual (``docs/pages/``, copied) and the two tutorials executed now (:mod:`sitegen.tutorials`). Exit 2 with one line when the report is
 missing or does not match this checkout's ledger (run ``chaplygin verify`` first).
+
+The site reads the report and the paper only: the proof, the printed functions, the paper's lines,
+the kernels and the tests of a row come from its ``sources`` record, written by the run
+(:mod:`chaplygin_nd.ledger.sources`); no proof or printed module is imported here.
 """
 
 from __future__ import annotations
@@ -27,7 +31,7 @@ ROOT = DOCS.parent
 sys.path.insert(0, str(DOCS))
 
 from chaplygin_nd.ledger import graph  # noqa: E402
-from sitegen import claims, sections, tex, tutorials  # noqa: E402
+from sitegen import claims, sections, tutorials  # noqa: E402
 
 
 @dataclass
@@ -38,9 +42,6 @@ class Context:
     seed: int
     tex_lines: list[str]
     printed_lines: dict[str, set[int]]
-    registry: dict
-    kernels: dict[str, list[str]]
-    tests: dict[str, list[str]]
     paper_sections: list[str]
     paper_ids: set[str]
 
@@ -197,6 +198,28 @@ def index(report: dict, ctx: Context) -> str:
     return "".join(out)
 
 
+def _stale(rows: list[dict], paper_ids: list[str]) -> str:
+    """Why the report is not of this checkout ("" when it is): a row of CLAIMS.md missing, a row
+    without its ``sources`` record (a report of an older run), or a proof whose recorded source is
+    no longer at its recorded lines (the proof changed since the run)."""
+    ids = {r["id"] for r in rows}
+    missing = [i for i in paper_ids if i not in ids]
+    if missing:
+        return f"no row {', '.join(missing[:3])}"
+    for r in rows:
+        if "sources" not in r:
+            return f"row {r['id']} has no sources record"
+        proof = r["sources"]["proof"]
+        if proof is None:
+            continue
+        path = ROOT / proof["path"]
+        first, last = proof["lines"]
+        lines = path.read_text(encoding="utf-8").splitlines(keepends=True) if path.is_file() else []
+        if "".join(lines[first - 1:last]) != proof["source"]:
+            return f"{proof['path']} changed since the run (row {r['id']})"
+    return ""
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--report", default=str(ROOT / "verification.json"))
@@ -208,19 +231,19 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     try:
         report = json.loads(report_path.read_text(encoding="utf-8"))
-        report_ids = [r["id"] for r in report["rows"]]
+        if not all(r["id"] and isinstance(r["sources"], dict) for r in report["rows"]):
+            raise ValueError("a row without id or sources")
     except (OSError, UnicodeDecodeError, ValueError, KeyError, TypeError) as exc:
         print(f"error: {report_path} is not a verification.json of `chaplygin verify` "
               f"({type(exc).__name__}: {exc})", file=sys.stderr)
         return 2
 
-    from chaplygin_nd.ledger.catalog import CLAIMS_PATH, PAPER_PATH, all_rows, claims_rows, discover
-    from chaplygin_nd.ledger.registry import registry
+    from chaplygin_nd.ledger.catalog import CLAIMS_PATH, PAPER_PATH, claims_rows
 
-    discover()
-    if [r.id for r in all_rows()] != report_ids:
-        print(f"error: {report_path} is not the ledger of this checkout: run `chaplygin verify`",
-              file=sys.stderr)
+    stale = _stale(report["rows"], [r.id for r in claims_rows()])
+    if stale:
+        print(f"error: {report_path} is not the ledger of this checkout ({stale}): run "
+              "`chaplygin verify`", file=sys.stderr)
         return 2
     names = [graph.page_name(r["id"]) for r in report["rows"]]
     if len(set(names)) != len(names):
@@ -228,9 +251,7 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     ctx = Context(report["rows"], report["seed"],
                   PAPER_PATH.read_text(encoding="utf-8").splitlines(),
-                  tex.printed_lines(ROOT / "symbolic" / "printed"), registry(),
-                  claims.kernels_by_claim(ROOT / "generated"),
-                  claims.tests_by_claim(ROOT / "tests", [r["id"] for r in report["rows"]]),
+                  {r["id"]: set(r["sources"]["paper_lines"]) for r in report["rows"]},
                   sections.paper_sections(CLAIMS_PATH.read_text(encoding="utf-8")),
                   {r.id for r in claims_rows()})
     out = Path(args.out)

@@ -1,4 +1,8 @@
-"""The list of ledger rows: every id of ``paper/CLAIMS.md`` plus the rows this project added.
+"""The list of ledger rows: every id of ``paper/CLAIMS.md`` plus the rows proofs add.
+
+A row is declared once: a row of the paper in the table of ``paper/CLAIMS.md``, a row of the
+project (a stable kernel form, a physical ball, an open problem, a labelled equation CLAIMS.md
+lacks) by ``@claim(ID, adds=(SECTION, statement))`` in the proof script that decides it.
 
 ``paper/CLAIMS.md`` and ``paper/chaplygin-sphere-nd.tex`` are copies of the shared originals
 (a test keeps them identical when ``../shared`` is present). They ship inside the package as
@@ -35,24 +39,6 @@ class Row:
     claim: str
 
 
-#: Rows added by this project (CLAIMS.md says: add rows for what is missing, never drop one).
-EXTRA_ROWS = (
-    Row("eq:vert-3D", "Section 3 — vertical and horizontal momentum",
-        "the Euler equations Ĩ Ω̇ = (ĨΩ)×Ω of P:EulerTop hold along V (labelled equation "
-        "without its own CLAIMS row)"),
-    Row("eq:SOnminus1", "Section 4 — the axisymmetric sphere",
-        "SO(n−1) = {h ∈ SO(n): h Eₙ = Eₙ}; definition used by eq:action"),
-)
-
-#: Who decides the rows that are not proved yet, by section heading prefix.
-PENDING = {
-    "Section 4": "Section 4 is decided by issue #3 (derived L_γ⁻¹, Δ, ζ, χ for every n); "
-                 "no proof is registered for this row yet",
-    "Section 5": "Section 5 is decided by issue #4 (4D system, SO(3) reduction derived from "
-                 "scratch); no proof is registered for this row yet",
-}
-
-
 def _split_ids(cell: str) -> list[str]:
     return [part.strip() for part in re.split(r",|/", cell) if part.strip()]
 
@@ -74,18 +60,34 @@ def claims_rows(path: Path = CLAIMS_PATH) -> list[Row]:
 
 
 def all_rows() -> list[Row]:
-    """CLAIMS.md rows, the extra rows (each at the end of its section), then the rows that
-    registered proofs add (``@claim(..., adds=(section, claim))``), in id order.
-    Call :func:`discover` first for the latter."""
-    rows = claims_rows()
-    for extra in EXTRA_ROWS:
-        last = max((i for i, r in enumerate(rows) if r.section == extra.section), default=len(rows) - 1)
-        rows.insert(last + 1, extra)
+    """The ledger: the rows of CLAIMS.md in document order, then the rows registered proofs add
+    (``@claim(..., adds=(section, claim))``, the one place a row of the project is declared).
+    An added row whose id is a ``\\label`` of the paper (a labelled equation CLAIMS.md has no row
+    for, e.g. eq:vert-3D) goes after the last row of its section, where the paper states it; the
+    others follow at the end, in id order. A row declared twice (in CLAIMS.md and by ``adds=``)
+    raises ``ValueError`` naming both places. Call :func:`discover` first."""
     from chaplygin_nd.ledger.registry import registry
 
-    for spec in sorted(registry().values(), key=lambda s: s.id):
-        if spec.adds and spec.id not in {r.id for r in rows}:
-            rows.append(Row(spec.id, spec.adds[0], spec.adds[1]))
+    rows = claims_rows()
+    paper = {r.id: r for r in rows}
+    added = sorted((s for s in registry().values() if s.adds), key=lambda s: s.id)
+    twice = [f"{s.id} (paper/CLAIMS.md, {paper[s.id].section!r}; and @claim(adds=...) in "
+             f"{s.module})" for s in added if s.id in paper]
+    if twice:
+        raise ValueError("ledger row declared twice: " + "; ".join(twice)
+                         + "; keep the CLAIMS.md row and drop adds=, or rename the added row")
+    labels = set(paper_labels())
+    tail = []
+    for spec in added:
+        section, statement = spec.adds or ("", "")
+        row = Row(spec.id, section, statement)
+        if spec.id in labels:
+            last = max((i for i, r in enumerate(rows) if r.section == row.section),
+                       default=len(rows) - 1)
+            rows.insert(last + 1, row)
+        else:
+            tail.append(row)
+    rows += tail
     ids = [r.id for r in rows]
     duplicates = {i for i in ids if ids.count(i) > 1}
     if duplicates:
@@ -96,13 +98,6 @@ def all_rows() -> list[Row]:
 def paper_labels(path: Path = PAPER_PATH) -> list[str]:
     r"""Every ``\label{...}`` of the paper, in order."""
     return re.findall(r"\\label\{([^}]*)\}", path.read_text(encoding="utf-8"))
-
-
-def pending_reason(row: Row) -> str:
-    for prefix, reason in PENDING.items():
-        if row.section.startswith(prefix):
-            return reason
-    return ""
 
 
 def discover() -> list[str]:
@@ -118,9 +113,9 @@ def discover() -> list[str]:
 
 
 def _declared_ids() -> set[str]:
-    """Every ledger id, read without importing a proof: CLAIMS.md, :data:`EXTRA_ROWS` and the
-    ``@claim("ID", ...)`` lines of the proof scripts (the rows they add)."""
-    ids = {r.id for r in claims_rows()} | {r.id for r in EXTRA_ROWS}
+    """Every ledger id, read without importing a proof: CLAIMS.md and the ``@claim("ID", ...)``
+    lines of the proof scripts (the rows they add)."""
+    ids = {r.id for r in claims_rows()}
     folder = Path(str(resources.files("chaplygin_nd.proofs")))
     for script in folder.glob("*.py"):
         ids.update(re.findall(r"@claim\(\s*[\"']([^\"']+)[\"']",

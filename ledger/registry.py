@@ -281,8 +281,9 @@ def claim(claim_id: str, *, uses: Sequence[str] = (), adds: tuple[str, str] | No
     """Register the decorated zero-argument function as the proof of ledger row ``claim_id``.
 
     ``adds=(section, claim)`` makes it a row this project adds to the ledger (e.g. a stable
-    rewrite of a formula for a kernel); without it ``claim_id`` must be a row of CLAIMS.md or of
-    ``ledger.catalog.EXTRA_ROWS``."""
+    rewrite of a formula for a kernel, or a labelled equation CLAIMS.md has no row for); without it
+    ``claim_id`` must be a row of CLAIMS.md. A row is declared in one of the two places, never
+    both (:func:`ledger.catalog.all_rows` refuses it)."""
 
     def register(fn: Callable[[], Verdict]) -> Callable[[], Verdict]:
         if claim_id in _REGISTRY:

@@ -20,7 +20,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import sympy
-from chaplygin_nd.ledger.registry import ERRATA_KINDS, KINDS, NEEDS_KIND, VERDICTS
+from chaplygin_nd.ledger import sources
+from chaplygin_nd.ledger.registry import ERRATA_KINDS, KINDS, NEEDS_KIND, VERDICTS, registry
 from chaplygin_nd.ledger.runner import Result
 from chaplygin_nd.symbolic.points import n_text
 
@@ -118,7 +119,9 @@ def missing_kind(results: Sequence[Result]) -> list[str]:
 
 
 def json_text(results: Sequence[Result], info: RunInfo, markdown_sha256: str | None = None) -> str:
-    """verification.json; ``markdown_sha256`` names the VERIFICATION.md written with it."""
+    """verification.json; ``markdown_sha256`` names the VERIFICATION.md written with it. Each row
+    carries ``sources`` (:func:`ledger.sources.collect`): what the site shows beside the verdict."""
+    where = sources.collect([(r.row.id, r.printed) for r in results], registry())
     data = {"seed": info.seed, "commit": info.commit, "started": info.started,
             "generation": info.generation, "markdown_sha256": markdown_sha256,
             "generated": info.generated, "problems": list(info.problems),
@@ -126,7 +129,7 @@ def json_text(results: Sequence[Result], info: RunInfo, markdown_sha256: str | N
             "kinds": dict(Counter(r.verdict.kind for r in results if r.verdict.kind)),
             "argued": [{"id": i, "part": name} for i, name in argued(results)],
             "claim_graph": info.graph,
-            "rows": [r.to_dict() for r in results],
+            "rows": [dict(r.to_dict(), sources=where[r.row.id]) for r in results],
             "environment": {"python": platform.python_version(), "sympy": sympy.__version__}}
     return json.dumps(data, indent=2, ensure_ascii=False) + "\n"
 

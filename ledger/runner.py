@@ -10,7 +10,7 @@ import traceback
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 
-from chaplygin_nd.ledger.catalog import Row, all_rows, discover, pending_reason
+from chaplygin_nd.ledger.catalog import Row, all_rows, discover
 from chaplygin_nd.ledger.reach import Recorder
 from chaplygin_nd.ledger.registry import Verdict, registry
 from chaplygin_nd.symbolic import points
@@ -164,9 +164,8 @@ def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFA
                 result = Result(row, verdict, seconds, spec.module, spec.uses, error, printed,
                                 derived)
             else:
-                reason = pending_reason(row)
-                # No proof and no section owner: an open row WITHOUT a reason (fails the run).
-                verdict = Verdict.open(reason) if reason else Verdict("open", "not yet checked")
+                # No proof registered: an open row WITHOUT a reason (fails the run).
+                verdict = Verdict("open", "not yet checked")
                 result = Result(row, verdict, 0.0)
             results.append(result)
             on_result(result)

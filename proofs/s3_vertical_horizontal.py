@@ -158,7 +158,10 @@ def _euler_along_V() -> Check:
                  euler.counterexample or parametrisation.counterexample)
 
 
-@claim("eq:vert-3D", uses=("eq:motion3D", "eq:mom3D", "eq:VHgeneraln"))
+@claim("eq:vert-3D", uses=("eq:motion3D", "eq:mom3D", "eq:VHgeneraln"),
+       adds=("Section 3 — vertical and horizontal momentum",
+             "the Euler equations Ĩ Ω̇ = (ĨΩ)×Ω of P:EulerTop hold along V (labelled equation "
+             "without its own CLAIMS row)"))
 def euler_equations_on_V() -> Verdict:
     check = _euler_along_V()
     return Verdict.decide(

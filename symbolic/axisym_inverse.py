@@ -11,7 +11,7 @@ $\gamma$ and $E_n$:
 We solve $L_\gamma\big(\sum_k c_k T_k(M)\big) = M$ for all $M$ for unknown $c_k \in \mathbb{Q}(a, b, x)$
 by exact linear algebra in $\mathfrak{so}(4)$ with $\gamma = (0, 0, s, x)$, $s^2 = 1 - x^2$
 (:func:`inverse_coefficients`). The identity for every $n$ and every $\gamma \in S^{n-1}$ is then
-*proved* in proofs/p_inversion.py (symbolic $n = 3, 4, 5$ plus the reduction argument).
+*proved* in proofs/s4_inversion.py (symbolic $n = 3, 4, 5$ plus the reduction argument).
 """
 
 from __future__ import annotations

@@ -83,7 +83,7 @@ def frame_coefficients() -> dict[str, sp.Expr]:
     $L_\gamma(\gamma\wedge w)$ in $(E_n\wedge w, \gamma\wedge w)$), ``c0`` ($L_\gamma(E_n\wedge\gamma)
     = c_0\,E_n\wedge\gamma$) and ``c2`` ($L_\gamma(w_1\wedge w_2) = c_2\, w_1\wedge w_2$), as
     polynomials in $a, b, x$. The frame is general: any $(\gamma, E_n, w_i, w_j)$ is carried to it
-    by an isometry fixing $E_n$ (see proofs/p_measure.py for the argument)."""
+    by an isometry fixing $E_n$ (see proofs/s4_measure.py for the argument)."""
     s = sp.Symbol("s", positive=True)
     rule = {s**2: 1 - x**2}
     e = E_n(4)
@@ -109,7 +109,7 @@ def block_C(x=x, a=a, b=b) -> sp.Matrix:
 
 def Delta(x=x, a=a, b=b) -> sp.Expr:
     r"""$\Delta(x) := \det C$ (eq:Delta), derived as the determinant of the block of :func:`block_C`.
-    Polynomial in $a, b, x$; positive for $x^2 \le 1$, $b > 0$, $a > -2$ (see proofs/eq_delta.py)."""
+    Polynomial in $a, b, x$; positive for $x^2 \le 1$, $b > 0$, $a > -2$ (see proofs/s4_delta.py)."""
     return sp.expand(block_C(x, a, b).det())
 
 

@@ -53,6 +53,37 @@ def test_registered_proofs_are_ledger_rows(rows):
     assert sorted(set(registry()) - ids) == []
 
 
+def test_a_row_declared_twice_is_refused(rows, monkeypatch):
+    """A row of CLAIMS.md that a proof also declares with ``adds=`` is one row declared twice:
+    the ledger refuses it with one message naming both places, instead of keeping either."""
+    import importlib
+
+    reg = importlib.import_module("chaplygin_nd.ledger.registry")  # the package exports a function of that name
+    spec = reg.registry()["eq:invL3D"]
+    monkeypatch.setitem(reg._REGISTRY, "eq:invL3D", reg.ClaimSpec(
+        "eq:invL3D", spec.run, spec.uses, "tests.duplicate", ("Section 2.1 — anywhere", "again")))
+    with pytest.raises(ValueError, match=r"declared twice: eq:invL3D \(paper/CLAIMS\.md, "
+                                         r"'Section 2\.1.*@claim\(adds=\.\.\.\) in tests\.duplicate"):
+        all_rows()
+
+
+def test_an_added_paper_label_sits_in_its_section(rows):
+    """A row a proof adds for a labelled equation of the paper (eq:vert-3D, eq:SOnminus1) follows
+    the last CLAIMS.md row of its section; the other added rows follow the paper's, in id order."""
+    ids = [r.id for r in rows]
+    paper = claims_rows()
+    labels = set(paper_labels())
+    for added in ("eq:vert-3D", "eq:SOnminus1"):
+        spec = registry()[added]
+        assert spec.adds is not None and added in labels
+        last = [r.id for r in paper if r.section == spec.adds[0]][-1]
+        assert ids.index(added) == ids.index(last) + 1
+    labelled = [i for i, spec in registry().items() if spec.adds and i in labels]
+    tail = ids[len(paper) + len(labelled):]
+    assert tail == sorted(tail) and all(registry()[i].adds for i in tail)
+    assert not hasattr(__import__("chaplygin_nd.ledger.catalog", fromlist=["x"]), "EXTRA_ROWS")
+
+
 def test_paper_copies_match_shared_originals():
     shared = ROOT.parent / "shared"
     if not shared.exists():  # CI puts shared/ beside the clone; a bare clone has only the copies

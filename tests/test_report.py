@@ -166,3 +166,31 @@ def test_committed_claim_graph_names_every_ledger_row():
     labels = set(re.findall(r"<text[^>]*>([^<]*)</text>", svg))
     missing = [r.id for r in all_rows() if r.id not in labels]
     assert missing == [], f"run `make verify` and commit {report.GRAPH_PATH}; missing {missing}"
+
+
+def test_the_json_records_what_the_site_shows_of_each_row():
+    """verification.json carries each row's sources (the site reads them instead of importing
+    proofs, printed modules, generated/ or tests/): the @claim function at its recorded lines, the
+    printed functions it called with their source, the .tex lines of the transcription, the
+    kernels whose Claims: line names it, and the tests that name it."""
+    from chaplygin_nd.ledger.catalog import ROOT
+
+    results = run(select(["K:Delta", "eq:inverse-Leg"]), jobs=1)
+    info = report.RunInfo(seed=points.DEFAULT_SEED, commit="x", started="now", generation="g",
+                          generated="not checked", problems=(), graph="")
+    rows = {r["id"]: r for r in json.loads(report.json_text(results, info))["rows"]}
+    for cid, row in rows.items():
+        proof = row["sources"]["proof"]
+        assert proof["module"] == row["proof_module"] and proof["path"].startswith("proofs/")
+        first, last = proof["lines"]
+        text = (ROOT / proof["path"]).read_text(encoding="utf-8").splitlines(keepends=True)
+        assert "".join(text[first - 1:last]) == proof["source"]
+        assert f'@claim("{cid}"' in proof["source"] and proof["doc"]
+    kernels = rows["K:Delta"]["sources"]["kernels"]
+    assert "axisym.Delta" in kernels, kernels              # the form K:Delta certifies
+    leg = rows["eq:inverse-Leg"]
+    assert leg["printed"] and [p["name"] for p in leg["sources"]["printed"]] == leg["printed"]
+    assert all(p["path"].startswith("symbolic/printed/") and "def " in p["source"]
+               for p in leg["sources"]["printed"])
+    assert leg["sources"]["paper_lines"]
+    assert any(t.startswith("tests/") for t in leg["sources"]["tests"] + rows["K:Delta"]["sources"]["tests"])

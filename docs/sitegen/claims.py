@@ -1,18 +1,15 @@
 """One MyST page per ledger row, from the row of verification.json and the sources it names.
 
 Nothing on a page is written by hand: the verdict, method, n, seconds, seed, parts and
-counterexamples come from the JSON; the statement from the .tex (:mod:`sitegen.tex`); the proof
-from the claim script (``inspect``); the kernels from the ``Claims:`` lines of generated/; the
-tests from the test files that name the row.
+counterexamples come from the JSON; the statement from the .tex (:mod:`sitegen.tex`); the proof,
+the printed functions, the kernels and the tests from the row's ``sources`` record, which the run
+wrote (:mod:`chaplygin_nd.ledger.sources`).
 """
 
 from __future__ import annotations
 
-import ast
 import html
-import inspect
 import re
-from pathlib import Path
 
 from chaplygin_nd.ledger import graph
 
@@ -130,39 +127,6 @@ def checks_html(row: dict) -> str:
     return '<ul class="checks">' + "".join(lis) + "</ul>" + foot
 
 
-def kernels_by_claim(generated: Path) -> dict[str, list[str]]:
-    """claim id -> ``module.function`` of generated/ whose docstring's ``Claims:`` line names it."""
-    out: dict[str, list[str]] = {}
-    for path in sorted(generated.glob("*.py")):
-        for node in ast.parse(path.read_text(encoding="utf-8")).body:
-            if isinstance(node, ast.FunctionDef) and not node.name.startswith("_"):
-                doc = ast.get_docstring(node) or ""
-                m = re.search(r"Claims:\s*([^\n]*?)\.?(?:\s+Operations|\n|$)", doc)
-                for cid in (c.strip() for c in (m.group(1).split(",") if m else [])):
-                    out.setdefault(cid, []).append(f"{path.stem}.{node.name}")
-    return out
-
-
-def tests_by_claim(tests: Path, ids: list[str]) -> dict[str, list[str]]:
-    """claim id -> ``file::test`` of every test function whose source contains the id in quotes."""
-    out: dict[str, list[str]] = {}
-    for path in sorted(tests.glob("test_*.py")):
-        text = path.read_text(encoding="utf-8")
-        for node in ast.walk(ast.parse(text)):
-            if isinstance(node, ast.FunctionDef) and node.name.startswith("test"):
-                body = ast.get_source_segment(text, node) or ""
-                for cid in ids:
-                    if f'"{cid}"' in body or f"'{cid}'" in body:
-                        out.setdefault(cid, []).append(f"tests/{path.name}::{node.name}")
-    return out
-
-
-def _proof_source(spec) -> tuple[str, str]:
-    """(module docstring, source of the ``@claim`` function) of a registered proof."""
-    module = inspect.getmodule(spec.run)
-    return inspect.getdoc(module) or "", inspect.getsource(spec.run)
-
-
 def _badge(row: dict, seed) -> str:
     v = row["verdict"]
     kind = f'<span class="kind kind-{row["kind"]}">kind: {row["kind"]}</span>' if row["kind"] else ""
@@ -228,19 +192,13 @@ def _cell(text: str) -> str:
     return html.escape(str(text).replace("|", "\\|").replace("\n", " "), quote=False) or " "
 
 
-def _printed_sources(names: list[str]) -> str:
-    """Source of the symbolic/printed functions the row called (the literal transcription)."""
-    import importlib
-
-    out = []
-    for name in names:
-        module, _, func = name.partition(".")
-        try:
-            obj = getattr(importlib.import_module(f"chaplygin_nd.symbolic.printed.{module}"), func)
-            out.append(f"# chaplygin_nd.symbolic.printed.{name}\n" + inspect.getsource(obj))
-        except (ImportError, AttributeError, TypeError, OSError):
-            out.append(f"# chaplygin_nd.symbolic.printed.{name}: source not found")
-    return "\n".join(out)
+def _printed_sources(records: list[dict]) -> str:
+    """Source of the symbolic/printed functions the row called (the literal transcription), as
+    the run recorded it."""
+    return "\n".join(f"# chaplygin_nd.symbolic.printed.{p['name']} ({p['path']}, lines "
+                     f"{p['lines'][0]}–{p['lines'][1]})\n" + p["source"] if "source" in p
+                     else f"# chaplygin_nd.symbolic.printed.{p['name']}: source not found"
+                     for p in records)
 
 
 def page(row: dict, ctx) -> str:
@@ -273,7 +231,7 @@ def page(row: dict, ctx) -> str:
     out.append(_parts(row))
     if row["printed"]:
         out.append("\n## As printed: the literal transcription used\n")
-        out.append(code(_printed_sources(row["printed"])))
+        out.append(code(_printed_sources(row["sources"]["printed"])))
     if row.get("evidence"):
         out.append("\n## Evidence: measured, the control, and the rule fixed beforehand\n")
         ev = row["evidence"]
@@ -285,14 +243,15 @@ def page(row: dict, ctx) -> str:
         out.append("\n".join(lines) + "\n")
         out.append("\nFigures: `chaplygin simulate tori4d` draws the Poincaré section and writes "
                    "`frequencies.json` (not built with the site).\n")
-    spec = ctx.registry.get(cid)
-    if spec is not None:
-        doc, source = _proof_source(spec)
-        out.append(f"\n## The proof: `{spec.module}`\n")
-        if doc:
-            out.append(code(doc, "text"))
-        out.append("\nThe `@claim` function that decides the row:\n")
-        out.append(code(source))
+    proof = row["sources"]["proof"]
+    if proof is not None:
+        out.append(f"\n## The proof: `{proof['module']}`\n")
+        if proof["doc"]:
+            out.append(code(proof["doc"], "text"))
+        first, last = proof["lines"]
+        out.append(f"\nThe `@claim` function that decides the row ({proof['path']}, lines "
+                   f"{first}–{last}):\n")
+        out.append(code(proof["source"]))
     out.append("\n## Uses and used by\n")
     uses = [u for u in row["uses"] if u in ctx.ids]
     used_by = [r["id"] for r in ctx.rows if cid in r["uses"]]
@@ -303,10 +262,10 @@ def page(row: dict, ctx) -> str:
         out.append(raw('<div class="graph">' + svg.subgraph(
             cid, ctx.order, ctx.uses, ctx.fills, lambda i: f"{graph.page_name(i)}.html") + "</div>"))
     out.append("\n## Kernels and tests\n")
-    kernels = ctx.kernels.get(cid, [])
+    kernels = row["sources"]["kernels"]
     out.append("\n**Generated kernels that implement it** (generated/, `Claims:` line): "
                + (", ".join(f"`{k}`" for k in kernels) or "none") + "\n")
-    tests = ctx.tests.get(cid, [])
+    tests = row["sources"]["tests"]
     out.append("\n**Tests that name this row:** " + (", ".join(f"`{t}`" for t in tests) or "none")
                + "\n")
     return "".join(out)

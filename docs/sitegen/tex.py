@@ -2,7 +2,8 @@ r"""The paper's statement of a ledger row, cut from the .tex and turned into HTM
 
 Where a row's passage is: the environment that holds ``\label{ID}`` (for an equation, with the
 paragraph around it); else the lines that ``symbolic/printed`` records for the row (its modules'
-``SOURCE`` tables and the ``ID (lines a-b)`` of their docstrings), each widened to its paragraph;
+``SOURCE`` tables and the ``ID (lines a-b)`` of their docstrings, read by the run into the row's
+``sources.paper_lines``), each widened to its paragraph;
 else nothing (a row this project added, or a claim of the prose without a line of its own).
 
 The conversion keeps every formula as LaTeX (``\(..\)``, ``\[..\]``) for MathJax and turns the
@@ -11,11 +12,9 @@ little text markup the paper uses into HTML; it never rewrites a formula.
 
 from __future__ import annotations
 
-import ast
 import html
 import re
 from dataclasses import dataclass
-from pathlib import Path
 
 #: Display environments kept as maths; theorem-like ones shown with a bold heading.
 MATH_ENVS = ("equation", "equation*", "align", "align*", "gather", "gather*", "multline",
@@ -65,25 +64,6 @@ def _paragraph(lines: list[str], first: int, last: int) -> tuple[int, int]:
     while last + 1 < len(lines) and lines[last + 1].strip() and last - first < _MAX_LINES:
         last += 1
     return first, last
-
-
-def printed_lines(printed_dir: Path) -> dict[str, set[int]]:
-    """claim id -> the .tex lines ``symbolic/printed`` says it transcribed (SOURCE tables and
-    ``ID (lines a-b)`` / ``ID (line a)`` / ``lines a and b`` in its docstrings and comments)."""
-    found: dict[str, set[int]] = {}
-    for path in sorted(printed_dir.glob("section*.py")):
-        text = path.read_text(encoding="utf-8")
-        for node in ast.walk(ast.parse(text)):
-            if isinstance(node, ast.Assign) and any(getattr(t, "id", "") == "SOURCE"
-                                                     for t in node.targets):
-                for cid, lines in ast.literal_eval(node.value).items():
-                    found.setdefault(cid, set()).update(lines)
-        for m in re.finditer(r"([A-Za-z0-9]+:[\w:.-]+)\s*\(lines?\s+(\d+)(?:\s*(?:-|–|and)\s*(\d+))?",
-                             text):
-            cid, a, b = m.group(1), int(m.group(2)), int(m.group(3) or m.group(2))
-            if b >= a and b - a < _MAX_LINES:
-                found.setdefault(cid, set()).update(range(a, b + 1))
-    return found
 
 
 def passages(tex_lines: list[str], claim_id: str, printed: dict[str, set[int]]) -> list[Passage]:

@@ -19,7 +19,7 @@ Two kinds of kernel:
   $n = 4$), $\gamma \in \mathbb{R}^n$ with $x = \gamma_n$.
 
 $\Delta$ is emitted as $2(2+a+b) + ab\,(1-x)(1+x)$ (proved equal to the derived $\Delta$ in
-proofs/k_stable.py, row K:Delta). Measured over the hard cases ($|x| \to 1$, $a \in [-1, 1]$,
+proofs/s4_kernel_forms.py, row K:Delta). Measured over the hard cases ($|x| \to 1$, $a \in [-1, 1]$,
 $b$ up to $10^{12}$) this form and the naive $(2+a)(2+b) - abx^2$ are both within 1.1 ulp of the
 50-digit value: $\Delta \ge 2+b$ is never the small difference of large terms, so no stable rewrite
 is *needed*; the row only certifies the form the kernels evaluate.

@@ -60,7 +60,9 @@ def _rotation_point(rng, n: int) -> dict:
     return pt
 
 
-@claim("eq:SOnminus1", uses=())
+@claim("eq:SOnminus1", uses=(),
+       adds=("Section 4 — the axisymmetric sphere",
+             "SO(n−1) = {h ∈ SO(n): h Eₙ = Eₙ}; definition used by eq:action"))
 def eq_sonminus1() -> Verdict:
     def fixes_axis(p):
         return p["h"] * E_n(p["n"]) - E_n(p["n"])
