@@ -16,9 +16,10 @@ import json
 import math
 import os
 import platform
-from concurrent.futures import ProcessPoolExecutor
 from multiprocessing import get_context
 from pathlib import Path
+
+from chaplygin_nd import processes
 
 QUICK = {3: ((1, 2, 0), (2, 4, 1), (3, 4, 1)), 4: ((2, 4, 1), (3, 5, 1), (4, 6, 1)),
          5: ((2, 4, 1), (3, 5, 1), (4, 4, 1))}
@@ -82,7 +83,7 @@ def main(out: Path, quick: bool = False) -> int:
     rows = []
     for n, boxes in (QUICK if quick else FULL).items():
         for box in boxes:
-            with ProcessPoolExecutor(max_workers=1, mp_context=get_context("spawn")) as pool:
+            with processes.pool(1, get_context("spawn")) as pool:  # dies with this process
                 r = pool.submit(_one, n, box).result()
             print(f"  n={n} box={box}: {r['unknowns']} unknowns, {r['seconds']} s, "
                   f"{r['peak_mb']} MB", flush=True)

@@ -178,15 +178,23 @@ class Pool(ProcessPoolExecutor):
         self._ready = context.Semaphore(0)
         super().__init__(workers, mp_context=context, initializer=worker_start,
                          initargs=(os.getpid(), self._ready, initializer, *initargs))
-        with held_signals():
-            self._launch_processes()
-            started = 0
-            deadline = time.monotonic() + START_SECONDS
-            while started < workers and time.monotonic() < deadline:
-                if self._ready.acquire(timeout=0.1):
-                    started += 1
-                elif any(p.exitcode is not None for p in list(self._processes.values())):
-                    break  # a worker that died starting: the pool reports it as broken
+        try:
+            with held_signals():
+                self._launch_processes()
+                started = 0
+                deadline = time.monotonic() + START_SECONDS
+                while started < workers and time.monotonic() < deadline:
+                    if self._ready.acquire(timeout=0.1):
+                        started += 1
+                    elif any(p.exitcode is not None for p in list(self._processes.values())):
+                        break  # a worker that died starting: the pool reports it as broken
+                # The executor's manager thread, too, starts here with the signals held: started by
+                # the first submit, a Ctrl-C landing in Thread.start() left it unstarted and the
+                # teardown's join raised "cannot join thread before it is started" (a traceback).
+                self._start_executor_manager_thread()
+        except BaseException:  # a signal held during the start is raised on leaving the block:
+            self.stop()        # the caller never gets the pool, so it is ended here
+            raise
 
     def stop(self) -> None:
         """End the workers now (SIGTERM) and drop the tasks not yet done."""
