@@ -21,6 +21,7 @@ resolution $2\pi/T$); we use members 1 and 3 and say so. Each orbit is sampled e
 from __future__ import annotations
 
 import json
+import os
 from pathlib import Path
 
 import numpy as np
@@ -87,7 +88,7 @@ def spectra(exp: Experiment, orb: Orbits | None = None) -> list[naff.Spectrum]:
     that computed it and its orbits is unchanged (:mod:`simulate.analysis.result_cache`)."""
     folder = rc.private_folder("evidence")
     path = folder / f"{exp.name}-spectra-{exp.key()}.json" if folder is not None else None
-    if orb is None and path is not None and path.exists():
+    if orb is None and path is not None and os.path.lexists(path):
         found = _load_spectra(path, exp)
         if found is not None:
             return found
@@ -119,8 +120,7 @@ def _load_spectra(path: Path, exp: Experiment) -> list[naff.Spectrum] | None:
         if len(specs) != exp.shape()[1]:
             raise ValueError(f"{len(specs)} spectra for {exp.shape()[1]} orbits")
     except Exception as exc:  # noqa: BLE001 - any unreadable entry is recomputed, never trusted
-        rc.warn_once(f"evidence cache entry {path} is corrupt ({type(exc).__name__}: {exc}); "
-                     "recomputing it")
+        rc.damaged(path, exc)
         return None
     return specs if rc.code_unchanged(manifest) else None
 
