@@ -268,8 +268,14 @@ def cached_json(kind: str, name: str, settings, compute, *, encode, decode,
         found = _read_json(path, decode)
         if found is not _MISS:
             return found, True
+        before = code_manifest()
         value = compute()
-        text = json.dumps({"manifest": code_manifest(), "value": encode(value)})
+        manifest = code_manifest()
+        if any(manifest.get(k, v) != v for k, v in before.items()):
+            # the source changed while it ran: which code computed the value is not known
+            warn_once(f"the source changed during the computation of {path.name}; not cached")
+            return value, False
+        text = json.dumps({"manifest": manifest, "value": encode(value)})
         if os.path.isdir(path) and not os.path.islink(path):   # appeared meanwhile: not ours
             damaged(path, IsADirectoryError("a folder in place of the entry"))
         write_atomic(path, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
