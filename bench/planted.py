@@ -52,10 +52,13 @@ discover()
 out = {{}}
 for row in {rows!r}:
     v = registry()[row].run()
-    d = v.to_dict()
-    data = d.get("data") or {{}}
+    data = v.evidence or {{}}
     drifts = [o.get("drift") for o in data.get("orbits", []) if o.get("drift") is not None]
-    out[row] = {{"verdict": v.verdict, "unmet": d.get("unmet") or [], "notes": d.get("notes", ""),
+    n = v.notes or ""
+    why = (n[:n.index(")") + 1] if n.startswith("the measurement does not support") and ")" in n
+           else n.split(": ", 1)[0])
+    out[row] = {{"verdict": v.verdict, "unmet": [why] if v.verdict == "open" else [],
+                "control_separates": data.get("control_separates"),
                 "drift_max": max(drifts) if drifts else None,
                 "drift_median": sorted(drifts)[len(drifts) // 2] if drifts else None,
                 "parts": data.get("parts", {{}})}}

@@ -6,7 +6,9 @@ relations with coefficients $|c| \le 4$; a line that is a combination with large
 12 were seen on $P$) then looks like a new frequency and the orbit like an "excess" one — the bound,
 not the dynamics. Here every strong line $f$ that the basis $\omega_1..\omega_k$ does not explain with
 $|c| \le 4$ is searched again for $f = \sum_i c_i\omega_i$ (up to sign) with $|c_i| \le$ ``K`` = 12,
-within the tolerance $\tau$ of the count (the measured precision of the lines).
+within the tolerance $\tau$ of the count (the measured precision of the strong lines) divided by
+the line's relative amplitude (weaker lines are measured less precisely); a line within 3 Fourier
+bins of another is not established (:func:`recount`).
 
 **False matches.** A frequency unrelated to the torus, uniform on $[0, \Omega]$ ($\Omega$ the largest
 line of the orbit), falls within $\tau$ of one of the candidate combinations with probability
@@ -29,6 +31,11 @@ __all__ = ["K", "CREDIBLE", "candidates", "false_match", "explain", "recount"]
 
 K = 12
 CREDIBLE = 0.01
+#: a line's tolerance is tol / amplitude, the amplitude (relative to its signal's strongest line)
+#: floored here (the count pools lines of at least 5 %)
+AMP_FLOOR = 0.05
+#: two lines closer than this many Fourier bins 2 pi / T interfere in the order-2 Hann window
+CLOSE = 3.0
 
 
 @functools.lru_cache(maxsize=16)
@@ -93,34 +100,54 @@ def explain(f: float, basis, tol: float, K: int = K) -> tuple[int, ...] | None:
     return best
 
 
-def recount(lines, tol: float, limit: int, K: int = K) -> tuple[list[float], dict]:
+def recount(lines, tol: float, limit: int, K: int = K, resolution: float = 0.0
+            ) -> tuple[list[float], dict]:
     r"""The independent frequencies of the pooled ``lines`` (pairs ``(omega, amplitude)``, strongest
-    first) when combinations up to $|c_i| \le$ ``K`` explain a line: a line joins the basis only if no
-    combination with $|c_i| \le 4$ (rational relations too, :func:`simulate.analysis.naff._relation`)
-    nor one with $|c_i| \le K$ explains it. An explanation with $|c_i| > 4$ counts only if it is
-    credible (:func:`false_match` $\le$ ``CREDIBLE``); a line with only an incredible explanation is
-    *ambiguous*: it neither joins the basis nor is explained. Also returns ``{"large": lines
-    explained with |c| > 4, "ambiguous": ..., "p_false": the largest P_false used, "relations":
-    up to 3 named}``. Stops at ``limit`` frequencies."""
+    first, amplitudes relative to the strongest line of their signal) when combinations up to
+    $|c_i| \le$ ``K`` explain a line. A line joins the basis only if
+
+    * no relation with $|c_i| \le 4$ explains it at ``tol`` (rational ones too,
+      :func:`simulate.analysis.naff._relation`; the count's own search), and
+    * no combination with $|c_i| \le K$ explains it at its own tolerance ``tol / amplitude`` (a
+      NAFF frequency's error grows like the inverse of its amplitude; floored at ``AMP_FLOOR``), and
+    * it is not within ``CLOSE`` $\times$ ``resolution`` ($2\pi/T$) of a line already seen or of 0: two
+      lines that close interfere in the window, and a line that slow makes fewer than ``CLOSE``
+      turns; neither frequency is established.
+
+    An explanation with $|c_i| > 4$ counts only if it is credible (:func:`false_match` at that
+    tolerance $\le$ ``CREDIBLE``); a line with only an incredible explanation, or too close to
+    another, is *ambiguous*: it neither joins the basis nor is explained (the orbit is then
+    unresolved, not excess). Returns the basis and ``{"large": lines explained with |c| > 4,
+    "ambiguous": ..., "close": ..., "p_false": the largest P_false met, "relations": up to 3}``.
+    Stops at ``limit`` frequencies."""
     from chaplygin_nd.simulate.analysis import naff
 
     top = max((abs(w) for w, _ in lines), default=0.0)
     basis: list[float] = []
-    info = {"large": 0, "ambiguous": 0, "p_false": 0.0, "relations": []}
-    for w, _ in lines:
+    seen: list[float] = [0.0]          # a line within CLOSE bins of 0 makes < 3 turns: not established
+    info = {"large": 0, "ambiguous": 0, "close": 0, "p_false": 0.0, "relations": []}
+    for w, amp in lines:
         if len(basis) >= limit:
             break
         f = abs(float(w))
         if f <= tol or naff._relation(f, basis, tol, 4) is not None:
+            seen.append(f)
             continue
-        c = explain(f, basis, tol, K) if basis else None
+        own = tol / max(float(amp), AMP_FLOOR)
+        c = explain(f, basis, own, K) if basis else None
         if c is None:
-            basis.append(f)
+            if resolution > 0 and any(abs(f - g) < CLOSE * resolution for g in seen):
+                info["close"] += 1
+                info["ambiguous"] += 1
+            else:
+                basis.append(f)
+            seen.append(f)
             continue
-        p = false_match(basis, tol, top, K)
+        seen.append(f)
+        p = false_match(basis, own, top, K)
         info["p_false"] = max(info["p_false"], p)
         if p <= CREDIBLE:
-            info["large"] += 1
+            info["large"] += int(max(map(abs, c)) > 4)
             if len(info["relations"]) < 3:
                 rhs = " + ".join(f"{x}*w{i + 1}" for i, x in enumerate(c) if x)
                 info["relations"].append(f"{f:.10g} = |{rhs}|")

@@ -343,7 +343,8 @@ def _measure(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int) -> list[Orbit
         if expected is not None and spec.diffusion < REGULAR and spec.count > expected:
             # lines beyond the |c| <= 4 lattice: search combinations up to |c| <= 12
             scale = max(abs(w) for w, _ in spec.lines)
-            basis, info = combinations.recount(spec.lines, spec.tolerance * scale, s.limit + 1)
+            basis, info = combinations.recount(spec.lines, spec.tolerance * scale, s.limit + 1,
+                                               resolution=2 * np.pi / s.T)
             spec = naff.Spectrum(spec.lines, sorted(basis), spec.diffusion, spec.tolerance)
         cls = classify(spec, expected, info["ambiguous"])
         relation = _relation(spec) if cls == "resonant" else "; ".join(info["relations"])

@@ -129,7 +129,9 @@ def n5_row(seed: int) -> dict:
     ``N5_CONTROL`` of the general-$\mathbb{J}$ sphere ``CHAOTIC_J[5]``, the same analysis (the $SO(4)$-
     invariant observables counted apart); the $n = 4$ control is :func:`full4_row`."""
     ens = draws.draw("S6:open-reduced-n5", "generic", 5, N5_COUNT, seed)
-    sym = run_with_rerun(N5_SETTING, ens, _full_state(ens), seed)
+    # the frequency ladder for the first RERUN unresolved only (cost; the row's rule counts the
+    # resolved orbits, it does not need every orbit resolved)
+    sym = run_with_rerun(N5_SETTING, ens, _full_state(ens), seed, rerun=RERUN)
     cens = draws.draw("S6:open-reduced-n5 control", "generic", 5, N5_CONTROL, seed)
     ctl = Setting("control5", "control", 5, 4096.0, 0.5, observables="invariant+general",
                   invariant=2, limit=6, J=CHAOTIC_J[5])
