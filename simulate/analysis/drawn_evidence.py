@@ -83,8 +83,12 @@ class Setting:
         return 0 if (self.vertical and a == 0) else self.expected
 
     def longer(self, factor: float, tangent: str | None = None) -> Setting:
-        """The same setting with ``factor`` times the orbit length (and another ``tangent``)."""
+        """The same setting with ``factor`` times the orbit length (and another ``tangent``); from
+        ``factor`` 4 on, sampled ``factor / 2`` times more sparsely (at most twice the samples of
+        ``T``: NAFF's cost grows with them; at dt = 1/2 the Nyquist frequency of 4T is pi, the
+        lines of the rows lie below 1)."""
         return replace(self, name=f"{self.name}-x{factor:g}", T=self.T * factor,
+                       dt=self.dt * max(1.0, factor / 2),
                        tangent=self.tangent if tangent is None else tangent)
 
 
