@@ -4,8 +4,9 @@
     python docs/build_pages.py [--report verification.json] [--out docs/_build/src]
 
 Writes ``index.md`` (totals, errata, remarks, the claim graph with every node a link), one page
-``claims/<page_name(id)>.md`` per ledger row (:mod:`sitegen.claims`), ``api.md`` and the two
-tutorials executed now (:mod:`sitegen.tutorials`). Exit 2 with one line when the report is
+``claims/<page_name(id)>.md`` per ledger row (:mod:`sitegen.claims`), ``api.md``,
+``evidence-study.md`` (the last run of ``chaplygin bench evidence``, copied from bench/out) and the
+two tutorials executed now (:mod:`sitegen.tutorials`). Exit 2 with one line when the report is
 missing or does not match this checkout's ledger (run ``chaplygin verify`` first).
 """
 
@@ -103,7 +104,7 @@ def index(report: dict, ctx: Context) -> str:
         out.append(f"| [{r['id']}](claims/{graph.page_name(r['id'])}.md) | "
                    f"{claims._cell(r['section'])} | {r['verdict']} | {r['kind'] or ''} |\n")
     out.append("\n```{toctree}\n:hidden:\n:maxdepth: 1\n\ntutorials/scene-to-figure\n"
-               "tutorials/p-inversion\napi\n" + "".join(
+               "tutorials/p-inversion\napi\nevidence-study\n" + "".join(
                    f"claims/{graph.page_name(r['id'])}\n" for r in rows) + "```\n")
     return "".join(out)
 
@@ -151,6 +152,9 @@ def main(argv: list[str] | None = None) -> int:
         (out / "claims" / f"{graph.page_name(row['id'])}.md").write_text(
             claims.page(row, ctx), encoding="utf-8")
     shutil.copy(DOCS / "pages" / "api.md", out / "api.md")
+    # the validation study of the evidence rows' chaos rule (chaplygin bench evidence, issue 24)
+    shutil.copy(DOCS / "pages" / "evidence-study.md", out / "evidence-study.md")
+    shutil.copy(DOCS / "figures" / "evidence-study.png", out / "evidence-study.png")
     tutorials.execute_all(DOCS / "tutorials", out / "tutorials")
     print(f"wrote {len(report['rows'])} claim pages, the index, the API page and the tutorials "
           f"into {out}")

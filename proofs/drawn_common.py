@@ -5,7 +5,7 @@ Per orbit (simulate/analysis/drawn_evidence.py): frequency class ``predicted`` /
 ``unresolved`` (``excess`` only for a line no integer combination with $|c| \le 12$ explains,
 simulate/analysis/combinations.py), the chaos class over the horizon ladder ``regular`` / ``chaotic`` /
 ``undecided`` (simulate/analysis/chaos.py ``ladder_class``: $\langle Y\rangle$ grew by $\ge 1$ over the last doubling
-$T/2 \to T$ and is $\ge 4$: chaos; moved by $\le 0.5$: bounded, regular — 0, 2 or $2p$ alike), and the
+$T/2 \to T$ and is $\ge 4$: chaos; moved by $\le 0.75$: bounded, regular — 0, 2 or $2p$ alike), and the
 drift of the proved integrals (simulate/analysis/kept.py; kept iff $\le 10^{-6}$ at energy scale 1).
 
 * **contradicting** orbit: chaotic by the ladder, or frequency class ``excess``.
@@ -35,13 +35,21 @@ SEPARATION = 100.0
 KEPT_MIN = 0.98
 
 #: the validation study's numbers (bench/out/evidence.md of the run named there)
-STUDY = "not yet measured"
+STUDY = ("bench/bench_evidence.py (chaplygin bench evidence, 2026-11-26, seed 20261121): 456 "
+         "orbits of integrable systems (3D Chaplygin sphere with generic J, n = 4 sphere on P "
+         "and reduced, Manakov top on so(4), V for n = 4 and 6 with the tangent in TV and in "
+         "the whole space, standard map K = 0) and 200 of a chaotic one (standard map K = 10, "
+         "whose <Y> slope gives lambda = 1.621 against ln(K/2) = 1.609): false alarms 0 of 456 "
+         "(< 0.7 % at 95 %), misses 0 of 200 (< 1.5 % at 95 %), undecided 3 of 456 (all V, "
+         "even n, tangent in the whole space, <Y> still rising to 2p = 4; with the tangent in "
+         "TV: 0 of 64) and 0 of 200; the old single threshold left 45 of 456 undecided (<Y> -> "
+         "4 on V); the generic-J controls: 60 of 64 chaotic, 2 regular, 2 undecided")
 
 RULE = ("contradicting orbit: chaotic by the MEGNO horizon ladder (<Y>(T) - <Y>(T/2) >= 1 and "
         "<Y>(T) >= 4) or, with D < 1e-5, a line no integer combination |c| <= 12 explains beyond "
         "the predicted count; supported iff >= 98 % of the orbits keep the proved integrals (drift "
         "<= 1e-6), at most 2 % contradict, at least 90 % are regular by the ladder (|<Y>(T) - "
-        "<Y>(T/2)| <= 0.5) and at least 20 % show exactly the predicted count (unresolved orbits "
+        "<Y>(T/2)| <= 0.75) and at least 20 % show exactly the predicted count (unresolved orbits "
         "re-run at 2T, 4T first). The control separates iff >= 90 % of its orbits are chaotic by "
         "the ladder (<= 2 % of the row's) and its median diffusion is >= 100 x the row's")
 

@@ -222,9 +222,11 @@ def th_re_tori_frequencies() -> Verdict:
                        "with the exact frequencies of zeta"),
         extra_support=zeta_ok, extra_part="frequencies",
         method=(f"numerical: eq:motion-general for n = 4..7 from drawn points of V, {SETTINGS}; the "
-                "chaos indicator's tangent vector starts in the tangent space of V (the statement is "
-                "about the flow on V; the study shows the whole-space tangent bounded as well), the "
-                "frequencies compared with the eigenvalues of the derived zeta"),
+                "chaos indicator's tangent vector starts in the tangent space of V: the statement is "
+                "about the flow on V, and in the whole space the tangent of even n grows like t^2 "
+                "(<Y> -> 4, still rising at T: the old single threshold left 45 of 64 such study "
+                "orbits undecided, the ladder 3, with the tangent in TV 0); the frequencies compared "
+                "with the eigenvalues of the derived zeta"),
         n_values=tuple(out), notes="a = 0 gives an equilibrium (no frequency), as Th:Re-tori's "
                                    "correction states",
         data={"zeta": [{"error": z["error"], "agrees": z["agrees"], "rank": z["rank"]} for z in zeta]})
