@@ -238,7 +238,7 @@ def figure(result, path: Path) -> None:
 
     fig, axes = plt.subplots(1, 3, figsize=(16, 5))
     names = [s["system"] for s in result["systems"]]
-    colours = plt.cm.tab10(np.linspace(0, 1, len(names)))
+    colours = plt.cm.tab20(np.linspace(0, 1, len(names)))
     frac = np.array([0.125, 0.25, 0.5, 1.0])
     for name, col in zip(names, colours):
         mine = [o for o in result["orbits"] if o["system"] == name]
@@ -256,16 +256,16 @@ def figure(result, path: Path) -> None:
     from chaplygin_nd.simulate.analysis import chaos
 
     axes[0].set(xscale="log", yscale="log", xlabel="horizon / T", ylabel="<Y>",
-                title="MEGNO over the horizon ladder (solid: integrable, dashed: chaotic, dotted: mixed)")
+                title="<Y> over the horizon ladder\n(solid: integrable, dashed: chaotic, dotted: mixed)")
     axes[0].legend(fontsize=7)
     axes[1].set(xscale="log", yscale="symlog", xlabel="<Y>(T)", ylabel="<Y>(T) - <Y>(T/2)",
-                title="the MEGNO ladder rule (o integrable, x chaotic)")
+                title="the MEGNO ladder rule\n(o integrable, x chaotic or mixed; lines: the thresholds)")
     axes[1].axhline(chaos.LADDER_GROWTH, color="r", lw=0.8)
     axes[1].axhline(chaos.LADDER_BOUNDED, color="g", lw=0.8)
     axes[1].axhline(-chaos.LADDER_BOUNDED, color="g", lw=0.8)
     axes[1].axvline(chaos.MEGNO_CHAOTIC, color="r", lw=0.8, ls=":")
     axes[2].set(xscale="log", yscale="symlog", xlabel="<Y>(T)", ylabel="p over the last doubling",
-                title="tangent growth t^p (FLI ladder)")
+                title="tangent growth t^p over the last doubling\n(an FLI read over the ladder)")
     axes[2].axhline(P_REGULAR, color="g", lw=0.8)
     axes[2].axhline(P_CHAOTIC, color="r", lw=0.8)
     fig.tight_layout()
@@ -276,9 +276,12 @@ def figure(result, path: Path) -> None:
 
 
 def main(out: Path, quick: bool = False) -> int:
-    """Run the study (and the planted defects unless ``quick``); write the files into ``out``."""
-    from chaplygin_nd.bench.report import write_atomic
-
+    """Run the study (and the planted defects unless ``quick``); write the files into ``out``
+    (``EVIDENCE_REPLOT=1``: only re-render them from the last ``evidence.json``)."""
+    if os.environ.get("EVIDENCE_REPLOT") == "1":      # re-render the last run's files
+        result = json.loads((out / "evidence.json").read_text())
+        _write_all(out, result)
+        return 0
     load0 = os.getloadavg()[0]
     count, map_count = (QUICK_COUNT, 64) if quick else (COUNT, MAP_COUNT)
     start = time.process_time()
@@ -290,6 +293,13 @@ def main(out: Path, quick: bool = False) -> int:
         from chaplygin_nd.bench import planted
 
         result["planted"] = planted.run()
+    _write_all(out, result)
+    return 0
+
+
+def _write_all(out: Path, result: dict) -> None:
+    from chaplygin_nd.bench.report import write_atomic
+
     out.mkdir(parents=True, exist_ok=True)
     text = markdown(result)
     if "planted" in result:
@@ -300,4 +310,3 @@ def main(out: Path, quick: bool = False) -> int:
     write_atomic(out / "evidence.md", text)
     figure(result, out / "evidence.png")
     print(text)
-    return 0
