@@ -114,11 +114,21 @@ def run(defects=DEFECTS) -> list[dict]:
 
 
 def markdown(records) -> str:
+    """The planted-defect table: per (defect, row) the verdict, the drift of the integrals and
+    which parts of the row's rule held (yes) or caught the defect (CAUGHT)."""
     lines = ["## Planted defects (bench/planted.py)", "",
-             "| defect | row | verdict | max drift of the integrals | parts that failed |",
-             "|---|---|---|---|---|"]
+             "Which part of each row's rule caught the defect: CAUGHT = failed on the planted field.", "",
+             "| defect | row | verdict | max / median drift of the integrals | integrals | chaos "
+             "indicator | frequencies | control separates |", "|---|---|---|---|---|---|---|---|"]
     for r in records:
-        drift = f"{r['drift_max']:.1e}" if r.get("drift_max") is not None else "-"
-        unmet = "; ".join(str(u) for u in r.get("unmet", []))[:400] or "-"
-        lines.append(f"| {r['defect']} | {r['row']} | {r['verdict']} | {drift} | {unmet} |")
+        parts = r.get("parts") or {}
+        cells = [("CAUGHT" if parts.get(k) is False else "yes" if parts.get(k) else "-")
+                 for k in ("integrals", "chaos", "frequencies")]
+        drift = (f"{r['drift_max']:.1e} / {r['drift_median']:.1e}" if r.get("drift_max") is not None
+                 else "-")
+        verdict = r["verdict"] if r["verdict"] != "error" else (
+            "error: " + " ".join(str(u) for u in r.get("unmet", [])).replace("|", "/")[:120])
+        sep = {True: "yes", False: "no"}.get(r.get("control_separates"), "-")
+        lines.append(f"| {r['defect']} | {r['row']} | {verdict} | {drift} | " + " | ".join(cells)
+                     + f" | {sep} |")
     return "\n".join(lines) + "\n"

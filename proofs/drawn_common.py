@@ -54,6 +54,31 @@ RULE = ("contradicting orbit: chaotic by the MEGNO horizon ladder (<Y>(T) - <Y>(
         "the ladder (<= 2 % of the row's) and its median diffusion is >= 100 x the row's")
 
 
+#: what each row said on the planted defects of bench/planted.py (``chaplygin bench evidence``,
+#: 2026-11-26): one coefficient of the field 1 % off, one sign flipped; which part caught it
+PLANTED = {
+    "S5:reconstruction": (
+        "planted defects (bench/planted.py): a coefficient of the full field 1 % off -> open, "
+        "caught by the integrals alone (drift median 1.9e-3, every orbit); the chaos indicator "
+        "and the frequency count did not see it (tori survive a 1 % perturbation: <= 2 % excess, "
+        ">= 20 % predicted count); a sign flipped -> open (integrals, drift median 0.51; chaos "
+        "indicator; the control no longer separates)"),
+    "Th:Re-tori:frequencies": (
+        "planted defects (bench/planted.py): a coefficient 1 % off -> open (integrals kept on "
+        "only 114 of 200 orbits, drift median 5e-7; and the frequencies against zeta); a sign "
+        "flipped -> open (integrals on 40 of 200; 61 excess orbits; zeta); the chaos indicator "
+        "saw neither (V stays invariant and regular)"),
+    "S6:open-reduced-n5": (
+        "planted defects (bench/planted.py): a coefficient of the full field 1 % off -> open, "
+        "caught by the integrals alone (drift median 1.5e-3); a sign flipped -> open (integrals, "
+        "drift median 0.44; chaos; the n = 4 control no longer passes)"),
+    "S5:EJ-tori": (
+        "planted defects (bench/planted.py): one coefficient of the reduced field 1 % off -> open "
+        "(integrals: drift median 2.3e-3 on every orbit; and the rotation numbers of a level set); "
+        "a sign flipped -> the row errors (heyoka stopped early: an orbit left the domain)"),
+}
+
+
 def fraction(results, test) -> float:
     """The fraction of ``results`` for which ``test(r)`` holds."""
     return sum(bool(test(r)) for r in results) / len(results) if results else 0.0

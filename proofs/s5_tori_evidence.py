@@ -69,7 +69,7 @@ def _control():
     return results, dc.describe(results, f"control, generic J = diag{CHAOTIC_J[4]}")
 
 
-def _verdict(results, rerun, *, measured: str, contradiction: str, method: str, n_values,
+def _verdict(row_id: str, results, rerun, *, measured: str, contradiction: str, method: str, n_values,
              extra_support: bool = True, extra_part: str = "frequencies", notes: str = "",
              data: dict | None = None) -> Verdict:
     control, control_text = _control()
@@ -91,7 +91,8 @@ def _verdict(results, rerun, *, measured: str, contradiction: str, method: str, 
         contradiction=contradiction + "; " + dc.RULE,
         control=(control_text + f"; separates on the chaos indicator: {on_megno}, on the frequency "
                  f"diffusion: {on_freq}"),
-        control_separates=on_megno and on_freq, method=method + "; " + rates(),
+        control_separates=on_megno and on_freq,
+        method=method + "; " + rates() + "; " + dc.PLANTED[row_id],
         n_values=n_values, notes=notes, unmet=unmet,
         data={"orbits": dc.record(results), "rerun": dc.record(rerun), "parts": parts,
               "control_orbits": dc.record(control), **(data or {})})
@@ -134,7 +135,7 @@ def s5_ej_tori() -> Verdict:
     out = er.reduced_row(ledger_seed())
     tested, agree, worst = _rotation_agreement(out)
     return _verdict(
-        out["results"], out["rerun"],
+        "S5:EJ-tori", out["results"], out["rerun"],
         measured=(f"eq:red-system on {len(out['groups'])} drawn level sets x 4 orbits (level-set "
                   f"points Newton did not reach: {out['failed']}); expected {expected} independent "
                   f"frequencies; rotation number w1/w2 the same on {agree} of the {tested} level "
@@ -164,7 +165,7 @@ def s5_reconstruction() -> Verdict:
             inv[r.invariant_count] = inv.get(r.invariant_count, 0) + 1
     resolved_inv = sum(inv.values())
     return _verdict(
-        res, out["rerun"],
+        "S5:reconstruction", res, out["rerun"],
         measured=(f"eq:motion-general on P, 200 drawn generic orbits; generic case of the bound: "
                   f"exactly {bound} = 2 + rank SO(3) independent frequencies; the two "
                   f"SO(3)-invariant observables alone (resolved on {resolved_inv} orbits): "
@@ -208,7 +209,7 @@ def th_re_tori_frequencies() -> Verdict:
     zeta_ok = bool(resolved) and agree >= ZETA_AGREE * len(resolved)
     unresolved = sum(r.cls == "unresolved" for r in results)
     return _verdict(
-        results, rerun,
+        "Th:Re-tori:frequencies", results, rerun,
         measured=("; ".join(per_n) + f"; against the exact answer (Th:Re: M, gamma move by exp(t zeta), "
                   f"the lines are integer combinations of the rates of the derived zeta): "
                   f"{agree} of the {len(resolved)} resolved orbits agree (count = number of rates, "

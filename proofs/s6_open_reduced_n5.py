@@ -209,7 +209,7 @@ def s6_open_reduced_n5() -> Verdict:
         method=("exact ranks at a seeded rational point (SymPy) + numerical: eq:motion-general n = 5 "
                 "(expression builders), MEGNO over a horizon ladder, NAFF on drawn orbits, the proved "
                 "integrals along every orbit; validation of the chaos rule on systems with known "
-                f"answers: {dc.STUDY}"),
+                f"answers: {dc.STUDY}; " + dc.PLANTED["S6:open-reduced-n5"]),
         n_values=(5,),
         notes=("what the measurement says about the open problem: "
                + ("no chaos was resolved on any drawn orbit and the reduced observables show "
