@@ -7,7 +7,8 @@ the manual (``docs/pages/``, each page written once; the README links to them).
 Writes ``index.md`` (totals, errata and remarks typeset, the claim graph with every node a link,
 the rows grouped by the paper's sections and then *Beyond the paper* (:mod:`sitegen.sections`),
 and the sidebar's toctrees), one page ``claims/<page_name(id)>.md`` per ledger row
-(:mod:`sitegen.claims`), the manual (``docs/pages/``, copied) and the two tutorials executed now (:mod:`sitegen.tutorials`). Exit 2 with one line when the report is
+(:mod:`sitegen.claims`), the manual (``docs/pages/``, copied, with the evidence
+rules' validation study ``pages/evidence-study.md`` that ``chaplygin bench evidence`` writes) and the two tutorials executed now (:mod:`sitegen.tutorials`). Exit 2 with one line when the report is
 missing or does not match this checkout's ledger (run ``chaplygin verify`` first).
 
 The site reads the report and the paper only: the proof, the printed functions, the paper's lines,
@@ -110,6 +111,7 @@ MANUAL = (("pages/verdicts", "Verdicts, kinds and reports"),
           ("pages/engines", "The two exact engines"),
           ("pages/printed", "Printed formulas, reach and mutation"),
           ("pages/evidence", "Evidence: Section 5's dynamics, measured"),
+          ("pages/evidence-study", "Evidence: the chaos rule's validation study"),
           ("pages/open-problem", "Beyond the paper: the open problem for n ≥ 5"),
           ("pages/scenes", "Scenes and the planner"),
           ("pages/accuracy", "Accuracy, cross-check and output folders"),

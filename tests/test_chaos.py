@@ -152,3 +152,87 @@ def test_classes_follow_the_rule():
     assert classify(reg, 1) == "excess"
     assert classify(naff.Spectrum([], [0.1, 0.3], 1e-3, 1e-2), 2) == "unresolved"
     assert classify(reg, None) == "regular"
+
+
+# -- the horizon ladder and the rest of issue 24 ----------------------------------------------
+
+def _ladder_of(system, y0, pars, T, dt=0.5):
+    """<Y> at T/8, T/4, T/2, T of one orbit (heyoka, the module's tangent system)."""
+    import heyoka as hy
+    from chaplygin_nd.runtime.expressions import HeyokaArithmetic
+
+    tsys = chaos.tangent_system(system)
+    ops = HeyokaArithmetic(hy, "double", 53)
+    u0 = chaos.initial_tangents(1, system.dim, 1)[0]
+    ta = hy.taylor_adaptive(tsys.equations(hy, ops), np.concatenate([y0, u0, [0.0, 0.0]]),
+                            pars=list(pars), tol=1e-12, compact_mode=True)
+    t = np.arange(int(round(T / dt)) + 1) * dt
+    _, _, _, _, _, states = ta.propagate_grid(t)
+    return chaos.megno_ladder(t, states[:, -1])
+
+
+def test_power_law_tangent_growth_is_bounded_not_chaos():
+    """x' = y, y' = z, z' = 0: tangent vectors grow like t^2, <Y> -> 2p = 4 — the value the old
+    single threshold (>= 4) called chaotic and that the V orbits show in the whole space. The ladder
+    sees it settle: regular."""
+    chain = System("chain", ("x", "y", "z"), (), lambda v, p, ops: [v[1], v[2], 0])
+    ladder = _ladder_of(chain, np.array([0.0, 0.3, 0.2]), [], 4000.0)
+    # <Y> = 4 - O(log t / t): from below, slowly, and settled over the last doubling
+    assert 3.9 < ladder[-1] < 4.0 and np.all(np.diff(ladder) > 0)
+    assert chaos.ladder_class(ladder) == "regular"
+    shear = System("shear", ("theta", "I"), (), lambda v, p, ops: [v[1], 0])
+    assert chaos.ladder_class(_ladder_of(shear, np.array([0.1, 0.7]), [], 2000.0)) == "regular"
+
+
+def test_exponential_growth_is_chaos_on_the_ladder():
+    saddle = System("saddle", ("x", "y"), ("lam",), lambda v, p, ops: [p[0] * v[0], -p[0] * v[1]])
+    ladder = _ladder_of(saddle, np.array([1e-3, 1e-3]), [0.05], 400.0, dt=0.1)
+    # <Y> ~ lam t / 2: doubles with the horizon
+    assert abs(ladder[-1] - ladder[-2] - 0.05 * 400 / 4) < 1.0
+    assert chaos.ladder_class(ladder) == "chaotic"
+    assert chaos.ladder_class([1.0, 1.5, 2.5, 3.9]) == "undecided"   # grew, not yet beyond 4
+    assert chaos.ladder_class([1.9, 2.0, 2.0, float("nan")]) == "undecided"
+
+
+def test_the_standard_map_ties_the_scale_to_its_lyapunov_exponent():
+    """Chirikov's standard map at K = 10: lambda = ln(K/2) + O(K^-2); 2 x the slope of <Y> over the
+    last doubling must give it (within 3 %); the twist map K = 0 is regular by the ladder."""
+    from chaplygin_nd.bench.bench_evidence import standard_map
+
+    chaotic = standard_map(10.0, 32, 2048)
+    slopes = [2 * (y[3] - y[2]) / 1024 for y in chaotic["ladder"]]
+    assert abs(np.mean(slopes) - np.log(5.0)) < 0.03 * np.log(5.0)
+    assert all(chaos.ladder_class(y) == "chaotic" for y in chaotic["ladder"])
+    twist = standard_map(0.0, 32, 2048)
+    assert all(chaos.ladder_class(y) == "regular" for y in twist["ladder"])
+
+
+def test_tangents_of_V_satisfy_the_linearised_constraints():
+    from chaplygin_nd.simulate.analysis.drawn_evidence import v_tangents
+
+    ens = draws.draw("v-tangent", "vertical", 6, 5, seed=3)
+    y0 = np.concatenate([so.vec(ens.M0), ens.gamma0], axis=-1)
+    u = v_tangents(chaos.initial_tangents(5, y0.shape[1], 2), y0, 6)
+    N = so.so_dim(6)
+    dM, dg = so.unvec(u[:, :N], 6), u[:, N:]
+    lin = np.einsum("kij,kj->ki", dM, ens.gamma0) + np.einsum("kij,kj->ki", ens.M0, dg)
+    assert np.max(np.abs(lin)) < 1e-12
+    assert np.max(np.abs(np.einsum("ki,ki->k", dg, ens.gamma0))) < 1e-12
+    assert np.allclose(np.linalg.norm(u, axis=1), 1.0)
+
+
+def test_large_combinations_are_explained_with_their_false_match_chance():
+    from chaplygin_nd.simulate.analysis import combinations as cb
+
+    w = [0.1234567, 0.3141593, 0.0271828]
+    f = abs(7 * w[0] - 11 * w[1] + 5 * w[2])
+    assert cb.explain(f, w, 1e-9) in ((7, -11, 5), (-7, 11, -5))     # |f| = |c . w|: up to sign
+    assert cb.explain(f + 1e-4, w, 1e-9) is None
+    p = cb.false_match(w, 1e-9, 1.0)
+    assert 0 < p < 2 * 1e-9 * 25 ** 3                        # below the counting bound
+    lines = [(w[0], 1.0), (-w[1], 0.8), (w[2], 0.5), (f, 0.2)]
+    basis, info = cb.recount(lines, 1e-9, 6)
+    assert sorted(basis) == sorted(w) and info["large"] == 1 and not info["ambiguous"]
+    # the same line at a coarse tolerance: a match is likely by chance, so it is not credible
+    basis, info = cb.recount(lines, 1e-4, 6)
+    assert info["p_false"] > cb.CREDIBLE and info["ambiguous"] == 1 and len(basis) == 3

@@ -244,3 +244,110 @@ def test_the_folders_created_are_private(cache):
     orbits(_small())
     assert (cache.stat().st_mode & 0o077) == 0
     assert ((cache / "evidence").stat().st_mode & 0o077) == 0
+
+
+# -- the drawn ensembles: the same mechanism (issue 24) ----------------------------------------
+
+_DRAWN = """
+import json, sys
+sys.path.insert(0, {pkg!r})
+from dataclasses import replace
+from chaplygin_nd.simulate.analysis import draws, drawn_evidence as de, evidence_rows as er
+calls = [0]
+inner = de._measure
+def counted(*a, **k):
+    calls[0] += 1
+    return inner(*a, **k)
+de._measure = counted
+s = replace(er.SETTINGS["full4"], name="cache-test", T=16.0)
+ens = draws.draw("cache-test", "generic", 4, 2, 5)
+res = de.measure(s, ens, er._full_state(ens), 5)
+mods = sorted(n for n, m in sys.modules.items()
+              if n.startswith("chaplygin_nd.") and getattr(m, "__file__", "") and m.__file__.endswith(".py"))
+assert all(sys.modules[n].__file__.startswith({pkg!r}) for n in mods)
+print(json.dumps({{"computed": calls[0], "megno": [r.megno for r in res], "modules": mods}}))
+"""
+
+
+def _drawn(pkg: Path, cache: Path) -> dict:
+    env = {k: v for k, v in os.environ.items() if not k.startswith("PYTHON")}
+    env[rc.project_cache.ENV] = str(cache)
+    r = subprocess.run([sys.executable, "-I", "-B", "-c", _DRAWN.format(pkg=str(pkg))], env=env,
+                       capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    return json.loads(r.stdout.strip().splitlines()[-1])
+
+
+def test_editing_any_module_the_drawn_measurement_loads_is_a_miss(tmp_path):
+    """No hand-kept file list: the drawn ensembles' cache is keyed by the manifest of every
+    project module loaded. Warm the cache in a copy of the project, then edit (one at a time, each
+    against its own copy of the warm cache) the field's module, the thresholds' module and a
+    seeded sample of the other modules the measurement loaded: every edit turns the hit into a
+    miss."""
+    import random
+
+    pkg = _copy_package(tmp_path / "site")
+    warm = tmp_path / "warm"
+    cold = _drawn(pkg, warm)
+    again = _drawn(pkg, warm)
+    assert cold["computed"] == 1 and again["computed"] == 0 and again["megno"] == cold["megno"]
+    loaded = cold["modules"]
+    named = ["chaplygin_nd.simulate.dynamics.so", "chaplygin_nd.simulate.analysis.frequencies"]
+    assert set(named) <= set(loaded)
+    others = sorted(set(loaded) - set(named))
+    sample = named + random.Random(24).sample(others, 3)
+    mapping = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]["package-dir"]
+    for module in sample:
+        parts = module.split(".")
+        path = pkg.joinpath(*parts[:-1], parts[-1] + ".py")
+        if not path.exists():                                  # a package: its __init__
+            path = pkg.joinpath(*parts, "__init__.py")
+        assert path.exists(), (module, mapping)
+        text = path.read_text()
+        cache = tmp_path / f"cache-{module}"
+        shutil.copytree(warm, cache)
+        path.write_text(text + "\n# edited by tests/test_evidence_cache.py\n")
+        try:
+            edited = _drawn(pkg, cache)
+        finally:
+            path.write_text(text)
+        assert edited["computed"] == 1, f"an edit of {module} was answered from the cache"
+
+
+def _tiny():
+    from chaplygin_nd.simulate.analysis import draws
+    from chaplygin_nd.simulate.analysis import evidence_rows as er
+
+    s = replace(er.SETTINGS["full4"], name="damage-test", T=16.0)
+    ens = draws.draw("damage-test", "generic", 4, 2, 5)
+    return s, ens, er._full_state(ens)
+
+
+@pytest.mark.parametrize("damage", ["truncated", "random bytes", "a folder", "valid JSON, wrong shape"])
+def test_a_damaged_drawn_entry_is_one_warning_and_is_replaced(cache, monkeypatch, damage):
+    from chaplygin_nd.simulate.analysis import drawn_evidence as de
+
+    s, ens, y0 = _tiny()
+    first = de.measure(s, ens, y0, 5)
+    (path,) = _entries(cache, "drawn-damage-test-*.json")
+    if damage == "truncated":
+        path.write_bytes(path.read_bytes()[:100])
+    elif damage == "random bytes":
+        path.write_bytes(np.random.default_rng(1).bytes(300))
+    elif damage == "a folder":
+        path.unlink()
+        path.mkdir()
+        (path / "inside").write_text("x")
+    else:
+        path.write_text(json.dumps({"manifest": rc.code_manifest(), "value": [{"a": 1}]}))
+    rc._WARNED.clear()
+    calls = []
+    inner = de._measure
+    monkeypatch.setattr(de, "_measure", lambda *a, **k: calls.append(1) or inner(*a, **k))
+    with pytest.warns(rc.ResultCacheWarning, match=r"corrupt.*recomputing.*CHAPLYGIN_ND_CACHE") as rec:
+        again = de.measure(s, ens, y0, 5)
+    assert len(rec) == 1 and "\n" not in str(rec[0].message) and calls == [1]
+    assert [r.to_dict() for r in again] == [r.to_dict() for r in first]
+    assert path.is_file() and json.loads(path.read_text())["value"]   # replaced, valid
+    third = de.measure(s, ens, y0, 5)                                 # a clean hit now
+    assert calls == [1] and [r.to_dict() for r in third] == [r.to_dict() for r in first]

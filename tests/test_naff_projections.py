@@ -119,8 +119,10 @@ def test_the_batch_schedule_and_width_change_no_orbit(tmp_path, monkeypatch):
     s = de.Setting("schedule", "full", 4, 48.0, 0.5, observables="four", expected=3)
     order = de.schedule(ens)
     assert sorted(order) == list(range(11)) and not np.array_equal(order, np.arange(11))
-    Z, megno, lyap = de._integrate(s, ens, y0, 5)
+    Z, megno, lyap, extra = de._integrate(s, ens, y0, 5)
     monkeypatch.setattr(de, "schedule", lambda e: np.arange(e.count))
     monkeypatch.setattr(de, "BATCH", 4)            # and the SIMD width of issue 16
-    Z0, megno0, lyap0 = de._integrate(s, ens, y0, 5)
+    Z0, megno0, lyap0, extra0 = de._integrate(s, ens, y0, 5)
     assert np.array_equal(Z, Z0) and np.array_equal(megno, megno0) and np.array_equal(lyap, lyap0)
+    for key in ("ladder", "power", "drift"):          # the ladder and the integrals too (issue 24)
+        assert np.array_equal(extra[key], extra0[key]), key

@@ -177,7 +177,7 @@ def _orbits(spec: dict):
 
     out = []
     for (cls, mcls), k in spec.items():
-        out += [OrbitResult(0.5, 0.5, 1.0, 2, [0.1, 0.3], 1e-9, 2.0, 0.0, cls, mcls)] * k
+        out += [OrbitResult(0.5, 0.5, 1.0, 2, [0.1, 0.3], 1e-9, 2.0, 0.0, cls, mcls, drift=1e-10)] * k
     return out
 
 
@@ -189,14 +189,19 @@ def test_unmet_names_each_failed_part_of_the_rule():
     edge = _orbits({("predicted", "regular"): 196, ("excess", "regular"): 4})  # exactly 2 %
     assert dc.supported(edge) and dc.unmet(edge) == []
     excess = _orbits({("predicted", "regular"): 195, ("excess", "regular"): 5})
-    assert dc.unmet(excess) == ["5 of 200 orbits are chaotic or excess (contradict): 2.5 %, more "
-                                "than the rule's 2 %"]
+    assert dc.unmet(excess) == ["frequencies: 5 of 200 orbits have a line no combination |c| <= 12 "
+                                "explains (excess, contradict): 2.5 %, more than the rule's 2 %"]
     undecided = _orbits({("predicted", "regular"): 138, ("unresolved", "undecided"): 62})
-    assert dc.unmet(undecided) == ["138 of 200 orbits are MEGNO-regular: 69 %, fewer than the "
-                                   "rule's 90 %"]
+    assert dc.unmet(undecided) == ["chaos: 138 of 200 orbits are regular by the MEGNO ladder: 69 %, "
+                                   "fewer than the rule's 90 %"]
     few = _orbits({("predicted", "regular"): 30, ("unresolved", "regular"): 170})
-    assert dc.unmet(few) == ["30 of 200 orbits show exactly the predicted count: 15 %, fewer than "
-                             "the rule's 20 %"]
+    assert dc.unmet(few) == ["frequencies: 30 of 200 orbits show exactly the predicted count: 15 %, "
+                             "fewer than the rule's 20 %"]
+    # chaos and excess each within 2 %, together beyond: the combined part names both
+    both = _orbits({("predicted", "regular"): 194, ("excess", "regular"): 3,
+                    ("predicted", "chaotic"): 3})
+    assert dc.unmet(both) == ["chaos and frequencies: 6 of 200 orbits are chaotic or excess "
+                              "(contradict): 3 %, more than the rule's 2 %"]
     for results in (excess, undecided, few):
         assert not dc.supported(results)
 

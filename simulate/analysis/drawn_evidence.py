@@ -5,9 +5,9 @@ A :class:`Setting` names the system (the reduced field eq:red-system, the axisym
 eq:motion-general for any $n$, or the general-$\mathbb{J}$ control of :mod:`simulate.analysis.control`), the
 orbit length, the sampling, the Taylor tolerance and the observables. :func:`measure` runs an
 :class:`simulate.analysis.draws.Ensemble` through it and returns one :class:`OrbitResult` per orbit,
-cached as JSON beside the evidence orbits (:func:`simulate.analysis.evidence.cache_dir`), keyed by
-:meth:`simulate.analysis.evidence.Experiment.key` of the setting and draw and by the source of the modules
-below (so a change of the analysis recomputes).
+cached as JSON beside the evidence orbits by the one mechanism of
+:func:`simulate.analysis.result_cache.cached_json`: keyed by the setting, the draw and the initial
+states, and trusted only while every project module loaded by the computation keeps its source.
 
 Classes of an orbit (rule fixed before looking; ``expected`` = the predicted number of independent
 frequencies, ``REGULAR`` = $10^{-5}$ from :mod:`simulate.analysis.frequencies`):
@@ -15,10 +15,18 @@ frequencies, ``REGULAR`` = $10^{-5}$ from :mod:`simulate.analysis.frequencies`):
 * ``predicted``  — frequency diffusion $D <$ ``REGULAR`` and exactly ``expected`` frequencies;
 * ``resonant``   — $D <$ ``REGULAR`` and fewer: the lines lie on a lower-rank lattice; the integer
   relation that made the strongest extra line dependent is named;
-* ``excess``     — $D <$ ``REGULAR`` and more than ``expected`` (contradicts a torus of that dimension);
-* ``unresolved`` — $D \ge$ ``REGULAR``: the lines moved between the two halves of the orbit.
+* ``excess``     — $D <$ ``REGULAR`` and more than ``expected`` even when integer combinations up to
+  $|c| \le 12$ explain lines (:func:`simulate.analysis.combinations.recount`, with the chance of a
+  false match): a line no combination explains (contradicts a torus of that dimension);
+* ``unresolved`` — $D \ge$ ``REGULAR``: the lines moved between the two halves of the orbit; or a
+  line whose only explanation is a combination that is not credible (``ambiguous``).
 
-Beside it, MEGNO's class (``regular`` / ``chaotic`` / ``undecided``, :mod:`simulate.analysis.chaos`).
+Beside it, MEGNO's class over the horizon ladder (``regular`` / ``chaotic`` / ``undecided``,
+:func:`simulate.analysis.chaos.ladder_class`; ``megno`` is $\langle Y\rangle(T)$, ``ladder`` the values at
+$T/8, T/4, T/2, T$), the growth of the tangent vector over the last doubling (``power``: $p$ of $t^p$,
+$(\ell(T) - \ell(T/2))/\ln 2$), and how well the proved integrals are kept (``drift``,
+:mod:`simulate.analysis.kept`). On $\mathcal V$ (``tangent = "V"``) the tangent vector starts in the
+tangent space of $\mathcal V$ (:func:`v_tangents`), which the flow preserves.
 Frequencies are reported in the units of energy scale 1 (time multiplied by the orbit's scale
 $s$, :mod:`simulate.analysis.draws`): counts and diffusions do not depend on it.
 """
@@ -26,14 +34,11 @@ $s$, :mod:`simulate.analysis.draws`): counts and diffusions do not depend on it.
 from __future__ import annotations
 
 import hashlib
-import json
-import os
-import tempfile
-from dataclasses import asdict, dataclass, replace
-from pathlib import Path
+from dataclasses import asdict, dataclass, field, replace
 
 import numpy as np
-from chaplygin_nd.simulate.analysis import chaos, draws, naff, result_cache
+from chaplygin_nd.simulate.analysis import chaos, combinations, draws, kept, naff
+from chaplygin_nd.simulate.analysis import result_cache as rc
 from chaplygin_nd.simulate.analysis.draws import Ensemble
 from chaplygin_nd.simulate.analysis.frequencies import REGULAR
 from chaplygin_nd.simulate.dynamics import so
@@ -67,14 +72,24 @@ class Setting:
     vertical: bool = False
     #: the first ``invariant`` signals are SO(n-1)-invariant: also counted on their own
     invariant: int = 0
+    #: ``full``: the MEGNO tangent starts anywhere; ``V``: in the tangent space of V = {M gamma = 0};
+    #: ``none``: no tangent (frequencies only: the re-runs of the horizon ladder)
+    tangent: str = "full"
+    #: the field's parameter values override (a, b) of the draw when given (the study's Manakov top: b = 0)
+    b_override: float | None = None
 
     def expected_at(self, a: float) -> int | None:
         """The predicted count of an orbit with parameter ``a``."""
         return 0 if (self.vertical and a == 0) else self.expected
 
-    def longer(self, factor: float) -> Setting:
-        """The same setting with ``factor`` times the orbit length."""
-        return replace(self, name=f"{self.name}-x{factor:g}", T=self.T * factor)
+    def longer(self, factor: float, tangent: str | None = None) -> Setting:
+        """The same setting with ``factor`` times the orbit length (and another ``tangent``); from
+        ``factor`` 4 on, sampled ``factor / 2`` times more sparsely (at most twice the samples of
+        ``T``: NAFF's cost grows with them; at dt = 1/2 the Nyquist frequency of 4T is pi, the
+        lines of the rows lie below 1)."""
+        return replace(self, name=f"{self.name}-x{factor:g}", T=self.T * factor,
+                       dt=self.dt * max(1.0, factor / 2),
+                       tangent=self.tangent if tangent is None else tangent)
 
 
 @dataclass
@@ -95,6 +110,15 @@ class OrbitResult:
     invariant_count: int = -1
     invariant_frequencies: list | None = None
     invariant_diffusion: float = float("nan")
+    ladder: list = field(default_factory=list)
+    power: float = float("nan")
+    drift: float = float("nan")
+    drift_of: str = ""
+    large: int = 0
+    ambiguous: int = 0
+    p_false: float = 0.0
+    #: the horizon (in units of T) whose frequency analysis this record holds (the ladder's re-runs)
+    horizon: float = 1.0
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -106,7 +130,7 @@ def _system(s: Setting):
 
     base = {"reduced": lambda: hs.reduced(), "full": lambda: hs.full(s.n),
             "control": lambda: general_system(s.J)}[s.system]()
-    return chaos.tangent_system(base)
+    return base if s.tangent == "none" else chaos.tangent_system(base)
 
 
 def observables(s: Setting, Y: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -162,10 +186,15 @@ def _integrate(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int):
     ta, _, _ = compiled_integrator(system, "double", s.tol, compact=True, batch=BATCH)
     d = y0.shape[1]
     u0 = chaos.initial_tangents(len(y0), d, seed)
+    if s.tangent == "V":
+        u0 = v_tangents(u0, y0, s.n)
     order = schedule(ens)
     ens, y0, u0 = subset(ens, order), y0[order], u0[order]
     t = np.arange(int(round(s.T / s.dt)) + 1) * s.dt
     sig, megno, lyap = None, np.empty(len(y0)), np.empty(len(y0))
+    ladder, power = np.empty((len(y0), len(chaos.LADDER))), np.empty(len(y0))
+    drift, drift_of = np.empty(len(y0)), [""] * len(y0)
+    stride = max(1, (len(t) - 1) // 1024)                 # the integrals at <= 1025 samples
     for start in range(0, len(y0), BATCH):
         sl = slice(start, min(start + BATCH, len(y0)))
         used = sl.stop - sl.start
@@ -174,10 +203,12 @@ def _integrate(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int):
         def pad(x, used=used):
             return np.concatenate([x, np.repeat(x[-1:], BATCH - used, 0)])
 
-        state = np.concatenate([y0[sl], u0[sl], np.zeros((used, 2))], axis=1)
+        state = y0[sl] if s.tangent == "none" else \
+            np.concatenate([y0[sl], u0[sl], np.zeros((used, 2))], axis=1)
         factor = pad(ens.time_factor[sl])
         ta.state[:] = pad(state).T
-        ta.pars[:] = np.stack([pad(ens.a[sl]), pad(ens.b[sl])])
+        b_lane = ens.b[sl] if s.b_override is None else np.full(used, float(s.b_override))
+        ta.pars[:] = np.stack([pad(ens.a[sl]), pad(b_lane)])
         ta.set_time(0.0)
         grid = t[:, None] * factor[None, :]
         _, states = ta.propagate_grid(grid)
@@ -190,9 +221,38 @@ def _integrate(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int):
         if sig is None:
             sig = np.empty((len(y0),) + z.shape[1:], dtype=z.dtype)
         sig[where] = z
-        megno[where] = chaos.megno_from_samples(grid[:, :used], states[:, -1, :])
-        lyap[where] = states[-1, -2, :] / grid[-1, :used]
-    return sig, megno, lyap
+        if s.tangent == "none":                       # a frequency-only run (the ladder's re-runs)
+            megno[where], lyap[where], ladder[where], power[where] = np.nan, np.nan, np.nan, np.nan
+        else:
+            megno[where] = chaos.megno_from_samples(grid[:, :used], states[:, -1, :])
+            lyap[where] = states[-1, -2, :] / grid[-1, :used]
+            ladder[where] = chaos.megno_ladder(grid[:, :used], states[:, -1, :]).T
+            half = (len(t) - 1) // 2
+            power[where] = (states[-1, -2, :] - states[half, -2, :]) / np.log(2.0)
+        dr, names = kept.drift(s.system, Y[::stride], ens.a[sl], b_lane, ens.scale[sl], s.n, s.J)
+        drift[where] = dr
+        for w, name in zip(where, names):
+            drift_of[w] = name
+    return sig, megno, lyap, {"ladder": ladder, "power": power, "drift": drift,
+                              "drift_of": drift_of}
+
+
+def v_tangents(u0: np.ndarray, y0: np.ndarray, n: int) -> np.ndarray:
+    r"""Unit tangent vectors of $\mathcal V = \{M\gamma = 0\}$ (eq:def-H-V) at the states ``y0``, made from
+    the drawn ``u0``: with $\Pi = \mathrm{Id} - \gamma\gamma^T$, $\delta\gamma = \Pi u_\gamma$, $v = -M\delta\gamma$
+    ($\perp \gamma$ since $M\gamma = 0$) and $\delta M = \Pi X\Pi + v\gamma^T - \gamma v^T$ ($X$ = the drawn skew
+    part): then $\delta M\gamma + M\delta\gamma = 0$ and $\langle\gamma, \delta\gamma\rangle = 0$, the linearised
+    constraints. The flow preserves $\mathcal V$, so its tangent flow preserves these vectors' space.
+    Domain: ``y0`` on $\mathcal V$ (full state, :func:`simulate.dynamics.so.vec` layout)."""
+    N = so.so_dim(n)
+    M, g = so.unvec(y0[:, :N], n), y0[:, N:N + n]
+    X, ug = so.unvec(u0[:, :N], n), u0[:, N:N + n]
+    P = np.eye(n)[None] - g[:, :, None] * g[:, None, :]
+    dg = np.einsum("kij,kj->ki", P, ug)
+    v = -np.einsum("kij,kj->ki", M, dg)
+    dM = P @ X @ P + v[:, :, None] * g[:, None, :] - g[:, :, None] * v[:, None, :]
+    u = np.concatenate([so.vec(dM), dg], axis=1)
+    return u / np.linalg.norm(u, axis=1, keepdims=True)
 
 
 def _relation(spec: naff.Spectrum) -> str:
@@ -213,60 +273,49 @@ def _relation(spec: naff.Spectrum) -> str:
     return ""
 
 
-def classify(spec: naff.Spectrum, expected: int | None) -> str:
+def classify(spec: naff.Spectrum, expected: int | None, ambiguous: int = 0) -> str:
     """``predicted`` / ``resonant`` / ``excess`` / ``unresolved`` (module docstring); with
-    ``expected`` None: ``regular`` or ``unresolved``."""
+    ``expected`` None: ``regular`` or ``unresolved``. ``ambiguous``: lines whose only explanation
+    is not credible (:func:`simulate.analysis.combinations.recount`): unresolved unless excess."""
     if not spec.diffusion < REGULAR:
         return "unresolved"
     if expected is None:
         return "regular"
+    if spec.count > expected:
+        return "excess"
+    if ambiguous:
+        return "unresolved"
     if spec.count == expected:
         return "predicted"
-    return "resonant" if spec.count < expected else "excess"
+    return "resonant"
 
 
-def _key(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int) -> str:
-    from chaplygin_nd.simulate.analysis import evidence
+def settings(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int) -> dict:
+    """What a measurement depends on besides the code: the setting, the draw, the initial states
+    (their SHA-256) and the seed of the tangent vectors (the cache's settings key)."""
+    return {"kind": "drawn", "setting": asdict(s), "draw": ens.describe(), "seed": int(seed),
+            "y0": hashlib.sha256(np.ascontiguousarray(y0, dtype=float).tobytes()).hexdigest()}
 
-    exp = evidence.Experiment(f"drawn-{s.name}", s.system, s.n, 0.0, 0.0, ens.family, int(seed),
-                              (ens.count,), s.dt, int(round(s.T / s.dt)), s.tol, J=tuple(s.J))
-    h = hashlib.sha256(exp.key().encode())
-    h.update(json.dumps({"setting": asdict(s), "draw": ens.describe()}, sort_keys=True).encode())
-    h.update(np.ascontiguousarray(y0).tobytes())
-    here = Path(__file__).resolve().parent.parent  # simulate/
-    for name in ("analysis/drawn_evidence.py", "analysis/chaos.py", "analysis/draws.py",
-                 "analysis/naff.py", "analysis/control.py", "integrators/heyoka_systems.py",
-                 "integrators/heyoka_taylor.py", "dynamics/so.py"):
-        h.update((here / name).read_bytes())
-    for name in ("runtime/expressions.py", "generated/expression_builders.py"):
-        h.update((here.parent / name).read_bytes())
-    return h.hexdigest()[:20]
+
+def _decode(stored) -> list[OrbitResult]:
+    if not isinstance(stored, list) or not all(isinstance(d, dict) for d in stored):
+        raise TypeError("not a list of orbit records")
+    return [OrbitResult(**d) for d in stored]
 
 
 def measure(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int,
             use_cache: bool = True) -> list[OrbitResult]:
     """Every orbit of ``ens`` (initial states ``y0`` ``(count, dim)``) through setting ``s``:
-    MEGNO, Lyapunov estimate, NAFF count, diffusion, class. Cached (module docstring)."""
-    import fcntl
-
-    from chaplygin_nd.simulate.analysis import evidence
-
-    path = evidence.cache_dir() / f"drawn-{s.name}-{_key(s, ens, y0, seed)}.json"
-    if not use_cache:
-        return _measure(s, ens, y0, seed)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with open(path.with_suffix(".lock"), "w") as lock:   # one process computes, the others wait
-        fcntl.flock(lock, fcntl.LOCK_EX)
-        if path.exists():
-            found = result_cache.read_entry(
-                path, lambda text: [OrbitResult(**d) for d in json.loads(text)])
-            if found is not None:
-                return found
-        out = _measure(s, ens, y0, seed)
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", dir=path.parent)
-        with os.fdopen(fd, "w") as fh:
-            json.dump([r.to_dict() for r in out], fh)
-        os.replace(tmp, path)
+    MEGNO over the horizon ladder, Lyapunov estimate, the drift of the integrals, NAFF count,
+    diffusion, class. Cached (:func:`simulate.analysis.result_cache.cached_json`; a damaged entry
+    is recomputed, one warning line)."""
+    out, _ = rc.cached_json(
+        "evidence", f"drawn-{s.name}", settings(s, ens, y0, seed),
+        lambda: _measure(s, ens, y0, seed),
+        encode=lambda res: [r.to_dict() for r in res], decode=_decode,
+        use_cache=use_cache, heyoka=True)
+    if len(out) != len(y0):
+        raise RuntimeError(f"{s.name}: {len(out)} results for {len(y0)} orbits")
     return out
 
 
@@ -281,7 +330,7 @@ def _limited(spec: naff.Spectrum, limit: int) -> naff.Spectrum:
 
 
 def _measure(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int) -> list[OrbitResult]:
-    Z, megno, lyap = _integrate(s, ens, y0, seed)
+    Z, megno, lyap, extra = _integrate(s, ens, y0, seed)
     specs, inv = [], []
     for start in range(0, len(Z), 32):                       # bounded memory
         whole, first, second = naff.lines_batch(Z[start:start + 32], s.dt)
@@ -293,16 +342,43 @@ def _measure(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int) -> list[Orbit
     out = []
     for k, spec in enumerate(specs):
         spec = _limited(spec, s.limit)
-        cls = classify(spec, s.expected_at(float(ens.a[k])))
+        expected = s.expected_at(float(ens.a[k]))
+        info = {"large": 0, "ambiguous": 0, "p_false": 0.0, "relations": []}
+        if expected is not None and spec.diffusion < REGULAR and spec.count > expected:
+            # lines beyond the |c| <= 4 lattice: search combinations up to |c| <= 12
+            scale = max(abs(w) for w, _ in spec.lines)
+            basis, info = combinations.recount(spec.lines, spec.tolerance * scale, s.limit + 1,
+                                               resolution=2 * np.pi / s.T)
+            spec = naff.Spectrum(spec.lines, sorted(basis), spec.diffusion, spec.tolerance)
+        cls = classify(spec, expected, info["ambiguous"])
+        relation = _relation(spec) if cls == "resonant" else "; ".join(info["relations"])
         r = OrbitResult(float(ens.a[k]), float(ens.b[k]), float(ens.scale[k]), spec.count,
                         [float(f) for f in spec.frequencies], float(spec.diffusion),
-                        float(megno[k]), float(lyap[k]), cls, chaos.megno_class(megno[k]),
-                        _relation(spec) if cls == "resonant" else "")
+                        float(megno[k]), float(lyap[k]), cls,
+                        chaos.ladder_class(extra["ladder"][k]), relation,
+                        ladder=[float(v) for v in extra["ladder"][k]],
+                        power=float(extra["power"][k]), drift=float(extra["drift"][k]),
+                        drift_of=extra["drift_of"][k], large=int(info["large"]),
+                        ambiguous=int(info["ambiguous"]), p_false=float(info["p_false"]))
         if s.invariant:
             r.invariant_count = inv[k].count
             r.invariant_frequencies = [float(f) for f in inv[k].frequencies]
             r.invariant_diffusion = float(inv[k].diffusion)
         out.append(r)
+    return out
+
+
+FREQUENCY_FIELDS = ("count", "frequencies", "diffusion", "cls", "relation", "invariant_count",
+                    "invariant_frequencies", "invariant_diffusion", "large", "ambiguous", "p_false")
+
+
+def merge_longer(at_T: OrbitResult, longer: OrbitResult, factor: float) -> OrbitResult:
+    """The record of an orbit whose frequencies were measured again at ``factor`` times T (a
+    frequency-only re-run): its frequency fields from ``longer``, its chaos indicator from the
+    run at T, the larger drift of the integrals."""
+    out = replace(at_T, **{k: getattr(longer, k) for k in FREQUENCY_FIELDS}, horizon=float(factor))
+    if np.isfinite(longer.drift) and not longer.drift <= at_T.drift:
+        out.drift, out.drift_of = longer.drift, longer.drift_of
     return out
 
 

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import os
 import time
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -164,7 +165,7 @@ def orbits(exp: Experiment, use_cache: bool = True) -> Orbits:
         return _integrate(exp)
     path = folder / f"{exp.name}-{exp.key()}.npz"
     with rc.locked(path):  # one process integrates, the others wait
-        if path.exists():
+        if os.path.lexists(path):
             found = _load(path, exp)
             if found is not None:
                 return found
@@ -188,8 +189,7 @@ def _load(path: Path, exp: Experiment) -> Orbits | None:
                 or not np.all(np.isfinite(y))):
             raise ValueError(f"arrays of the wrong shape or type ({y.shape}, {y.dtype})")
     except Exception as exc:  # noqa: BLE001 - any unreadable entry is recomputed, never trusted
-        rc.warn_once(f"evidence cache entry {path} is corrupt ({type(exc).__name__}: {exc}); "
-                     "recomputing it")
+        rc.damaged(path, exc)
         return None
     if not rc.code_unchanged(manifest):
         return None  # computed by other code: a miss

@@ -10,11 +10,17 @@ lookup, :func:`code_unchanged` hashes the current source of each recorded module
 module in ``sys.modules``, else where the import system would find it); a module that changed,
 or that can no longer be found, makes the lookup a miss, and the recomputed entry replaces it.
 
+This is the one mechanism of every cache of computed results (issue 24): the orbits and spectra
+of :mod:`simulate.analysis.evidence` / :mod:`simulate.analysis.frequencies` (``.npz`` and JSON) and
+the drawn ensembles of :mod:`simulate.analysis.drawn_evidence` (JSON through :func:`cached_json`).
+No cache keeps a hand-made list of source files: the manifest is taken from ``sys.modules``.
+
 A cache is an optimisation, never a failure and never a way in (issue 19, item 5):
 
 * entries are ``.npz`` read with ``allow_pickle=False`` and JSON: nothing is unpickled;
-* an entry that does not parse or has the wrong shape is reported once (a
-  :class:`ResultCacheWarning` naming the file and ``$CHAPLYGIN_ND_CACHE``) and recomputed;
+* an entry that does not parse or has the wrong shape (truncated, random bytes, a folder in its
+  place) is reported once (one :class:`ResultCacheWarning` line naming the file and
+  ``$CHAPLYGIN_ND_CACHE``), removed (:func:`damaged`), recomputed and written anew;
 * a folder that cannot be created or written (read-only, the variable naming a file) is reported
   once and the run goes on uncached;
 * a folder (the cache root or its subfolder) that is writable by group or others, or not owned by
@@ -39,7 +45,8 @@ from pathlib import Path
 from chaplygin_nd import cache as project_cache
 
 __all__ = ["ResultCacheWarning", "private_folder", "code_manifest", "code_unchanged",
-           "environment", "write_atomic", "warn_once", "locked", "read_entry"]
+           "environment", "write_atomic", "warn_once", "locked", "read_entry", "settings_key",
+           "damaged", "cached_json"]
 
 PROJECT = "chaplygin_nd"
 _WARNED: set[str] = set()
@@ -213,3 +220,75 @@ def locked(path: Path) -> Iterator[None]:
 def dumps(obj) -> str:
     """Canonical JSON (sorted keys) of a settings dict, for keys."""
     return json.dumps(obj, sort_keys=True)
+
+
+def settings_key(settings, heyoka: bool = False) -> str:
+    """The settings key of an entry: 20 hex digits of the SHA-256 of the canonical JSON of
+    ``settings`` (a JSON-able object naming everything the result depends on except the code) and
+    of the library versions (:func:`environment`). The code is checked apart, by the manifest."""
+    text = dumps({"settings": settings, "versions": environment(heyoka=heyoka)})
+    return hashlib.sha256(text.encode()).hexdigest()[:20]
+
+
+def damaged(path: Path, exc: BaseException) -> None:
+    """Report the unreadable entry ``path`` once (one line: why) and remove it (a file, or a
+    folder found in its place), so that the recomputed entry can take its place."""
+    why = " ".join(f"{type(exc).__name__}: {exc}".split())[:160]
+    warn_once(f"cache entry {path} is corrupt ({why}); recomputing it")
+    with contextlib.suppress(OSError):
+        if path.is_dir() and not path.is_symlink():
+            import shutil
+
+            shutil.rmtree(path)
+        else:
+            path.unlink()
+
+
+_MISS = object()
+
+
+def _read_json(path: Path, decode):
+    """The value of the JSON entry ``path`` (``{"manifest": ..., "value": ...}``) if it parses,
+    ``decode`` accepts it and its manifest matches the code loaded now; ``_MISS`` otherwise."""
+    if not os.path.lexists(path):
+        return _MISS
+    try:
+        data = json.loads(Path(path).read_text(encoding="utf-8"))
+        if not isinstance(data, dict) or not isinstance(data.get("manifest"), dict):
+            raise ValueError("not an entry (no manifest)")
+        value = decode(data["value"])
+    except Exception as exc:  # noqa: BLE001 - any unreadable entry is recomputed, never trusted
+        damaged(path, exc)
+        return _MISS
+    return value if code_unchanged(data["manifest"]) else _MISS
+
+
+def cached_json(kind: str, name: str, settings, compute, *, encode, decode,
+                use_cache: bool = True, heyoka: bool = False):
+    """``(value, cached)``: the result of ``compute()`` for ``settings``, from the entry
+    ``KIND/NAME-KEY.json`` (:func:`settings_key`) when it parses, ``decode(stored)`` accepts it
+    and every project module recorded with it has its recorded source (:func:`code_unchanged`);
+    else computed, then stored with the manifest of the modules loaded after the computation
+    (:func:`code_manifest`) as ``encode(value)``. A damaged entry is a miss (:func:`damaged`);
+    a folder that cannot be used runs uncached (:func:`private_folder`). One process computes,
+    the others wait (:func:`locked`)."""
+    folder = private_folder(kind) if use_cache else None
+    if folder is None:
+        return compute(), False
+    path = folder / f"{name}-{settings_key(settings, heyoka)}.json"
+    with locked(path):
+        found = _read_json(path, decode)
+        if found is not _MISS:
+            return found, True
+        before = code_manifest()
+        value = compute()
+        manifest = code_manifest()
+        if any(manifest.get(k, v) != v for k, v in before.items()):
+            # the source changed while it ran: which code computed the value is not known
+            warn_once(f"the source changed during the computation of {path.name}; not cached")
+            return value, False
+        text = json.dumps({"manifest": manifest, "value": encode(value)})
+        if os.path.isdir(path) and not os.path.islink(path):   # appeared meanwhile: not ours
+            damaged(path, IsADirectoryError("a folder in place of the entry"))
+        write_atomic(path, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
+    return value, False
