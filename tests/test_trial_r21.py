@@ -48,3 +48,32 @@ def test_a_formula_in_the_notes_has_no_emphasis_marker(monkeypatch):
     cell = claims._cell(text)
     assert not re.search(r"(?<!\\)[*|]", cell), cell
     assert cell.replace("\\", "") == text
+
+
+@pytest.mark.parametrize("where, needle", [
+    ("", "an empty path"),
+    (".", "is a folder"),
+    ("no/such/folder/x.json", "no folder"),
+])
+def test_first_integrals_refuses_a_bad_json_path_before_the_search(tmp_path, monkeypatch, capsys,
+                                                                   where, needle):
+    """``--json /tmp`` ran the search, then raised IsADirectoryError and left ``/tmpXXXX.tmp``;
+    ``--json ''`` wrote nothing without a word; a missing folder raised FileNotFoundError."""
+    from chaplygin_nd.symbolic.fi_cli import main
+
+    monkeypatch.chdir(tmp_path)
+    assert exit_code(main, ["4", "1", "--a", "0", "--b", "1", "--json", where]) == 2
+    assert needle in one_error_line(capsys)
+    assert list(tmp_path.iterdir()) == [] and list(tmp_path.parent.glob("*.tmp")) == []
+
+
+def test_first_integrals_json_is_written_whole(tmp_path, monkeypatch):
+    import json
+
+    from chaplygin_nd.symbolic.fi_cli import main
+
+    monkeypatch.chdir(tmp_path)
+    assert exit_code(main, ["4", "1", "--a", "-1/3", "--b", "3/2", "--json", "t.json"]) == 0
+    assert [p.name for p in tmp_path.iterdir()] == ["t.json"]
+    (row,) = json.loads((tmp_path / "t.json").read_text())
+    assert row["n"] == 4 and row["d"] == 1 and row["settled"]
