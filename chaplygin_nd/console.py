@@ -25,6 +25,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import os
+import re
 import signal
 import sys
 import threading
@@ -121,7 +122,15 @@ def usable_backend() -> None:
 
 
 class OneLineParser(argparse.ArgumentParser):
-    """argparse whose usage errors are one line ``error: PROG: --option: ...`` on stderr (exit 2)."""
+    """argparse whose usage errors are one line ``error: PROG: --option: ...`` on stderr (exit 2).
+
+    A negative rational ``-1/3`` or ``-1e-3`` is a value, as ``-1`` and ``-0.5`` are in argparse
+    (``--a -1/3`` was refused with "--a: expected one argument")."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = re.compile(
+            r"^-(\d+|\d*\.\d+|\d+\.\d*)([eE][-+]?\d+)?(/\d+)?$")
 
     def error(self, message):
         fail(f"{self.prog}: {message.removeprefix('argument ')}")

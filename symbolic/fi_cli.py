@@ -58,7 +58,7 @@ def parse_model(n: int, a, b, J):
 
 def main(argv: list[str]) -> int:
     """Run the search; exit status 0, or 2 on bad input (one line)."""
-    from chaplygin_nd.console import OneLineParser, fail, positive_int
+    from chaplygin_nd.console import OneLineParser, fail, path_argument, positive_int
 
     parser = OneLineParser(prog="chaplygin first-integrals",
                            description="Exact search for polynomial and rational first integrals "
@@ -76,7 +76,8 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--paper-only", action="store_true",
                         help="count only the paper's integrals as known (the new one then shows "
                              "as an excess)")
-    parser.add_argument("--json", help="write the degree table to this file (atomically)")
+    parser.add_argument("--json", type=path_argument,
+                        help="write the degree table to this file (atomically)")
     args = parser.parse_args(argv)
     try:
         model = parse_model(args.n, args.a, args.b, args.J)
@@ -84,6 +85,10 @@ def main(argv: list[str]) -> int:
             raise ValueError("--k and --d-gamma must be >= 0")
         if args.start > args.degree:
             raise ValueError(f"--from {args.start} is above the degree {args.degree}")
+        if args.json is not None and args.json.is_dir():
+            raise ValueError(f"--json {args.json}: is a folder; give a file name")
+        if args.json is not None and not args.json.absolute().parent.is_dir():
+            raise ValueError(f"--json {args.json}: no folder {args.json.absolute().parent}")
     except ValueError as err:
         return fail(str(err))
     import sys
@@ -106,9 +111,13 @@ def main(argv: list[str]) -> int:
         import tempfile
         from pathlib import Path
 
-        out = Path(args.json)
-        fd, tmp = tempfile.mkstemp(dir=out.parent or ".", suffix=".tmp")
-        with os.fdopen(fd, "w") as f:
-            json.dump(rows, f, indent=1, default=str)
-        os.replace(tmp, out)
+        out = Path(args.json).absolute()
+        fd, tmp = tempfile.mkstemp(dir=out.parent, prefix=f".{out.name}.", suffix=".tmp")
+        try:
+            with os.fdopen(fd, "w") as f:
+                json.dump(rows, f, indent=1, default=str)
+            os.replace(tmp, out)
+        except BaseException:
+            Path(tmp).unlink(missing_ok=True)
+            raise
     return 0

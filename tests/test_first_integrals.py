@@ -77,6 +77,9 @@ def test_new_integral_is_independent_for_n5_only():
 @pytest.mark.parametrize("argv, needle", [
     (["2", "2", "--a", "0", "--b", "1"], "n >= 3"),
     (["4", "2", "--a", "-2", "--b", "1"], "a >= -1"),
+    (["4", "2", "--a", "-3/2", "--b", "1"], "a = -3/2 is outside"),  # a value, not an option
+    (["4", "2", "--a", "0", "--b", "-1/2"], "b = -1/2 is outside"),
+    (["4", "2", "--a", "0", "--b", "-1e-3"], "is outside the domain b > 0"),
     (["4", "2", "--a", "x", "--b", "1"], "not a rational"),
     (["4", "2", "--a", "0"], "b is required"),
     (["3", "2", "--J", "1,2", "--b", "1"], "3 positive rationals"),

@@ -151,7 +151,7 @@ def test_a_second_run_into_a_locked_folder_is_refused(tmp_path):
 @pytest.mark.slow
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
 def test_seeded_interrupts_at_0_to_2_s_are_one_line(tmp_path, sig):
-    """A handful of seeded trials (issue 25; the 300-trial runs are in notes/r21-loop.md): a run
+    """A handful of seeded trials (issue 25; the 300-trial runs are in docs/design-notes/r21-loop.md): a run
     of a long scene, from an empty cache, is sent ``sig`` at a seeded moment 0-2 s after the
     program has taken the signals (observed in /proc) — during the imports, the planning, the
     compile or the integration. Every trial ends with the one line ``interrupted`` and exit 130

@@ -189,7 +189,10 @@ def _correction(row: dict) -> str:
 
 
 def _cell(text: str) -> str:
-    return html.escape(str(text).replace("|", "\\|").replace("\n", " "), quote=False) or " "
+    """Plain text of the report on one Markdown line: ``|`` and ``*`` escaped (the products
+    ``2*a*b*gamma_5`` of a formula in the notes were read as emphasis), HTML escaped."""
+    text = str(text).replace("|", "\\|").replace("*", "\\*").replace("\n", " ")
+    return html.escape(text, quote=False) or " "
 
 
 def _printed_sources(records: list[dict]) -> str:

@@ -84,9 +84,9 @@ def _components(name: str, arr: np.ndarray) -> tuple[list[str], np.ndarray, str]
         pairs = [(i, j) for i in range(n) for j in range(i + 1, n)]
         values = np.stack([arr[..., i, j] for i, j in pairs], axis=-1)
         labels = [f"${sym}_{{{_sub(i + 1, j + 1, n)}}}$" for i, j in pairs]
-        what = ("angular momentum about the contact point" if name == "M" else "angular velocity")
-        return labels, values, (f"{what} ${sym}$ (body frame), independent entries $i<j$ "
-                                f"of ${n}\\times{n}$ skew matrix")
+        what = ("angular momentum $M$ about the contact point" if name == "M"
+                else r"angular velocity $\Omega$")
+        return labels, values, f"{what} (body frame), entries $i<j$ of the ${n}\\times{n}$ skew matrix"
     if name == "gamma":
         n = arr.shape[-1]
         return ([rf"$\gamma_{{{i + 1}}}$" for i in range(n)], arr,
