@@ -29,6 +29,8 @@ import tempfile
 import tomllib
 from pathlib import Path
 
+from chaplygin_nd import processes
+
 ROOT = Path(__file__).resolve().parent.parent
 
 #: (name, the unique original text, its replacement, the rows it is run against)
@@ -92,7 +94,8 @@ def run_rows(pkg: Path, rows, timeout: float = 1200.0) -> dict:
         env = {k: v for k, v in os.environ.items() if not k.startswith("PYTHON")}
         env["CHAPLYGIN_ND_CACHE"] = cache
         r = subprocess.run([sys.executable, "-I", "-B", "-c", _RUN.format(pkg=str(pkg), rows=list(rows))],
-                           env=env, capture_output=True, text=True, timeout=timeout)
+                           env=env, capture_output=True, text=True, timeout=timeout,
+                           **processes.popen_kwargs())  # the child dies with this process
     line = [x for x in r.stdout.splitlines() if x.startswith("RESULT ")]
     if r.returncode != 0 or not line:
         return {row: {"verdict": "error", "unmet": [r.stderr.strip().splitlines()[-1:]]} for row in rows}

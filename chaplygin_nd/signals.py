@@ -8,6 +8,9 @@ moment :func:`take_signals` has run (the ``chaplygin`` program's first statement
   import cut half-way leaves a half-made module (NumPy then says its C extensions are broken,
   SymPy has no ``core``). The handler looks again every :data:`RETRY_SECONDS` and raises at the
   first moment outside every import.
+* A signal whose exception cannot propagate (it landed in a weakref callback or a ``__del__``, where
+  Python prints "Exception ignored in ..." with a traceback) is not printed: :func:`take_signals`
+  installs an unraisable hook that raises it again in the main thread a moment later.
 * :func:`received` remembers the first signal, so none is lost even if something on the way
   swallows the exception; the program exits 128 + its number (130 Ctrl-C, 143 SIGTERM).
 """
@@ -16,6 +19,7 @@ from __future__ import annotations
 
 import _thread
 import signal
+import sys
 import time
 
 __all__ = ["Interrupted", "take_signals", "handler", "received", "forget_received"]
@@ -67,8 +71,24 @@ def handler(signum, frame):
     raise Interrupted(signal.Signals(signum).name)
 
 
+_previous_hook = sys.unraisablehook
+
+
+def _unraisable(unraisable) -> None:
+    """``sys.unraisablehook``: an :class:`Interrupted` raised where it cannot propagate (a weakref
+    callback during garbage collection, seen in CI: a traceback before ``interrupted``) is raised
+    again in the main thread instead of printed; anything else goes to the previous hook."""
+    if isinstance(unraisable.exc_value, Interrupted) and _received:
+        if not _waiting:
+            _waiting.append(_received[0])
+            _thread.start_new_thread(_again, (_received[0],))
+        return
+    _previous_hook(unraisable)
+
+
 def take_signals() -> None:
     """From now on Ctrl-C and SIGTERM go to :func:`handler` (main thread only)."""
+    sys.unraisablehook = _unraisable
     try:
         for s in (signal.SIGINT, signal.SIGTERM):  # SIGTERM last: caught => both are ours
             signal.signal(s, handler)

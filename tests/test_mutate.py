@@ -52,15 +52,19 @@ def _run(mutants_and_rows):
 def test_a_deterministic_sample_of_mutants_is_killed_or_equivalent():
     stored, seconds = reach.load()
     fns = reach.printed_functions()
-    cheap = {}
+    # Each sampled mutant runs against EVERY row that reaches its function, as `make mutate` does:
+    # against only the first cheap row, whether a mutant was killed depended on the timings stored
+    # in reach.json (section2.integrals_3d survived eq:VHgeneraln once S2.1:integrals3D, the row
+    # that checks it, measured 1.2 s under load). Timings only choose which functions are sampled.
+    reaching: dict[str, list[str]] = {}
     for row, functions in stored.items():
-        if seconds.get(row, 99) < 0.3:
-            for f in functions:
-                cheap.setdefault(f, row)
+        for f in functions:
+            reaching.setdefault(f, []).append(row)
+    cheap = sorted(f for f, rows in reaching.items() if sum(seconds.get(r, 99) for r in rows) < 3.0)
     picked = []
-    for f in sorted(cheap)[::max(1, len(cheap) // 10)][:10]:
+    for f in cheap[::max(1, len(cheap) // 10)][:10]:
         m = mutate.mutants(f, fns[f], 4)[0]
-        picked.append((m, [cheap[f]]))
+        picked.append((m, reaching[f]))
     assert len(picked) == 10
     records = _run(picked)
     outcomes = [(r["function"], r["mutation"], r["outcome"], r["reason"]) for r in records]
