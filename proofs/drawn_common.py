@@ -26,6 +26,7 @@ integrable system) and misses (regular on a chaotic one).
 from __future__ import annotations
 
 import numpy as np
+from chaplygin_nd.simulate.analysis import chaos
 
 CONTRADICTING_MAX = 0.02
 MEGNO_REGULAR_MIN = 0.90
@@ -34,16 +35,9 @@ CONTROL_CHAOTIC_MIN = 0.90
 SEPARATION = 100.0
 KEPT_MIN = 0.98
 
-#: the validation study's numbers (bench/out/evidence.md of the run named there)
-STUDY = ("bench/bench_evidence.py (chaplygin bench evidence, 2026-11-26, seed 20261121): 456 "
-         "orbits of integrable systems (3D Chaplygin sphere with generic J, n = 4 sphere on P "
-         "and reduced, Manakov top on so(4), V for n = 4 and 6 with the tangent in TV and in "
-         "the whole space, standard map K = 0) and 200 of a chaotic one (standard map K = 10, "
-         "whose <Y> slope gives lambda = 1.621 against ln(K/2) = 1.609): false alarms 0 of 456 "
-         "(< 0.7 % at 95 %), misses 0 of 200 (< 1.5 % at 95 %), undecided 3 of 456 (all V, "
-         "even n, tangent in the whole space, <Y> still rising to 2p = 4; with the tangent in "
-         "TV: 0 of 64) and 0 of 200; the old single threshold left 45 of 456 undecided (<Y> -> "
-         "4 on V); the generic-J controls: 60 of 64 chaotic, 2 regular, 2 undecided")
+#: the validation study's numbers (bench/out/evidence.md of the run named there): the rule's own
+#: record, :data:`simulate.analysis.chaos.STUDY`
+STUDY = chaos.STUDY
 
 RULE = ("contradicting orbit: chaotic by the MEGNO horizon ladder (<Y>(T) - <Y>(T/2) >= 1 and "
         "<Y>(T) >= 4) or, with D < 1e-5, a line no integer combination |c| <= 12 explains beyond "

@@ -29,7 +29,7 @@ from chaplygin_nd.simulate.integrators.stops import NonFinite, check_finite, fmt
 from chaplygin_nd.simulate.kernels import active
 from chaplygin_nd.simulate.scene.budget import Projection, refuse_before
 from chaplygin_nd.simulate.scene.planner import Plan, settings
-from chaplygin_nd.simulate.scene.progress import eta
+from chaplygin_nd.simulate.scene.progress import Line
 from chaplygin_nd.simulate.scene.spec import Scene
 
 __all__ = ["Trajectory", "execute", "Progress"]
@@ -49,7 +49,7 @@ class Trajectory:
     compile_seconds: float = 0.0  # JIT compile (cold) or cache load (warm), not in ``seconds``
 
 
-class Progress:
+class Progress(Line):
     """Progress on stderr for runs longer than ``after`` seconds (at most one line a second), with
     an ETA; it also stops a run whose time became nan and, through ``projection``
     (:class:`simulate.scene.budget.Projection`), one projected to cost too much. The line is
@@ -58,11 +58,9 @@ class Progress:
 
     def __init__(self, t_end: float, label: str, after: float = 2.0, stream=sys.stderr,
                  projection=None, t0: float = 0.0):
-        self.t0, self.t_end, self.label, self.after, self.stream = t0, t_end, label, after, stream
+        super().__init__(label, after, stream)
+        self.t0, self.t_end = t0, t_end
         self.projection = projection
-        self.start = time.perf_counter()
-        self.last = self.start
-        self.shown = False
         self.reached = t0
 
     def restart(self) -> None:
@@ -79,20 +77,9 @@ class Progress:
         if self.projection is not None:
             self.projection(t)
         self.reached = max(self.reached, min(t, self.t_end))
-        now = time.perf_counter()
-        if now - self.start >= self.after and now - self.last >= 1.0:
-            span = self.t_end - self.t0
-            frac = (self.reached - self.t0) / span if span else 1.0
-            self.stream.write(f"\r{self.label}: t = {self.reached:.4g} / {self.t_end:.4g} "
-                              f"({100 * frac:5.1f}%, {now - self.start:.0f} s, "
-                              f"{eta(frac, now - self.start)})")
-            self.stream.flush()
-            self.last, self.shown = now, True
-
-    def done(self) -> None:
-        """End the progress line."""
-        if self.shown:
-            self.stream.write("\n")
+        span = self.t_end - self.t0
+        self.show(f"{self.label}: t = {self.reached:.4g} / {self.t_end:.4g}",
+                  (self.reached - self.t0) / span if span else 1.0)
 
 
 def execute(scene: Scene, plan: Plan, progress: bool = True, force: bool = False) -> Trajectory:
