@@ -113,9 +113,10 @@ def _release_fork_server() -> None:
             os.close(fd)
         except OSError:
             pass
-        server._forkserver_alive_fd = None
-        server._forkserver_pid = None
-        server._forkserver_address = None
+        # CPython-private attributes of multiprocessing.forkserver.ForkServer (3.11-3.13)
+        server._forkserver_alive_fd = None  # type: ignore[attr-defined]
+        server._forkserver_pid = None  # type: ignore[attr-defined]
+        server._forkserver_address = None  # type: ignore[attr-defined]
 
 
 def worker_start(owner: int, ready=None, then: Callable[..., object] | None = None,
@@ -180,7 +181,7 @@ class Pool(ProcessPoolExecutor):
                          initargs=(os.getpid(), self._ready, initializer, *initargs))
         try:
             with held_signals():
-                self._launch_processes()
+                self._launch_processes()  # type: ignore[attr-defined]  # CPython-private
                 started = 0
                 deadline = time.monotonic() + START_SECONDS
                 while started < workers and time.monotonic() < deadline:

@@ -56,7 +56,7 @@ def _importing(frame) -> bool:
 def _again(signum: int) -> None:
     time.sleep(RETRY_SECONDS)
     _waiting.clear()
-    _thread.interrupt_main(signum)  # the handler runs again, in the main thread
+    _thread.interrupt_main(signal.Signals(signum))  # the handler runs again, in the main thread
 
 
 def handler(signum, frame):

@@ -66,36 +66,47 @@ def coordinates(n: int, planes: int) -> Coordinates:
             v[2 * j], v[2 * j + 1] = 1, 1j * s
             w = np.zeros(planes, dtype=np.int64)
             w[j] = s
-            vecs.append(v), wts.append(w), labels.append(lab)
+            vecs.append(v)
+            wts.append(w)
+            labels.append(lab)
     for k in range(2 * planes, n):
         v = np.zeros(n, dtype=complex)
         v[k] = 1
-        vecs.append(v), wts.append(np.zeros(planes, dtype=np.int64)), labels.append(f"e{k + 1}")
+        vecs.append(v)
+        wts.append(np.zeros(planes, dtype=np.int64))
+        labels.append(f"e{k + 1}")
     pairs = _pairs(n)
     rows, weights, names, is_g = [], [], [], []
     for a, b in _pairs(n):   # M coordinates u^T M v = sum_{k<l} (u_k v_l - u_l v_k) M_kl
         u, v = vecs[a], vecs[b]
         rows.append(np.concatenate([[u[k] * v[l] - u[l] * v[k] for k, l in pairs], np.zeros(n)]))
-        weights.append(wts[a] + wts[b]), names.append(f"M[{labels[a]},{labels[b]}]"), is_g.append(False)
+        weights.append(wts[a] + wts[b])
+        names.append(f"M[{labels[a]},{labels[b]}]")
+        is_g.append(False)
     for a in range(n):
         rows.append(np.concatenate([np.zeros(len(pairs)), vecs[a]]))
-        weights.append(wts[a]), names.append(f"g[{labels[a]}]"), is_g.append(True)
+        weights.append(wts[a])
+        names.append(f"g[{labels[a]}]")
+        is_g.append(True)
     C = np.array(rows)
     re, im = np.rint(C.real).astype(np.int64), np.rint(C.imag).astype(np.int64)
     actions = []
     for k in range(n):   # reflection g_k on the real coordinates, then matched to +- a coordinate
-        s = np.ones(n, dtype=np.int64)
-        s[k] = -1
-        real_sign = np.array([s[i] * s[j] for i, j in pairs] + list(s))
-        perm, sign = [], []
+        flip = np.ones(n, dtype=np.int64)
+        flip[k] = -1
+        real_sign = np.array([flip[i] * flip[j] for i, j in pairs] + list(flip))
+        perm: list[int] = []
+        sign: list[int] = []
         for r in range(len(rows)):
             image = C[r] * real_sign
             for t in range(len(rows)):
                 if np.allclose(image, C[t]):
-                    perm.append(t), sign.append(1)
+                    perm.append(t)
+                    sign.append(1)
                     break
                 if np.allclose(image, -C[t]):
-                    perm.append(t), sign.append(-1)
+                    perm.append(t)
+                    sign.append(-1)
                     break
             else:
                 raise ArithmeticError("a reflection does not permute the coordinates")
@@ -191,7 +202,7 @@ def _split(B: Basis) -> list[Block]:
     co, n = B.coords, B.coords.n
     index = {tuple(e): i for i, e in enumerate(B.exponents.tolist())}
     seen = np.full(B.size, -1)
-    orbits = []   # (members [(index, mask, sign)], stabiliser relations [(mask, sign)])
+    orbits: list[tuple[dict, list]] = []   # (members [(index, mask, sign)], stabiliser relations [(mask, sign)])
     for start in range(B.size):
         if seen[start] >= 0:
             continue
@@ -223,7 +234,9 @@ def _split(B: Basis) -> list[Block]:
             if any((-1) ** bin(chi & m).count("1") * s != 1 for m, s in rel):
                 continue   # the projection of this orbit vanishes for chi
             for j, (m, s) in members.items():
-                mono.append(j), sign.append((-1) ** bin(chi & m).count("1") * s), col.append(c)
+                mono.append(j)
+                sign.append((-1) ** bin(chi & m).count("1") * s)
+                col.append(c)
             c += 1
         if c:
             blocks.append(Block(chi, c, np.array(mono), np.array(sign), np.array(col)))

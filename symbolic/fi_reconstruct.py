@@ -36,10 +36,12 @@ def _conjugation(co: fi_basis.Coordinates):
         img = np.conj(C[r])
         for t in range(len(C)):
             if np.allclose(img, C[t]):
-                perm.append(t), sign.append(1)
+                perm.append(t)
+                sign.append(1)
                 break
             if np.allclose(img, -C[t]):
-                perm.append(t), sign.append(-1)
+                perm.append(t)
+                sign.append(-1)
                 break
         else:
             raise ArithmeticError("conjugation does not permute the coordinates")
@@ -59,14 +61,14 @@ def real_columns(B: fi_basis.Basis, blk: fi_basis.Block) -> list[list[tuple[int,
         if c in done:
             continue
         e, s0 = next(iter(members[c].items()))
-        img = [0] * len(e)
+        image = [0] * len(e)
         s = s0
         for i, x in enumerate(e):
             if x:
-                img[perm[i]] = x
+                image[perm[i]] = x
                 if sign[i] < 0 and x % 2:
                     s = -s
-        img = tuple(img)
+        img = tuple(image)
         c2 = where[img]
         s = s * members[c2][img]           # conj(column c) = s * column c2
         done |= {c, c2}
@@ -107,8 +109,10 @@ def kernel_rref(model: Model, d: int, d_gamma: int, k: int, character: int, prim
     A = _real_matrix(fi._block_apply(Y, blk, p), cols, p, i_p)
     X, nullity = fi._nmod(A, p).nullspace()
     K = np.array(X.tolist(), dtype=np.int64)[:, :nullity].T
-    R = fi._nmod(K, p).rref()[0] if nullity else None
-    return (np.array(R.tolist(), dtype=np.int64) if nullity else np.zeros((0, len(cols)), np.int64)), B, blk, cols
+    if not nullity:
+        return np.zeros((0, len(cols)), np.int64), B, blk, cols
+    R = fi._nmod(K, p).rref()[0]
+    return np.array(R.tolist(), dtype=np.int64), B, blk, cols
 
 
 def _ratrecon(a: int, m: int):

@@ -195,7 +195,7 @@ def search_degree(model: Model, d: int, d_gamma: int, k: int = 0, *, prime_index
     if len(cv) < rows:
         raise ArithmeticError("too few admissible points")
     ratio = cd * fi_field.inv_mod(cv, p) % p
-    blocks_A = {b.character: [] for b in B.blocks}
+    blocks_A: dict[int, list] = {b.character: [] for b in B.blocks}
     chunk = max(1, 4_000_000 // max(1, B.size))
     for r0 in range(0, rows, chunk):
         mv = _monomial_values(B.exponents, cv[r0:r0 + chunk], p)

@@ -126,10 +126,10 @@ def generator_polys() -> dict:
 
 # ------------------------------------------------------------------ characters and generation
 def _sym_power(weights, d: int) -> Counter:
-    dp = [Counter() for _ in range(d + 1)]
+    dp: list[Counter] = [Counter() for _ in range(d + 1)]
     dp[0][(0, 0)] = 1
     for w in weights:
-        new = [Counter() for _ in range(d + 1)]
+        new: list[Counter] = [Counter() for _ in range(d + 1)]
         for k in range(d + 1):
             for key, c in dp[k].items():
                 for m in range(d - k + 1):

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import functools
 import itertools
+from typing import Any
 
 import numpy as np
 
@@ -125,7 +126,7 @@ def recount(lines, tol: float, limit: int, K: int = K, resolution: float = 0.0
     top = max((abs(w) for w, _ in lines), default=0.0)
     basis: list[float] = []
     seen: list[float] = [0.0]          # a line within CLOSE bins of 0 makes < 3 turns: not established
-    info = {"large": 0, "ambiguous": 0, "close": 0, "p_false": 0.0, "relations": []}
+    info: dict[str, Any] = {"large": 0, "ambiguous": 0, "close": 0, "p_false": 0.0, "relations": []}
     for w, amp in lines:
         if len(basis) >= limit:
             break

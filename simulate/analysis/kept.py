@@ -76,9 +76,9 @@ def drift(kind: str, Y: np.ndarray, a: np.ndarray, b: np.ndarray, scale: np.ndar
             if kind == "control":
                 from chaplygin_nd.simulate.analysis.control import general_inertia_kernels
 
-                Om = general_inertia_kernels(J, b[k]).angular_velocity(M, g, a[k], b[k])
+                Om = general_inertia_kernels(J, b[k]).require("angular_velocity")(M, g, a[k], b[k])
             else:
-                Om = active().angular_velocity(M, g, a[k], b[k])
+                Om = active().require("angular_velocity")(M, g, a[k], b[k])
             ints = np.concatenate([energy(M, Om)[:, None], p_coefficients(M, g)], axis=-1)
             labels = ["H"] + [f"p[lambda^{n - 1 - i}]" for i in range(n)] + \
                      [f"p[sigma lambda^{n - 1 - i}]" for i in range(n)]
