@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 CLI := $(VENV)/bin/chaplygin
 STAMP := $(VENV)/.installed
 
-.PHONY: setup verify verify-deep test typecheck generate bench mutate mutate-derivations clean docs docs-html docs-test
+.PHONY: setup verify verify-deep test test-slow typecheck generate bench mutate mutate-derivations clean docs docs-html docs-test
 
 setup: $(STAMP)
 
@@ -28,12 +28,17 @@ verify: setup
 verify-deep: setup
 	CHAPLYGIN_ND_DEEP=1 $(CLI) prove S6:first-integrals $(if $(SEED),--seed $(SEED))
 
-## test: the pytest suite (engine, proofs, kernels against mpmath, hard cases), on every core
-## (pytest-xdist; each worker has its own caches: tests/conftest.py). `make test PYTEST_ARGS=-n0`
-## runs it in one process.
+## test: the pytest suite (engine, proofs, kernels against mpmath, hard cases) without the checks
+## marked `slow`, on every core (pytest-xdist; each worker has its own caches: tests/conftest.py).
+## `make test PYTEST_ARGS=-n0` runs it in one process.
+## test-slow: the `slow` checks (long exact or high-precision checks, seeded interrupts, the
+## cross-checks on the base install, mutants); CI runs both (.ci/run).
 PYTEST_ARGS ?= -n auto --dist worksteal
 test: setup
-	$(PY) -m pytest -q $(PYTEST_ARGS)
+	$(PY) -m pytest -q -m 'not slow and not site' $(PYTEST_ARGS)
+
+test-slow: setup
+	$(PY) -m pytest -q -m 'slow and not site' $(PYTEST_ARGS)
 
 ## typecheck: mypy over the package as Python imports it (.ci/typecheck.py assembles the
 ## chaplygin_nd namespace outside the tree); the level is [tool.mypy] in pyproject.toml: mypy's

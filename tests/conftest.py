@@ -3,12 +3,18 @@ test may raise ``mp.dps`` freely without leaking it into the next one; our cache
 heyoka integrators (runtime/jit_cache.py) is one temporary folder per test session (each system
 compiles once per run; the tests never write into the user's chaplygin-nd cache). heyoka's own
 cache of compiled code (~/.cache/heyoka, heyoka's default) is left as the user configured it;
-with it off, the heyoka tests add about 15 s of JIT to a run on 2 cores."""
+with it off, the heyoka tests add about 15 s of JIT to a run on 2 cores. The wheel that
+tests/test_wheel.py and tests/test_site_packages.py run is built once per pytest process."""
 
 import os
 
 # before any test module imports SymPy: the same ground types as the package (chaplygin_nd/__init__)
 os.environ.setdefault("SYMPY_GROUND_TYPES", "gmpy")
+
+import shutil  # noqa: E402
+import subprocess  # noqa: E402
+import sys  # noqa: E402
+from pathlib import Path  # noqa: E402
 
 import mpmath  # noqa: E402
 import pytest  # noqa: E402
@@ -27,6 +33,28 @@ def _session_heyoka_cache(tmp_path_factory):
         os.environ.pop(heyoka_cache.ENV, None)
     else:
         os.environ[heyoka_cache.ENV] = old
+
+
+@pytest.fixture(scope="session")
+def installed(tmp_path_factory):
+    """(wheel, install folder, scratch folder): built and installed once per pytest process (used by
+    tests/test_wheel.py and tests/test_site_packages.py)."""
+    base = tmp_path_factory.mktemp("wheel")
+    dist, target, source = base / "dist", base / "site", base / "source"
+    # build from a copy: setuptools writes build/ and *.egg-info into the source folder
+    root = Path(__file__).resolve().parent.parent
+    shutil.copytree(root, source, symlinks=True, ignore=shutil.ignore_patterns(
+        ".venv", ".git", "build", "*.egg-info", "out", "__pycache__", ".pytest_cache",
+        ".hypothesis"))
+    r = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-v", "-w", str(dist),
+                        str(source)], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    (base / "build.log").write_text(r.stdout + r.stderr)
+    (wheel,) = dist.glob("chaplygin_nd-*.whl")
+    r = subprocess.run([sys.executable, "-m", "pip", "install", "--no-deps", "-q", "--target",
+                        str(target), str(wheel)], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    return wheel, target, base
 
 
 @pytest.fixture(autouse=True)
@@ -53,3 +81,21 @@ def pytest_terminal_summary(terminalreporter):
         terminalreporter.section("kernel errors over the hard cases (measured)")
         for row in rows:
             terminalreporter.write_line(row)
+
+
+#: the modules of `make test` whose tests take longest (seconds of a run on 2 cores, round 22):
+#: run first, so that pytest-xdist's work stealing (make test: --dist worksteal) shares out the
+#: many short tests after them instead of waiting at the end for one long test
+LONGEST_FIRST = ("test_simulate_accuracy", "test_mutate", "test_section4_mutations",
+                 "test_codegen", "test_evidence_cache", "test_orphans", "test_ledger_cli",
+                 "test_report", "test_site_packages", "test_wheel")
+
+
+def pytest_collection_modifyitems(items):
+    """Whole modules of :data:`LONGEST_FIRST` move to the front, in that order (the order within
+    a module, and of the other modules, is kept): a schedule, never a selection."""
+    def rank(item) -> int:
+        stem = item.path.stem
+        return LONGEST_FIRST.index(stem) if stem in LONGEST_FIRST else len(LONGEST_FIRST)
+
+    items[:] = sorted(items, key=rank)  # sorted() is stable

@@ -21,7 +21,7 @@ import mpmath
 import numpy as np
 import pytest
 import sympy as sp
-from chaplygin_nd.symbolic.codegen import MODULES
+from chaplygin_nd.symbolic.codegen import MODULES, kernels_of
 from chaplygin_nd.symbolic.mpmath_eval import mp_abs_eval, mp_eval
 
 EPS = np.finfo(float).eps
@@ -31,10 +31,11 @@ FIDELITY_ULPS = 64
 
 
 def _all_kernels():
+    # through codegen.kernels_of (derived once per process): test_codegen's regeneration in the
+    # same pytest worker then reuses these kernels instead of deriving them a second time
     out = []
     for stem, producer in MODULES:
-        module, func = producer.split(":")
-        for k in getattr(importlib.import_module(module), func)():
+        for k in kernels_of(producer):
             out.append(pytest.param(stem, k, id=f"{stem}.{k.name}"))
     return out
 

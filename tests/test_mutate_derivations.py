@@ -8,11 +8,13 @@ form changed) killed by S5:H-linear.
 
 from __future__ import annotations
 
+import pytest
 from chaplygin_nd.ledger import mutate
 from chaplygin_nd.ledger import mutate_derivations as md
 from chaplygin_nd.ledger.catalog import discover
 
 
+@pytest.mark.slow  # ~30 s: each draw enumerates every mutant of symbolic/ (ledger/mutate.all_mutants)
 def test_the_sample_is_deterministic_and_covers_both_targets():
     for target in ("derivations", "runtime"):
         first = md.sample(target, 30)

@@ -1,11 +1,13 @@
 """Nothing is written under the installation (issue 15, item 6): from an installed wheel, a proof,
-a built-in scene (``--out`` elsewhere) and an evidence row run with ``CHAPLYGIN_ND_CACHE`` pointed
-at a temporary folder, and the installed tree is byte-for-byte what pip wrote (every file's
-bytes and mtime, every folder's mtime, no file added or removed). The evidence row's orbits
-land in the cache folder instead. The wheel also carries LICENSE and NOTICE in its metadata.
+a built-in scene (``--out`` elsewhere) and an evidence row (in its own test, marked ``slow``: it
+integrates its orbits) run with ``CHAPLYGIN_ND_CACHE`` pointed at a temporary folder, and the
+installed tree is byte-for-byte what pip wrote (every file's bytes and mtime, every folder's
+mtime, no file added or removed). The evidence row's orbits land in the cache folder instead.
+The wheel also carries LICENSE and NOTICE in its metadata.
 
-The wheel is built and installed like tests/test_wheel.py does (``pip install --no-deps
---target DIR``), run by this interpreter in isolated mode with DIR first on ``sys.path``.
+The wheel is built and installed once per pytest process (tests/conftest.py: ``installed``, with
+``pip install --no-deps --target DIR``), run by this interpreter in isolated mode with DIR first
+on ``sys.path``.
 """
 
 from __future__ import annotations
@@ -17,7 +19,7 @@ import sys
 import zipfile
 from pathlib import Path
 
-from test_wheel import installed  # noqa: F401  (the fixture: build, install with --target)
+import pytest
 
 
 def _snapshot(root: Path) -> dict[str, tuple]:
@@ -54,20 +56,37 @@ def test_licence_files_ship_in_the_metadata(installed):  # noqa: F811
     assert "not covered" in notice.lower() and "García-Naranjo" in notice
 
 
-def test_a_proof_a_scene_and_an_evidence_row_write_nothing_under_the_installation(installed):  # noqa: F811
-    _, target, base = installed
-    work, cache = base / "user-folder", base / "user-cache"
+def _runs_write_nothing_under(target: Path, work: Path, cache: Path, runs) -> list[str]:
+    """Each run succeeds and the installed tree is byte-for-byte what it was before them; the
+    runs' standard outputs."""
     work.mkdir(exist_ok=True)
     before = _snapshot(target)
-    runs = [("prove", "P:inversion"),
-            ("simulate", "steady4d", "--out", str(work / "steady"), "--no-plots"),
-            ("prove", "S5:EJ-tori")]
+    outs = []
     for args in runs:
         r = _run(target, work, cache, *args)
         assert r.returncode == 0, (args, r.stderr[-2000:])
-    assert "P:inversion" in _run(target, work, cache, "prove", "--list").stdout
+        outs.append(r.stdout)
     after = _snapshot(target)
     changed = sorted(k for k in before.keys() | after.keys() if before.get(k) != after.get(k))
     assert changed == [], changed
+    return outs
+
+
+def test_a_proof_and_a_scene_write_nothing_under_the_installation(installed):
+    _, target, base = installed
+    work, cache = base / "user-folder", base / "user-cache"
+    outs = _runs_write_nothing_under(target, work, cache, [
+        ("prove", "P:inversion"),
+        ("simulate", "steady4d", "--out", str(work / "steady"), "--no-plots"),
+        ("prove", "--list")])
+    assert "P:inversion" in outs[-1]
     assert (work / "steady" / "outputs.npz").is_file()
+
+
+@pytest.mark.slow
+def test_an_evidence_row_writes_nothing_under_the_installation(installed):
+    """The evidence row integrates its orbits (~30 s of CPU from an empty cache): `make test-slow`."""
+    _, target, base = installed
+    work, cache = base / "user-folder-evidence", base / "user-cache-evidence"
+    _runs_write_nothing_under(target, work, cache, [("prove", "S5:EJ-tori")])
     assert any((cache / "evidence").iterdir())  # the evidence row cached its orbits here

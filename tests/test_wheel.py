@@ -9,34 +9,12 @@ every project module is loaded from DIR, not from the (editable) checkout.
 
 from __future__ import annotations
 
-import shutil
 import subprocess
 import sys
 import zipfile
 from pathlib import Path
 
-import pytest
-
 ROOT = Path(__file__).resolve().parent.parent
-
-
-@pytest.fixture(scope="module")
-def installed(tmp_path_factory):
-    base = tmp_path_factory.mktemp("wheel")
-    dist, target, source = base / "dist", base / "site", base / "source"
-    # build from a copy: setuptools writes build/ and *.egg-info into the source folder
-    shutil.copytree(ROOT, source, symlinks=True, ignore=shutil.ignore_patterns(
-        ".venv", ".git", "build", "*.egg-info", "out", "__pycache__", ".pytest_cache",
-        ".hypothesis"))
-    r = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-v", "-w", str(dist),
-                        str(source)], capture_output=True, text=True, timeout=300)
-    assert r.returncode == 0, r.stderr
-    (base / "build.log").write_text(r.stdout + r.stderr)
-    (wheel,) = dist.glob("chaplygin_nd-*.whl")
-    r = subprocess.run([sys.executable, "-m", "pip", "install", "--no-deps", "-q", "--target",
-                        str(target), str(wheel)], capture_output=True, text=True, timeout=300)
-    assert r.returncode == 0, r.stderr
-    return wheel, target, base
 
 
 def _module(target: Path, cwd: Path, module: str, *args: str) -> subprocess.CompletedProcess:
