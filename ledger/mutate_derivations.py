@@ -27,53 +27,27 @@ on a survivor or an error.
 
 from __future__ import annotations
 
-import importlib
 import multiprocessing as mp
-import pkgutil
+import os
 import random
-import re
 import sys
+import tempfile
 import time
 import traceback
 from dataclasses import dataclass
 from types import FunctionType
-from typing import Any
 
 from chaplygin_nd.ledger import mutate as mu
+from chaplygin_nd.ledger import mutate_runtime as mr
 from chaplygin_nd.ledger.catalog import ROOT, is_checkout
+from chaplygin_nd.ledger.mutate_runtime import runtime_functions, runtime_tests  # noqa: F401 - API
 from chaplygin_nd.ledger.reach import derivation_functions, load_derived, write_json_atomic
 
 from chaplygin_nd import processes
 from chaplygin_nd.console import OneLineParser, fail, path_argument, say
 
 OUT_PATH = ROOT / "mutation-derivations.json"
-_IMPORTS_RUNTIME = re.compile(r"^\s*(from chaplygin_nd\.runtime\b|import chaplygin_nd\.runtime\b|"
-                              r"from chaplygin_nd import runtime\b)", re.MULTILINE)
-
-
-def runtime_tests() -> tuple[str, ...]:
-    """The tests that check the runtime: every test file that imports it (found, not listed: a
-    hand-kept list had missed tests/test_p_coefficients.py, so p_coefficients' mutants looked
-    untested), run with ``pytest -x``."""
-    return tuple(sorted(str(p.relative_to(ROOT)) for p in (ROOT / "tests").glob("test_*.py")
-                        if _IMPORTS_RUNTIME.search(p.read_text(encoding="utf-8"))))
-
-
 SEED = 20261123
-
-
-def runtime_functions() -> dict[str, FunctionType]:
-    """``{"runtime.axisym.zeta": function}`` for every public function of ``runtime/``."""
-    import chaplygin_nd.runtime as runtime
-
-    out: dict[str, FunctionType] = {}
-    for info in sorted(pkgutil.iter_modules(runtime.__path__), key=lambda i: i.name):
-        mod = importlib.import_module(f"chaplygin_nd.runtime.{info.name}")
-        for attr, obj in sorted(vars(mod).items()):
-            if (not attr.startswith("_") and isinstance(obj, FunctionType)
-                    and obj.__module__ == mod.__name__ and not obj.__code__.co_freevars):
-                out[f"runtime.{info.name}.{attr}"] = obj
-    return out
 
 
 def functions(target: str) -> dict[str, FunctionType]:
@@ -85,7 +59,7 @@ def functions(target: str) -> dict[str, FunctionType]:
 class Task:
     target: str
     mutant: mu.Mutant
-    rows: tuple  # derivations: ((row, signature, seconds), ...); runtime: ()
+    rows: tuple  # derivations: ((row, signature, seconds), ...); runtime: (test id, ...)
     emitted: frozenset = frozenset()  # the emitted derivations (their kernels are compared too)
 
 
@@ -108,87 +82,6 @@ def clear_caches() -> None:
                     obj.cache_clear()
 
 
-def _run_tests(files) -> tuple[bool, str]:
-    """Run ``files`` with ``pytest -x`` in this process, with empty caches: the compiled heyoka
-    objects and evidence live in memory and on disk keyed by the source files' hashes, which an
-    in-memory mutant does not change, so a warm cache would hand the tests the original's
-    objects (a mutant of ``runtime.expressions`` then looked untested)."""
-    import contextlib
-    import io
-    import os
-    import tempfile
-
-    import pytest
-    from chaplygin_nd.runtime import jit_cache
-
-    from chaplygin_nd.cache import ENV
-
-    buffer = io.StringIO()
-    saved = os.environ.get(ENV)
-    with tempfile.TemporaryDirectory(prefix="chaplygin-mutant-") as empty:
-        os.environ[ENV] = empty
-        jit_cache.forget_memory()
-        try:
-            with contextlib.redirect_stdout(buffer), contextlib.redirect_stderr(buffer):
-                code = pytest.main(["-q", "-x", "-p", "no:cacheprovider", "--no-header", *files])
-        finally:
-            jit_cache.forget_memory()
-            if saved is None:
-                os.environ.pop(ENV, None)
-            else:
-                os.environ[ENV] = saved
-    lines = [ln for ln in buffer.getvalue().splitlines() if ln.startswith(("FAILED", "ERROR"))]
-    return code == 0, (lines[0] if lines else f"pytest exit {code}")[:200]
-
-
-def _bitwise_equal(x, y) -> bool:
-    import numpy as np
-
-    if isinstance(x, (tuple, list)) and isinstance(y, (tuple, list)):
-        return len(x) == len(y) and all(_bitwise_equal(u, v) for u, v in zip(x, y))
-    try:
-        xa, ya = np.asarray(x), np.asarray(y)
-    except Exception:  # noqa: BLE001 - not array-like: compare as objects
-        return x is y or x == y
-    if xa.dtype == object or ya.dtype == object:
-        return str(x) == str(y)  # e.g. heyoka expressions: the same expression text
-    return xa.shape == ya.shape and xa.dtype == ya.dtype and np.array_equal(xa, ya, equal_nan=True)
-
-
-def _runtime_equivalence(fn, mutant_code) -> tuple[bool, int]:
-    """Run the runtime tests once with both versions computed at every call of ``fn``: (all
-    outputs bit-for-bit equal, number of calls). The original's output is what the tests see."""
-    orig = FunctionType(fn.__code__, fn.__globals__, fn.__name__, fn.__defaults__)
-    orig.__kwdefaults__ = fn.__kwdefaults__
-    mut = FunctionType(mutant_code, fn.__globals__, fn.__name__, fn.__defaults__)
-    mut.__kwdefaults__ = fn.__kwdefaults__
-    state: dict[str, Any] = {"calls": 0, "same": True}
-
-    def hook(*args, **kwargs):
-        want = orig(*args, **kwargs)
-        state["calls"] += 1
-        try:
-            got = mut(*args, **kwargs)
-            state["same"] = state["same"] and _bitwise_equal(want, got)
-        except Exception:  # noqa: BLE001 - raises where the original does not
-            state["same"] = False
-        return want
-
-    name = "__mutate_runtime_hook__"
-    src = f"def {fn.__name__}(*args, **kwargs):\n    return {name}(*args, **kwargs)\n"
-    ns: dict = {}
-    exec(compile(src, "<runtime compare>", "exec"), ns)  # noqa: S102 - fixed template
-    original = fn.__code__
-    fn.__globals__[name] = hook
-    fn.__code__ = ns[fn.__name__].__code__
-    try:
-        _run_tests(runtime_tests())
-    finally:
-        fn.__code__ = original
-        fn.__globals__.pop(name, None)
-    return bool(state["same"]) and state["calls"] > 0, state["calls"]
-
-
 def evaluate(task: Task) -> dict:
     """Decide one mutant in this process: apply it, run its rows (or tests), restore."""
     fn = functions(task.target)[task.mutant.function]
@@ -206,21 +99,7 @@ def evaluate(task: Task) -> dict:
     try:
         clear_caches()
         if task.target == "runtime":
-            fn.__code__ = code
-            try:
-                passed, note = _run_tests(runtime_tests())
-            finally:
-                fn.__code__ = original
-            if not passed:
-                record.update(outcome="killed", row="tests", reason=note)
-                return record
-            same, calls = _runtime_equivalence(fn, code)
-            record.update(row="tests", **(
-                {"outcome": "equivalent", "reason": f"every runtime test passed and the mutant's "
-                 f"outputs are bit-for-bit the original's at all {calls} calls the tests make"}
-                if same else {"outcome": "survived", "reason": f"every runtime test passed; "
-                              f"outputs differ or no call was made ({calls} calls)"}))
-            return record
+            return mr.evaluate(fn, code, m.function, task.rows, record)
         if not task.rows:
             record.update(outcome="survived", reason="no ledger row reaches this derivation")
             return record
@@ -265,7 +144,8 @@ def plan(target: str, selection: list[mu.Mutant], jobs: int) -> list[Task]:
     """Tasks for ``selection``: for derivations, the reaching rows (cheapest first, capped) with
     their unmutated signatures (one baseline run of just those rows)."""
     if target == "runtime":
-        return [Task(target, m, ()) for m in selection]
+        reach = mr.test_map() if selection else {}
+        return [Task(target, m, tuple(t for t, _ in reach.get(m.function, ()))) for m in selection]
     derived, emitted = load_derived()
     _, seconds = mu_load_seconds()
     by_function: dict[str, list[str]] = {}
@@ -294,12 +174,17 @@ def _init_worker():
     discover()
 
 
-def summary(records: list[dict], target: str, seconds: float) -> str:
+def summary(records: list[dict], target: str, seconds: float, cpu: float = 0.0,
+            ran: int | None = None) -> str:
+    """One line per target: the outcomes of all its ``records``, and the time of this run (which
+    ran ``ran`` of them: the others were kept from the file resumed or re-run)."""
     count = {k: sum(r["outcome"] == k for r in records)
              for k in ("killed", "equivalent", "survived", "error")}
+    ran = len(records) if ran is None else ran
     return (f"{target}: {len(records)} mutants of {len({r['function'] for r in records})} functions: "
             f"{count['killed']} killed, {count['equivalent']} equivalent, {count['survived']} "
-            f"survived, {count['error']} errors; {seconds:.0f} s")
+            f"survived, {count['error']} errors; this run: {ran} mutants in {seconds:.0f} s wall, "
+            f"{cpu:.0f} s CPU")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -316,6 +201,9 @@ def main(argv: list[str] | None = None) -> int:
                         help="list the functions of the targets (the names --function takes) and exit")
     parser.add_argument("--rerun", type=path_argument, default=None,
                         help="re-run only the survivors and errors recorded in this JSON file")
+    parser.add_argument("--resume", action="store_true",
+                        help="keep the mutants already decided in --out (an interrupted run) and "
+                             "run only the others")
     parser.add_argument("--jobs", "-j", type=int, default=2)
     parser.add_argument("--out", type=path_argument, default=None,
                         help="where to write (default mutation-derivations.json in the checkout)")
@@ -342,7 +230,13 @@ def main(argv: list[str] | None = None) -> int:
     args.out = args.out or OUT_PATH
     start = time.perf_counter()
     _init_worker()
-    records, lines = [], []
+    records: list[dict] = []
+    if args.resume:  # keep what an earlier (interrupted) run into --out decided
+        records = [r for r in mu_read(args.out) if r["outcome"] != "error"]
+    if args.rerun:  # keep what the earlier run decided, except what is run again
+        records = [r for r in mu_read(args.rerun) if r["outcome"] not in ("survived", "error")]
+    done = {(r["target"], r["function"], r["mutation"]) for r in records}
+    lines = []
     for target in args.target or ["derivations", "runtime"]:
         selection = [m for m in sample(target, None if args.function else args.sample, args.seed)
                      if not args.function or m.function in args.function]
@@ -353,25 +247,77 @@ def main(argv: list[str] | None = None) -> int:
                 "mutants"] if r["outcome"] in ("survived", "error") and r["target"] == target}
             selection = [m for m in sample(target, None, args.seed)
                          if (m.function, f"{m.operator}: {m.description}") in again]
-        tasks = plan(target, selection, args.jobs)
-        print(f"{target}: {len(tasks)} mutants to run", flush=True)
-        t0 = time.perf_counter()
-        with processes.pool(args.jobs, mp.get_context("fork"), _init_worker) as pool:
-            for rec in pool.map(evaluate, tasks):
-                records.append(rec)
-                if rec["outcome"] != "killed":
-                    print(f"  {rec['outcome']:<10} {rec['function']:<40} {rec['mutation']}  "
-                          f"[{rec['row']}] {rec['reason'][:160]}", flush=True)
+        selection = [m for m in selection
+                     if (target, m.function, f"{m.operator}: {m.description}") not in done]
+        t0, c0 = time.perf_counter(), _cpu_seconds()
+        with tempfile.TemporaryDirectory(prefix="chaplygin-mutate-") as work:
+            os.environ[mr.WORK_ENV] = work  # the workers' cache folders (mutate_runtime)
+            try:
+                tasks = plan(target, selection, args.jobs)
+                print(f"{target}: {len(tasks)} mutants to run", flush=True)
+                mine = _run(tasks, args.jobs, records, args, start)
+            finally:
+                os.environ.pop(mr.WORK_ENV, None)
         lines.append(summary([r for r in records if r["target"] == target], target,
-                             time.perf_counter() - t0))
+                             time.perf_counter() - t0, _cpu_seconds() - c0, len(mine)))
         print(lines[-1], flush=True)
-    write_json_atomic({"summary": lines, "seed": args.seed, "sample": args.sample,
-                       "seconds": round(time.perf_counter() - start), "mutants": records}, args.out)
+    _write(records, lines, args, start, complete=True)
     print(f"wrote {args.out}")
     bad = [r for r in records if r["outcome"] in ("survived", "error")]
     for r in bad:
         print(f"PROBLEM: {r['function']} {r['mutation']}: {r['outcome']}", file=sys.stderr)
     return 1 if bad else 0
+
+
+def _cpu_seconds() -> float:
+    """CPU seconds of this process and its finished children (the workers, once joined)."""
+    t = os.times()
+    return t.user + t.system + t.children_user + t.children_system
+
+
+def mu_read(path) -> list[dict]:
+    """The records of an earlier run written to ``path`` (none if there is no file)."""
+    import json
+
+    return json.loads(path.read_text(encoding="utf-8"))["mutants"] if path.is_file() else []
+
+
+def _write(records, lines, args, start, complete: bool) -> None:
+    order = {"derivations": 0, "runtime": 1}
+    write_json_atomic({"summary": lines, "seed": args.seed, "sample": args.sample,
+                       "complete": complete, "seconds": round(time.perf_counter() - start),
+                       "mutants": sorted(records, key=lambda r: (order.get(r["target"], 2),
+                                                                 r["function"], r["index"]))},
+                      args.out)
+
+
+def _run(tasks: list[Task], jobs: int, records: list[dict], args, start) -> list[dict]:
+    """Evaluate ``tasks`` in ``jobs`` forked workers, cheapest first; ``records`` grows as they
+    finish and is written to ``--out`` every 30 s (``"complete": false``), so an interrupted
+    run keeps what it decided and ``--resume`` goes on from there."""
+    from concurrent.futures import as_completed
+
+    mine: list[dict] = []
+    last = time.perf_counter()
+    with processes.pool(jobs, mp.get_context("fork"), _init_worker) as pool:
+        futures = [pool.submit(evaluate, t) for t in sorted(tasks, key=_cost)]
+        for fut in as_completed(futures):
+            rec = fut.result()
+            records.append(rec)
+            mine.append(rec)
+            if rec["outcome"] != "killed":
+                print(f"  {rec['outcome']:<10} {rec['function']:<40} {rec['mutation']}  "
+                      f"[{rec['row']}] {rec['reason'][:160]}", flush=True)
+            if time.perf_counter() - last > 30:
+                _write(records, [f"partial: {len(mine)}/{len(tasks)} mutants of this target"],
+                       args, start, complete=False)
+                last = time.perf_counter()
+    return mine
+
+
+def _cost(task: Task) -> float:
+    """Expected seconds of a task (its cheapest check), to run the cheap ones first."""
+    return task.rows[0][2] if task.rows else 0.0
 
 
 if __name__ == "__main__":
