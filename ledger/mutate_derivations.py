@@ -61,6 +61,7 @@ class Task:
     mutant: mu.Mutant
     rows: tuple  # derivations: ((row, signature, seconds), ...); runtime: (test id, ...)
     emitted: frozenset = frozenset()  # the emitted derivations (their kernels are compared too)
+    tests: tuple = ()  # derivations: the tests that reach the function (mutate_runtime.test_map)
 
 
 def sample(target: str, size: int | None, seed: int = SEED) -> list[mu.Mutant]:
@@ -101,8 +102,7 @@ def evaluate(task: Task) -> dict:
         if task.target == "runtime":
             return mr.evaluate(fn, code, m.function, task.rows, record)
         if not task.rows:
-            record.update(outcome="survived", reason="no ledger row reaches this derivation")
-            return record
+            return mr.evaluate(fn, code, m.function, task.tests, record)
         tried = []
         for claim_id, base, seconds in task.rows:
             fn.__code__ = code
@@ -130,6 +130,11 @@ def evaluate(task: Task) -> dict:
                               reason="no row changed, but the regenerated kernels differ: make "
                                      "verify's stale check of generated/ fails")
                 return record
+        if task.tests:
+            note = mr.kill(fn, code, m.function, task.tests)
+            if note is not None:
+                record.update(outcome="killed", row="tests", reason=f"no row changed; {note}")
+                return record
         return mu.settle(record, fn, code, task.rows, tried)
     except Exception:  # noqa: BLE001
         record.update(outcome="error", reason=traceback.format_exc(limit=3))
@@ -140,9 +145,11 @@ def evaluate(task: Task) -> dict:
         record["seconds"] = round(time.perf_counter() - start, 2)
 
 
-def plan(target: str, selection: list[mu.Mutant], jobs: int) -> list[Task]:
-    """Tasks for ``selection``: for derivations, the reaching rows (cheapest first, capped) with
-    their unmutated signatures (one baseline run of just those rows)."""
+def plan(target: str, selection: list[mu.Mutant], jobs: int, tests_for=()) -> list[Task]:
+    """Tasks for ``selection``: for derivations, the reaching rows (cheapest first) with their
+    unmutated signatures (one baseline run of just those rows), and for a derivation no row
+    reaches or one in ``tests_for`` (the survivors re-run), the tests that reach it
+    (:func:`mutate_runtime.test_map` over the test files that name it)."""
     if target == "runtime":
         reach = mr.test_map() if selection else {}
         return [Task(target, m, tuple(t for t, _ in reach.get(m.function, ()))) for m in selection]
@@ -158,8 +165,12 @@ def plan(target: str, selection: list[mu.Mutant], jobs: int) -> list[Task]:
                                     key=lambda r: (seconds.get(r, 99), r))
     needed = sorted({r for rows in chosen.values() for r in rows})
     base = mu.baseline(needed, jobs=jobs) if needed else {}
+    every = functions(target)
+    tested = {f: every[f] for f in chosen if not chosen[f] or f in tests_for}
+    reach = mr.test_map(tested, mr.mentioning(tested)) if tested else {}
     return [Task(target, m, tuple((r, base[r][0], base[r][1]) for r in chosen[m.function]),
-                 frozenset(emitted)) for m in selection]
+                 frozenset(emitted), tuple(t for t, _ in reach.get(m.function, ())))
+            for m in selection]
 
 
 def mu_load_seconds():
@@ -253,7 +264,8 @@ def main(argv: list[str] | None = None) -> int:
         with tempfile.TemporaryDirectory(prefix="chaplygin-mutate-") as work:
             os.environ[mr.WORK_ENV] = work  # the workers' cache folders (mutate_runtime)
             try:
-                tasks = plan(target, selection, args.jobs)
+                tasks = plan(target, selection, args.jobs,
+                             {m.function for m in selection} if args.rerun else ())
                 print(f"{target}: {len(tasks)} mutants to run", flush=True)
                 mine = _run(tasks, args.jobs, records, args, start)
             finally:

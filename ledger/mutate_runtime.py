@@ -146,19 +146,34 @@ def _empty_caches() -> None:
     clear_caches()
 
 
-def test_map() -> dict[str, list[tuple[str, float]]]:
-    """``{function: [(test id, seconds), ...]}`` (fastest first): the tests of
-    :func:`runtime_tests` that call each runtime function, recorded in one unmutated run. A test
-    that fails unmutated reaches nothing (it could not tell a mutant apart)."""
-    functions = runtime_functions()
+def test_map(functions: dict[str, FunctionType] | None = None,
+             files: tuple[str, ...] | None = None) -> dict[str, list[tuple[str, float]]]:
+    """``{function: [(test id, seconds), ...]}`` (fastest first): the tests of ``files`` (default
+    :func:`runtime_tests`) that call each of ``functions`` (default: the runtime's), recorded in
+    one unmutated run. A test that fails unmutated reaches nothing (it could not tell a mutant
+    apart)."""
+    functions = runtime_functions() if functions is None else functions
     reached: dict[str, tuple[float, tuple[str, ...]]] = {}
     watch, failed = _watch(functions, reached)
-    _pytest(list(runtime_tests()), plugins=[watch])
+    _pytest(list(runtime_tests() if files is None else files), plugins=[watch])
     out: dict[str, list[tuple[str, float]]] = {key: [] for key in functions}
     for test, (seconds, calls) in reached.items():
         for key in () if test in failed else calls:
             out[key].append((test, round(seconds, 3)))
     return {key: sorted(tests, key=lambda t: (t[1], t[0])) for key, tests in out.items()}
+
+
+def mentioning(keys) -> tuple[str, ...]:
+    """The test files that name the function of some key ``module.name`` and import its module
+    (where a test of a derivation no row reaches can be)."""
+    out = []
+    for path in sorted((ROOT / "tests").glob("test_*.py")):
+        text = path.read_text(encoding="utf-8")
+        if any(re.search(rf"\b{re.escape(key.rsplit('.', 1)[1])}\b", text)
+               and re.search(rf"\b{re.escape(key.rsplit('.', 1)[0].split('.')[-1])}\b", text)
+               for key in keys):
+            out.append(str(path.relative_to(ROOT)))
+    return tuple(out)
 
 
 def _bitwise_equal(x, y) -> bool:
@@ -175,9 +190,20 @@ def _bitwise_equal(x, y) -> bool:
     return xa.shape == ya.shape and xa.dtype == ya.dtype and np.array_equal(xa, ya, equal_nan=True)
 
 
-def equivalence(fn, mutant_code, tests: list[str], fresh: bool) -> tuple[bool, int]:
-    """Run ``tests`` once with both versions computed at every call of ``fn``: (all outputs
-    bit-for-bit equal, number of calls). The original's output is what the tests see."""
+def _exact_or_bitwise(x, y) -> bool:
+    """Exact equality (SymPy values, :func:`ledger.mutate._same`), bit-for-bit for arrays."""
+    from chaplygin_nd.ledger.mutate import _same
+
+    try:
+        return bool(_same(x, y))
+    except Exception:  # noqa: BLE001 - e.g. NumPy arrays: compared bit for bit
+        return _bitwise_equal(x, y)
+
+
+def equivalence(fn, mutant_code, tests: list[str], fresh: bool, same=_bitwise_equal,
+                ) -> tuple[bool, int]:
+    """Run ``tests`` once with both versions computed at every call of ``fn``: (all outputs equal
+    by ``same``, number of calls). The original's output is what the tests see."""
     orig = FunctionType(fn.__code__, fn.__globals__, fn.__name__, fn.__defaults__)
     orig.__kwdefaults__ = fn.__kwdefaults__
     mut = FunctionType(mutant_code, fn.__globals__, fn.__name__, fn.__defaults__)
@@ -189,7 +215,7 @@ def equivalence(fn, mutant_code, tests: list[str], fresh: bool) -> tuple[bool, i
         state["calls"] += 1
         try:
             got = mut(*args, **kwargs)
-            state["same"] = state["same"] and _bitwise_equal(want, got)
+            state["same"] = state["same"] and same(want, got)
         except Exception:  # noqa: BLE001 - raises where the original does not
             state["same"] = False
         return want
@@ -210,32 +236,44 @@ def equivalence(fn, mutant_code, tests: list[str], fresh: bool) -> tuple[bool, i
     return bool(state["same"]) and state["calls"] > 0, state["calls"]
 
 
+def kill(fn, code, key: str, tests: tuple[str, ...]) -> str | None:
+    """Run ``tests`` (fastest first) with ``code`` in place of ``fn``'s, ``pytest -x``: the first
+    failure's line, or None when every test passes."""
+    from chaplygin_nd.ledger.mutate_derivations import clear_caches
+
+    original = fn.__code__
+    fn.__code__ = code
+    try:
+        with _cache_root(key.startswith("runtime.jit_cache.")):
+            status, note = _pytest(["-x", *tests])
+    finally:
+        fn.__code__ = original
+        clear_caches()  # e.g. jit_cache.code_version, computed with the mutant in place
+    return note if status != 0 else None
+
+
 def evaluate(fn, code, key: str, tests: tuple[str, ...], record: dict) -> dict:
-    """Decide one runtime mutant (``code`` for ``fn``) against ``tests`` (the ids that reach it,
+    """Decide one mutant (``code`` for ``fn``) against ``tests`` alone (the ids that reach it,
     fastest first); fills and returns ``record``. The caller clears the functools caches."""
     from chaplygin_nd.ledger.mutate_derivations import clear_caches
 
     if not tests:
         record.update(outcome="survived", row="tests",
-                      reason="no runtime test calls this function (in this process)")
+                      reason="no test calls this function (in this process)"
+                      + ("" if key.startswith("runtime.") else " and no ledger row reaches it"))
         return record
-    fresh = key.startswith("runtime.jit_cache.")
-    original = fn.__code__
-    fn.__code__ = code
-    try:
-        with _cache_root(fresh):
-            status, note = _pytest(["-x", *tests])
-    finally:
-        fn.__code__ = original
-        clear_caches()  # e.g. jit_cache.code_version, computed with the mutant in place
-    if status != 0:
+    note = kill(fn, code, key, tests)
+    if note is not None:
         record.update(outcome="killed", row="tests", reason=note)
         return record
-    same, calls = equivalence(fn, code, list(tests), fresh)
+    runtime = key.startswith("runtime.")
+    same, calls = equivalence(fn, code, list(tests), key.startswith("runtime.jit_cache."),
+                              _bitwise_equal if runtime else _exact_or_bitwise)
     clear_caches()
+    how = "bit-for-bit" if runtime else "exactly (SymPy) or bit-for-bit (arrays)"
     record.update(row="tests", **(
-        {"outcome": "equivalent", "reason": f"the {len(tests)} runtime tests that reach it passed "
-         f"and the mutant's outputs are bit-for-bit the original's at all {calls} calls they make"}
-        if same else {"outcome": "survived", "reason": f"the {len(tests)} runtime tests that reach "
+        {"outcome": "equivalent", "reason": f"the {len(tests)} tests that reach it passed "
+         f"and the mutant's outputs are {how} the original's at all {calls} calls they make"}
+        if same else {"outcome": "survived", "reason": f"the {len(tests)} tests that reach "
                       f"it passed; outputs differ or no call was made ({calls} calls)"}))
     return record
