@@ -64,6 +64,31 @@ class Task:
     tests: tuple = ()  # derivations: the tests that reach the function (mutate_runtime.test_map)
 
 
+#: Mutants no check can tell apart although their outputs differ in the last bits, with the
+#: argument that they are equivalent: ``(function, mutation) -> reason``. Applied only to a mutant
+#: that survived every row and test reaching it (the outcome becomes ``equivalent``, the reason
+#: says "argued"). The mutation text names the line: a change of the function renews the review.
+ARGUED: dict[tuple[str, str], str] = {
+    ("runtime.axisym.angular_velocity", "const: line 88 col 34: 3 -> 4"):
+        "n = 3 then takes the documented method='matrix' path (inverse_coefficients + the six "
+        "terms, valid for any n >= 3) instead of the n = 3 component kernel: both evaluate the "
+        "same derived L_gamma^{-1}(M) (P:inversion), in a different order of floating-point "
+        "operations; the branch is a speed choice",
+    ("runtime.axisym.p_coefficients", "const: line 172 col 13: 3 -> 4"):
+        "n = 3 then takes the documented any-n path (batched eigenvalues, p affine in sigma) "
+        "instead of the n = 3 expanded-determinant kernel: both compute the coefficients of "
+        "det(M + sigma gamma gamma^T - lambda Id) (eq:pol-first-integrals), rounded differently; "
+        "the branch is a speed choice",
+}
+
+
+def _argued(record: dict) -> dict:
+    why = ARGUED.get((record["function"], record["mutation"]))
+    if record["outcome"] == "survived" and why:
+        record.update(outcome="equivalent", reason=f"argued: {why} ({record['reason']})")
+    return record
+
+
 def sample(target: str, size: int | None, seed: int = SEED) -> list[mu.Mutant]:
     """Every mutant of every function of ``target`` (source order), or ``size`` of them drawn with
     ``seed``."""
@@ -84,7 +109,12 @@ def clear_caches() -> None:
 
 
 def evaluate(task: Task) -> dict:
-    """Decide one mutant in this process: apply it, run its rows (or tests), restore."""
+    """Decide one mutant in this process: apply it, run its rows (or tests), restore; a survivor
+    whose equivalence is argued in :data:`ARGUED` is ``equivalent``."""
+    return _argued(_evaluate(task))
+
+
+def _evaluate(task: Task) -> dict:
     fn = functions(task.target)[task.mutant.function]
     original = fn.__code__
     m = task.mutant

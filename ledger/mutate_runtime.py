@@ -151,11 +151,13 @@ def test_map(functions: dict[str, FunctionType] | None = None,
     """``{function: [(test id, seconds), ...]}`` (fastest first): the tests of ``files`` (default
     :func:`runtime_tests`) that call each of ``functions`` (default: the runtime's), recorded in
     one unmutated run. A test that fails unmutated reaches nothing (it could not tell a mutant
-    apart)."""
+    apart); tests marked ``slow`` are left out (too long to run once per mutant: a function only
+    they reach is reported as reached by no test)."""
     functions = runtime_functions() if functions is None else functions
     reached: dict[str, tuple[float, tuple[str, ...]]] = {}
     watch, failed = _watch(functions, reached)
-    _pytest(list(runtime_tests() if files is None else files), plugins=[watch])
+    _pytest(["-m", "not slow and not site", *(runtime_tests() if files is None else files)],
+            plugins=[watch])
     out: dict[str, list[tuple[str, float]]] = {key: [] for key in functions}
     for test, (seconds, calls) in reached.items():
         for key in () if test in failed else calls:
