@@ -11,18 +11,25 @@ targets:
   counterexample or parts change (or it raises or runs past its budget); for a derivation emitted
   into ``generated/``, also when the regenerated kernels differ (``make verify``'s stale check
   fails); ``equivalent`` when nothing changed and the mutant returns exactly the original value at
-  every call of the cheapest row, else ``survived``.
+  every call of the cheapest row, else ``survived``. A derivation no row reaches (and, with
+  ``--rerun``, a survivor) is run against the tests that reach it instead (as the runtime is).
 * ``runtime`` — the public functions of ``runtime/``. Their checks are tests, not rows: a mutant
-  is run against the test files that import the runtime (:func:`runtime_tests`) with
-  ``pytest -x``; ``killed`` when a test fails; ``equivalent`` when every test passes and the
-  mutant's outputs are bit-for-bit the original's at every call the tests make (e.g. the operands
-  of an IEEE multiplication swapped); else ``survived``.
+  is run against the tests that call its function (:mod:`ledger.mutate_runtime`: recorded once
+  per run, fastest first, ``pytest -x``); ``killed`` when a test fails; ``equivalent`` when every
+  one passes and the mutant's outputs are bit-for-bit the original's at every call they make
+  (e.g. the operands of an IEEE multiplication swapped); else ``survived``.
+
+A survivor whose equivalence needs an argument beyond bit-for-bit equality (a branch that picks one
+of two documented implementations of the same formula) is listed in :data:`ARGUED`, with the
+argument, and reported ``equivalent`` with "argued:" in its reason.
 
 Every function cached with ``functools`` anywhere in the package is cleared before and after each
 mutant (a cached unmutated value would hide the mutant; a cached mutated one would leak into the
-next). The full set of mutants is large; ``--sample N`` draws ``N`` of them with a fixed seed
-(deterministic, recorded). Writes ``mutation-derivations.json`` (or ``--out``) atomically; exit 1
-on a survivor or an error.
+next). Mutants run in ``--jobs`` forked workers, cheapest first; ``--out`` is rewritten every 30 s
+(``"complete": false``) so an interrupted run keeps what it decided, and ``--resume`` goes on from
+there. ``--sample N`` draws ``N`` mutants per target with a fixed seed. Writes
+``mutation-derivations.json`` (or ``--out``) atomically; each target's summary line gives its wall
+and CPU seconds; exit 1 on a survivor or an error.
 """
 
 from __future__ import annotations
