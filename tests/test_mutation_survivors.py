@@ -1,0 +1,76 @@
+"""Properties of derivations that the rows only use through zero tests (issue 25: every mutant
+of ``make mutate-derivations`` that no check killed gets a test or an equivalence argument).
+
+Each test asserts a correct property of the function on inputs where it is not zero, so that a
+mutant that agrees with it only at zero (e.g. the normal form negated) is told apart.
+"""
+
+from __future__ import annotations
+
+from chaplygin_nd.symbolic import fourd
+
+
+def test_sphere_normal_form_reduces_x_squared_to_one_minus_q_squared():
+    """On S^3, x^2 = 1 - |q|^2: the normal form of x^3 a is x a (1 - |q|^2), of degree < 2 in x, and
+    a polynomial of degree < 2 in x is its own normal form."""
+    x, q, a = fourd.RV["x"], fourd.RV["q"], fourd.RV["a"]
+    qq = fourd.dot(q, q)
+    assert fourd.sphere_normal_form(x**3 * a) == x * a * (1 - qq)
+    assert fourd.sphere_normal_form(x * qq + a) == x * qq + a
+    assert fourd.sphere_normal_form(x**2 + qq) == 1
+
+
+# The runtime evaluates batches ``(..., n, n)`` of any batch shape. The tests of the runtime used
+# flat batches (or none), where ``M.shape[1]`` happens to be n: a mutant reading the size there
+# instead of ``M.shape[-1]`` was bit-for-bit the original at every call they made.
+
+def _batch(n, shape=(2, 3), seed=7):
+    import numpy as np
+
+    rng = np.random.default_rng(seed)
+    A = rng.standard_normal(shape + (n, n))
+    M = A - np.swapaxes(A, -1, -2)
+    gamma = rng.standard_normal(shape + (n,))
+    gamma /= np.linalg.norm(gamma, axis=-1, keepdims=True)
+    return M, gamma
+
+
+def _each(f, *batched):
+    """f applied sample by sample over the batch shape (2, 3)."""
+    import numpy as np
+
+    return np.array([[f(*(x[i, j] for x in batched)) for j in range(3)] for i in range(2)])
+
+
+def test_runtime_functions_broadcast_over_a_two_dimensional_batch():
+    import numpy as np
+    from chaplygin_nd.runtime import axisym
+
+    a, b = 0.3, 0.7
+    for n in (4, 5):
+        M, gamma = _batch(n)
+        for method in ("auto", "matrix"):
+            Omega = axisym.angular_velocity(M, gamma, a, b, method)
+            assert Omega.shape == M.shape
+            assert np.allclose(Omega, _each(lambda m, g, k=method: axisym.angular_velocity(
+                m, g, a, b, k), M, gamma), rtol=1e-12, atol=1e-12)
+            Mdot, gdot = axisym.vector_field(M, gamma, a, b, method)
+            one = [[axisym.vector_field(M[i, j], gamma[i, j], a, b, method) for j in range(3)]
+                   for i in range(2)]
+            assert np.allclose(Mdot, np.array([[o[0] for o in r] for r in one]), atol=1e-12)
+            assert np.allclose(gdot, np.array([[o[1] for o in r] for r in one]), atol=1e-12)
+        assert np.allclose(axisym.L_gamma(M, gamma, a, b),
+                           _each(lambda m, g: axisym.L_gamma(m, g, a, b), M, gamma), atol=1e-12)
+        assert np.allclose(axisym.chi(M, a, b), _each(lambda m: axisym.chi(m, a, b), M),
+                           atol=1e-12)
+        assert np.allclose(axisym.p_coefficients(M, gamma),
+                           _each(axisym.p_coefficients, M, gamma), atol=1e-10)
+
+
+def test_expm_skew_of_the_one_by_one_zero_matrix_is_one():
+    """so(1) = {0} and e^0 = 1 (the n = 1 case that vertical_solution reaches for n = 2)."""
+    import numpy as np
+    from chaplygin_nd.runtime import axisym
+
+    assert np.array_equal(axisym.expm_skew(np.zeros((1, 1))), np.ones((1, 1)))
+    assert np.array_equal(axisym.expm_skew(np.zeros((4, 1, 1))), np.ones((4, 1, 1)))
