@@ -74,3 +74,39 @@ def test_expm_skew_of_the_one_by_one_zero_matrix_is_one():
 
     assert np.array_equal(axisym.expm_skew(np.zeros((1, 1))), np.ones((1, 1)))
     assert np.array_equal(axisym.expm_skew(np.zeros((4, 1, 1))), np.ones((4, 1, 1)))
+
+
+def test_vector_field_broadcasts_one_matrix_against_a_batch_of_gamma():
+    import numpy as np
+    from chaplygin_nd.runtime import axisym
+
+    M, gamma = _batch(5)
+    Mdot, gdot = axisym.vector_field(M[0, 0], gamma, 0.3, 0.7)
+    assert Mdot.shape == (2, 3, 5, 5) and gdot.shape == (2, 3, 5)
+    for i in range(2):
+        for j in range(3):
+            want = axisym.vector_field(M[0, 0], gamma[i, j], 0.3, 0.7)
+            assert np.allclose(Mdot[i, j], want[0], atol=1e-12)
+            assert np.allclose(gdot[i, j], want[1], atol=1e-12)
+
+
+def test_compiled_angular_velocity_broadcasts_every_leading_axis():
+    """runtime.compiled.angular_velocity: a (2, 3) batch of (M, gamma), and one (M, gamma) against
+    a (2, 3) batch of a, equal the NumPy runtime to 16 ulps of max |Omega| (as tests/test_heyoka)."""
+    import numpy as np
+    import pytest
+
+    pytest.importorskip("heyoka")
+    from chaplygin_nd.runtime import axisym, compiled
+
+    eps = np.finfo(float).eps
+    M, gamma = _batch(4)
+    want = axisym.angular_velocity(M, gamma, 0.3, 0.7, "matrix")
+    got = compiled.angular_velocity(M, gamma, 0.3, 0.7)
+    assert got.shape == want.shape
+    assert np.max(np.abs(got - want)) <= 16 * eps * np.max(np.abs(want))
+    a = np.linspace(-0.9, 0.9, 6).reshape(2, 3)
+    got = compiled.angular_velocity(M[0, 0], gamma[0, 0], a, 0.7)
+    want = axisym.angular_velocity(M[0, 0], gamma[0, 0], a, 0.7, "matrix")
+    assert got.shape == want.shape == (2, 3, 4, 4)
+    assert np.max(np.abs(got - want)) <= 16 * eps * np.max(np.abs(want))
