@@ -252,6 +252,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--resume", action="store_true",
                         help="keep the mutants already decided in --out (an interrupted run) and "
                              "run only the others")
+    parser.add_argument("--again", default="survived,error", type=lambda v: tuple(v.split(",")),
+                        help="with --rerun: the outcomes run again (default survived,error; add "
+                             "equivalent after adding a test that may tell such mutants apart)")
     parser.add_argument("--jobs", "-j", type=int, default=2)
     parser.add_argument("--out", type=path_argument, default=None,
                         help="where to write (default mutation-derivations.json in the checkout)")
@@ -282,7 +285,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.resume:  # keep what an earlier (interrupted) run into --out decided
         records = [r for r in mu_read(args.out) if r["outcome"] != "error"]
     if args.rerun:  # keep what the earlier run decided, except what is run again
-        records = [r for r in mu_read(args.rerun) if r["outcome"] not in ("survived", "error")]
+        records = [r for r in mu_read(args.rerun) if r["outcome"] not in args.again]
     done = {(r["target"], r["function"], r["mutation"]) for r in records}
     lines = []
     for target in args.target or ["derivations", "runtime"]:
@@ -292,7 +295,7 @@ def main(argv: list[str] | None = None) -> int:
             import json
 
             again = {(r["function"], r["mutation"]) for r in json.loads(args.rerun.read_text())[
-                "mutants"] if r["outcome"] in ("survived", "error") and r["target"] == target}
+                "mutants"] if r["outcome"] in args.again and r["target"] == target}
             selection = [m for m in sample(target, None, args.seed)
                          if (m.function, f"{m.operator}: {m.description}") in again]
         selection = [m for m in selection
