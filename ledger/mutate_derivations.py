@@ -86,6 +86,25 @@ ARGUED: dict[tuple[str, str], str] = {
         "instead of the n = 3 expanded-determinant kernel: both compute the coefficients of "
         "det(M + sigma gamma gamma^T - lambda Id) (eq:pol-first-integrals), rounded differently; "
         "the branch is a speed choice",
+    ("runtime.compiled.angular_velocity_function", "const: line 43 col 52: 53 -> 54"):
+        "HeyokaArithmetic reads its bits only for kind 'real'; for 'double' (here) they are unused",
+    **{("runtime.compiled.angular_velocity_function", mutation):
+       "renames the cfunc's variables (M<i>_<j>, gamma<i>) by another one-to-one map: the names "
+       "stay pairwise distinct and a cfunc takes its inputs by position in the list of variables "
+       "it is given (m + gamma), so the compiled function is the same map"
+       for mutation in ("sign: line 45 col 35: i + 1 -> i - 1", "sign: line 45 col 43: j + 1 -> j - 1",
+                        "sign: line 46 col 43: i + 1 -> i - 1", "const: line 45 col 39: 1 -> 2",
+                        "const: line 45 col 47: 1 -> 2", "const: line 46 col 47: 1 -> 2")},
+    **{("runtime.expressions.angular_velocity", mutation):
+       "the two factors of one product of heyoka expressions exchanged: the expression text differs "
+       "(the bit-for-bit comparison compares text), but IEEE multiplication is commutative, so the "
+       "compiled code returns the same bits"
+       for mutation in ("swap: line 98 col 21: _mul(u[i], v[j]) -> _mul(v[j], u[i])",
+                        "swap: line 98 col 44: _mul(v[i], u[j]) -> _mul(u[j], v[i])",
+                        "swap: line 102 col 39: _mul(c[1], wedge(Mg, gamma, i, j)) -> "
+                        "_mul(wedge(Mg, gamma, i, j), c[1])",
+                        "swap: line 103 col 18: _mul(c[2], wedge(Me, e, i, j)) -> "
+                        "_mul(wedge(Me, e, i, j), c[2])")},
 }
 
 

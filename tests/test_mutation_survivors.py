@@ -110,3 +110,27 @@ def test_compiled_angular_velocity_broadcasts_every_leading_axis():
     want = axisym.angular_velocity(M[0, 0], gamma[0, 0], a, 0.7, "matrix")
     assert got.shape == want.shape == (2, 3, 4, 4)
     assert np.max(np.abs(got - want)) <= 16 * eps * np.max(np.abs(want))
+
+
+def test_the_compiled_angular_velocity_records_the_hash_of_its_expressions(tmp_path, monkeypatch):
+    """runtime.jit_cache stores beside a compiled object the SHA-256 of its expressions' text
+    ("source", for the record): for the angular-velocity cfunc, the text of its outputs."""
+    import hashlib
+    import pickle
+
+    import pytest
+
+    pytest.importorskip("heyoka")
+    from chaplygin_nd.runtime import compiled, jit_cache
+
+    monkeypatch.setenv("CHAPLYGIN_ND_CACHE", str(tmp_path))
+    jit_cache.forget_memory()
+    try:
+        cf, _, how = compiled.angular_velocity_function(3)
+        assert how == "cold compile"
+        (entry_path,) = jit_cache.cache_dir().glob("*.pkl")
+        with entry_path.open("rb") as fh:
+            entry = pickle.load(fh)
+        assert entry["source"] == hashlib.sha256("\n".join(map(str, cf.fn)).encode()).hexdigest()
+    finally:
+        jit_cache.forget_memory()
