@@ -241,17 +241,19 @@ def _init_worker():
     discover()
 
 
-def summary(records: list[dict], target: str, seconds: float, cpu: float = 0.0,
+def summary(records: list[dict], target: str, seconds: float | None = None, cpu: float = 0.0,
             ran: int | None = None) -> str:
-    """One line per target: the outcomes of all its ``records``, and the time of this run (which
-    ran ``ran`` of them: the others were kept from the file resumed or re-run)."""
+    """One line per target: the outcomes of all its ``records``, and (``seconds`` given) the time
+    of this run, which ran ``ran`` of them (the others were kept from the file resumed or re-run)."""
     count = {k: sum(r["outcome"] == k for r in records)
              for k in ("killed", "equivalent", "survived", "error")}
+    line = (f"{target}: {len(records)} mutants of {len({r['function'] for r in records})} "
+            f"functions: {count['killed']} killed, {count['equivalent']} equivalent, "
+            f"{count['survived']} survived, {count['error']} errors")
+    if seconds is None:
+        return line
     ran = len(records) if ran is None else ran
-    return (f"{target}: {len(records)} mutants of {len({r['function'] for r in records})} functions: "
-            f"{count['killed']} killed, {count['equivalent']} equivalent, {count['survived']} "
-            f"survived, {count['error']} errors; this run: {ran} mutants in {seconds:.0f} s wall, "
-            f"{cpu:.0f} s CPU")
+    return f"{line}; this run: {ran} mutants in {seconds:.0f} s wall, {cpu:.0f} s CPU"
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -298,41 +300,45 @@ def main(argv: list[str] | None = None) -> int:
         return fail(f"--out {args.out}: exists and is not a mutation JSON this program wrote; give "
                     "a new file name (nothing else is replaced)")
     args.out = args.out or OUT_PATH
-    start = time.perf_counter()
     _init_worker()
     records: list[dict] = []
+    runs: list[dict] = []
+    targets = args.target or ["derivations", "runtime"]
     if args.resume:  # keep what an earlier (interrupted) run into --out decided
-        records = [r for r in mu_read(args.out) if r["outcome"] != "error"]
+        records, runs = _read(args.out)
+        records = [r for r in records if r["outcome"] != "error"]
     if args.rerun:  # keep what the earlier run decided, except what is run again
-        records = [r for r in mu_read(args.rerun) if r["outcome"] not in args.again]
+        records, runs = _read(args.rerun)
+        records = [r for r in records if r["target"] not in targets or r["outcome"] not in args.again]
     done = {(r["target"], r["function"], r["mutation"]) for r in records}
-    lines = []
-    for target in args.target or ["derivations", "runtime"]:
+    for target in targets:
         selection = [m for m in sample(target, None if args.function else args.sample, args.seed)
                      if not args.function or m.function in args.function]
         if args.rerun:
-            import json
-
-            again = {(r["function"], r["mutation"]) for r in json.loads(args.rerun.read_text())[
-                "mutants"] if r["outcome"] in args.again and r["target"] == target}
+            again = {(r["function"], r["mutation"]) for r in _read(args.rerun)[0]
+                     if r["outcome"] in args.again and r["target"] == target}
             selection = [m for m in sample(target, None, args.seed)
                          if (m.function, f"{m.operator}: {m.description}") in again]
         selection = [m for m in selection
                      if (target, m.function, f"{m.operator}: {m.description}") not in done]
         t0, c0 = time.perf_counter(), _cpu_seconds()
+        run = {"argv": sys.argv[1:] if argv is None else list(argv), "target": target,
+               "complete": False, "load average at start": list(os.getloadavg())}
+        runs.append(run)
         with tempfile.TemporaryDirectory(prefix="chaplygin-mutate-") as work:
             os.environ[mr.WORK_ENV] = work  # the workers' cache folders (mutate_runtime)
             try:
                 tasks = plan(target, selection, args.jobs,
                              {m.function for m in selection} if args.rerun else ())
                 print(f"{target}: {len(tasks)} mutants to run", flush=True)
-                mine = _run(tasks, args.jobs, records, args, start)
+                mine = _run(tasks, args.jobs, records, runs, args, run, t0, c0)
             finally:
                 os.environ.pop(mr.WORK_ENV, None)
-        lines.append(summary([r for r in records if r["target"] == target], target,
-                             time.perf_counter() - t0, _cpu_seconds() - c0, len(mine)))
-        print(lines[-1], flush=True)
-    _write(records, lines, args, start, complete=True)
+        _progress(run, len(mine), len(tasks), t0, c0)
+        run["complete"] = True
+        print(summary([r for r in records if r["target"] == target], target,
+                      time.perf_counter() - t0, _cpu_seconds() - c0, len(mine)), flush=True)
+    _write(records, runs, args)
     print(f"wrote {args.out}")
     bad = [r for r in records if r["outcome"] in ("survived", "error")]
     for r in bad:
@@ -341,28 +347,41 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _cpu_seconds() -> float:
-    """CPU seconds of this process and its finished children (the workers, once joined)."""
+    """CPU seconds of this process and its finished children (the workers, once joined; not the
+    baseline's forkserver workers, grandchildren of this process)."""
     t = os.times()
     return t.user + t.system + t.children_user + t.children_system
 
 
-def mu_read(path) -> list[dict]:
-    """The records of an earlier run written to ``path`` (none if there is no file)."""
+def _read(path) -> tuple[list[dict], list[dict]]:
+    """The records and runs of an earlier run written to ``path`` (none if there is no file)."""
     import json
 
-    return json.loads(path.read_text(encoding="utf-8"))["mutants"] if path.is_file() else []
+    if not path.is_file():
+        return [], []
+    data = json.loads(path.read_text(encoding="utf-8"))
+    return data["mutants"], data.get("runs", [])
 
 
-def _write(records, lines, args, start, complete: bool) -> None:
+def _progress(run: dict, ran: int, tasks: int, t0: float, c0: float) -> None:
+    run.update({"mutants run": ran, "of": tasks, "wall seconds": round(time.perf_counter() - t0),
+                "cpu seconds (this process and joined workers)": round(_cpu_seconds() - c0)})
+
+
+def _write(records, runs, args) -> None:
+    """``--out``: one summary line per target over all its records, the runs that made them
+    (command, mutants run, wall and CPU seconds, load), ``complete`` when every run finished."""
     order = {"derivations": 0, "runtime": 1}
-    write_json_atomic({"summary": lines, "seed": args.seed, "sample": args.sample,
-                       "complete": complete, "seconds": round(time.perf_counter() - start),
+    lines = [summary([r for r in records if r["target"] == t], t)
+             for t in sorted({r["target"] for r in records}, key=lambda t: order.get(t, 2))]
+    write_json_atomic({"summary": lines, "seed": args.seed, "sample": args.sample, "runs": runs,
+                       "complete": all(r.get("complete") for r in runs),
                        "mutants": sorted(records, key=lambda r: (order.get(r["target"], 2),
                                                                  r["function"], r["index"]))},
                       args.out)
 
 
-def _run(tasks: list[Task], jobs: int, records: list[dict], args, start) -> list[dict]:
+def _run(tasks: list[Task], jobs: int, records: list[dict], runs, args, run, t0, c0) -> list[dict]:
     """Evaluate ``tasks`` in ``jobs`` forked workers, cheapest first; ``records`` grows as they
     finish and is written to ``--out`` every 30 s (``"complete": false``), so an interrupted
     run keeps what it decided and ``--resume`` goes on from there."""
@@ -380,8 +399,8 @@ def _run(tasks: list[Task], jobs: int, records: list[dict], args, start) -> list
                 print(f"  {rec['outcome']:<10} {rec['function']:<40} {rec['mutation']}  "
                       f"[{rec['row']}] {rec['reason'][:160]}", flush=True)
             if time.perf_counter() - last > 30:
-                _write(records, [f"partial: {len(mine)}/{len(tasks)} mutants of this target"],
-                       args, start, complete=False)
+                _progress(run, len(mine), len(tasks), t0, c0)
+                _write(records, runs, args)
                 last = time.perf_counter()
     return mine
 
