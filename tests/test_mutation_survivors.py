@@ -134,3 +134,32 @@ def test_the_compiled_angular_velocity_records_the_hash_of_its_expressions(tmp_p
         assert entry["source"] == hashlib.sha256("\n".join(map(str, cf.fn)).encode()).hexdigest()
     finally:
         jit_cache.forget_memory()
+
+
+def test_expression_vector_field_with_attitude_appends_g_omega_and_the_centre_velocity():
+    """runtime.expressions.vector_field with the attitude g (the full system): after the reduced
+    field come vec(g Omega) row-major and r g Omega gamma (Omega = L_gamma^{-1} M), here built
+    with float arithmetic and compared with the NumPy runtime."""
+    import math
+
+    import numpy as np
+    from chaplygin_nd.runtime import axisym, expressions
+
+    class FloatOps:
+        sqrt = staticmethod(math.sqrt)
+
+        @staticmethod
+        def rational(p, q):
+            return p / q
+
+    n, a, b, r = 4, 0.3, 0.7, 1.5
+    M, gamma = _batch(n, shape=(1,))
+    M, gamma = M[0], gamma[0]
+    g = np.linalg.qr(np.random.default_rng(3).standard_normal((n, n)))[0]
+    out = expressions.vector_field(list(axisym.vec(M)), list(gamma), a, b, FloatOps,
+                                   g=[list(row) for row in g], radius=r)
+    Omega = axisym.angular_velocity(M, gamma, a, b, "matrix")
+    d = n * (n - 1) // 2
+    assert len(out) == d + n + n * n + n
+    assert np.allclose(out[d + n:d + n + n * n], (g @ Omega).ravel(), atol=1e-12)
+    assert np.allclose(out[d + n + n * n:], r * g @ Omega @ gamma, atol=1e-12)
