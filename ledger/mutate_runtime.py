@@ -202,24 +202,49 @@ def _exact_or_bitwise(x, y) -> bool:
         return _bitwise_equal(x, y)
 
 
+def _code_objects(code) -> set:
+    out = {code}
+    for const in code.co_consts:
+        if hasattr(const, "co_code"):
+            out |= _code_objects(const)
+    return out
+
+
 def equivalence(fn, mutant_code, tests: list[str], fresh: bool, same=_bitwise_equal,
-                ) -> tuple[bool, int]:
+                line: int | None = None) -> tuple[bool, int, bool]:
     """Run ``tests`` once with both versions computed at every call of ``fn``: (all outputs equal
-    by ``same``, number of calls). The original's output is what the tests see."""
+    by ``same``, number of calls, whether the mutant executed source line ``line`` — the mutated
+    one — at least once: equal outputs prove nothing about code that never ran). The original's
+    output is what the tests see."""
+    import sys
+
     orig = FunctionType(fn.__code__, fn.__globals__, fn.__name__, fn.__defaults__)
     orig.__kwdefaults__ = fn.__kwdefaults__
     mut = FunctionType(mutant_code, fn.__globals__, fn.__name__, fn.__defaults__)
     mut.__kwdefaults__ = fn.__kwdefaults__
-    state: dict[str, Any] = {"calls": 0, "same": True}
+    state: dict[str, Any] = {"calls": 0, "same": True, "ran": line is None}
+    codes = _code_objects(mutant_code)
+
+    def local(frame, event, arg):
+        if event == "line" and frame.f_lineno == line:
+            state["ran"] = True
+        return None if state["ran"] else local
+
+    def watch(frame, event, arg):
+        return local if frame.f_code in codes and not state["ran"] else None
 
     def hook(*args, **kwargs):
         want = orig(*args, **kwargs)
         state["calls"] += 1
+        saved = sys.gettrace()
+        sys.settrace(None if state["ran"] else watch)
         try:
             got = mut(*args, **kwargs)
             state["same"] = state["same"] and same(want, got)
         except Exception:  # noqa: BLE001 - raises where the original does not
             state["same"] = False
+        finally:
+            sys.settrace(saved)
         return want
 
     name = "__mutate_runtime_hook__"
@@ -235,7 +260,7 @@ def equivalence(fn, mutant_code, tests: list[str], fresh: bool, same=_bitwise_eq
     finally:
         fn.__code__ = original
         fn.__globals__.pop(name, None)
-    return bool(state["same"]) and state["calls"] > 0, state["calls"]
+    return bool(state["same"]) and state["calls"] > 0, state["calls"], bool(state["ran"])
 
 
 def kill(fn, code, key: str, tests: tuple[str, ...]) -> str | None:
@@ -269,13 +294,22 @@ def evaluate(fn, code, key: str, tests: tuple[str, ...], record: dict) -> dict:
         record.update(outcome="killed", row="tests", reason=note)
         return record
     runtime = key.startswith("runtime.")
-    same, calls = equivalence(fn, code, list(tests), key.startswith("runtime.jit_cache."),
-                              _bitwise_equal if runtime else _exact_or_bitwise)
+    found = re.search(r"\bline (\d+)\b", record.get("mutation", ""))
+    same, calls, ran = equivalence(fn, code, list(tests), key.startswith("runtime.jit_cache."),
+                                   _bitwise_equal if runtime else _exact_or_bitwise,
+                                   int(found.group(1)) if found else None)
     clear_caches()
     how = "bit-for-bit" if runtime else "exactly (SymPy) or bit-for-bit (arrays)"
-    record.update(row="tests", **(
-        {"outcome": "equivalent", "reason": f"the {len(tests)} tests that reach it passed "
-         f"and the mutant's outputs are {how} the original's at all {calls} calls they make"}
-        if same else {"outcome": "survived", "reason": f"the {len(tests)} tests that reach "
-                      f"it passed; outputs differ or no call was made ({calls} calls)"}))
+    passed = f"the {len(tests)} tests that reach it passed"
+    if same and ran:
+        record.update(row="tests", outcome="equivalent", reason=(
+            f"{passed} and the mutant's outputs are {how} the original's at all {calls} calls "
+            "they make, the mutated line executed"))
+    elif same:
+        record.update(row="tests", outcome="survived", reason=(
+            f"{passed}; equal outputs at all {calls} calls, but the mutated line never ran "
+            "(a branch no test takes)"))
+    else:
+        record.update(row="tests", outcome="survived", reason=(
+            f"{passed}; outputs differ or no call was made ({calls} calls)"))
     return record
