@@ -163,3 +163,15 @@ def test_expression_vector_field_with_attitude_appends_g_omega_and_the_centre_ve
     assert len(out) == d + n + n * n + n
     assert np.allclose(out[d + n:d + n + n * n], (g @ Omega).ravel(), atol=1e-12)
     assert np.allclose(out[d + n + n * n:], r * g @ Omega @ gamma, atol=1e-12)
+
+
+def test_parse_model_builds_the_model_the_user_gave():
+    """chaplygin first-integrals: a and b (or J and b) reach the model in their places (eq:axisymm:
+    J = Id + a E_n E_n^T; eq:Inertia: J = diag(J)); the search's tests only used a = b."""
+    import sympy as sp
+    from chaplygin_nd.symbolic import fi_cli
+
+    m = fi_cli.parse_model(4, "1/2", "3", None)
+    assert (m.n, m.J, m.b) == (4, (1, 1, 1, sp.Rational(3, 2)), 3)
+    g = fi_cli.parse_model(3, None, "2", "1,2,3")
+    assert (g.n, g.J, g.b, g.kind) == (3, (1, 2, 3), 2, "general")
