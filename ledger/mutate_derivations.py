@@ -104,7 +104,15 @@ ARGUED: dict[tuple[str, str], str] = {
                         "swap: line 102 col 39: _mul(c[1], wedge(Mg, gamma, i, j)) -> "
                         "_mul(wedge(Mg, gamma, i, j), c[1])",
                         "swap: line 103 col 18: _mul(c[2], wedge(Me, e, i, j)) -> "
-                        "_mul(wedge(Me, e, i, j), c[2])")},
+                        "_mul(wedge(Me, e, i, j), c[2])",
+                        "swap: line 103 col 50: _mul(c[3], wedge(Mg, e, i, j)) -> "
+                        "_mul(wedge(Mg, e, i, j), c[3])",
+                        "swap: line 104 col 18: _mul(c[4], wedge(Me, gamma, i, j)) -> "
+                        "_mul(wedge(Me, gamma, i, j), c[4])")},
+    ("runtime.expressions.structured_field", "swap: line 139 col 18: _mul(ui, Vi[k]) -> "
+                                             "_mul(Vi[k], ui)"):
+        "the two factors of one product of heyoka expressions exchanged: the expression text "
+        "differs, but IEEE multiplication is commutative, so the compiled code returns the same bits",
 }
 
 
