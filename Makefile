@@ -52,8 +52,9 @@ mutate: setup
 	$(CLI) mutate
 
 ## mutate-derivations: the same one-token mutants applied to the derivations of symbolic/ (run
-## against the rows that reach them) and to runtime/ (run against its tests); writes
-## mutation-derivations.json. `make mutate-derivations MUTATE_ARGS="--sample 150"` draws a seeded sample.
+## against the rows that reach them) and to runtime/ (run against the tests that call them), two
+## workers, cheapest first; writes mutation-derivations.json (every 30 s; --resume goes on).
+## `make mutate-derivations MUTATE_ARGS="--sample 150"` draws a seeded sample.
 mutate-derivations: setup
 	$(PY) -m chaplygin_nd.ledger.mutate_derivations $(MUTATE_ARGS)
 

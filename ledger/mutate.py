@@ -221,9 +221,22 @@ def _describe(target, replacement) -> str:
     return f"line {line} col {col}: {ast.unparse(target)} -> {ast.unparse(replacement)}"
 
 
+#: ``(key, code object) -> all_mutants(key, fn)``: computed once per process and function (a large
+#: function took ~8 s, and each mutant compiled called it again); keyed on the code object, so a
+#: function whose code changed is parsed afresh. Forked workers inherit the parent's.
+_ALL_MUTANTS: dict[tuple, list] = {}
+
+
 def all_mutants(key: str, fn) -> list[tuple[Mutant, ast.FunctionDef]]:
     """Every candidate mutant of one printed function, with its mutated AST, in source order.
     Mutants whose source is unchanged or that merely repeat another are dropped."""
+    memo = (key, fn.__code__)
+    if memo not in _ALL_MUTANTS:
+        _ALL_MUTANTS[memo] = _all_mutants(key, fn)
+    return _ALL_MUTANTS[memo]
+
+
+def _all_mutants(key: str, fn) -> list[tuple[Mutant, ast.FunctionDef]]:
     node = _function_ast(fn)
     original = ast.unparse(node)
     out, seen = [], {original}

@@ -11,69 +11,50 @@ targets:
   counterexample or parts change (or it raises or runs past its budget); for a derivation emitted
   into ``generated/``, also when the regenerated kernels differ (``make verify``'s stale check
   fails); ``equivalent`` when nothing changed and the mutant returns exactly the original value at
-  every call of the cheapest row, else ``survived``.
+  every call of the cheapest row, else ``survived``. A derivation no row reaches (and, with
+  ``--rerun``, a survivor) is run against the tests that reach it instead (as the runtime is).
 * ``runtime`` — the public functions of ``runtime/``. Their checks are tests, not rows: a mutant
-  is run against the test files that import the runtime (:func:`runtime_tests`) with
-  ``pytest -x``; ``killed`` when a test fails; ``equivalent`` when every test passes and the
-  mutant's outputs are bit-for-bit the original's at every call the tests make (e.g. the operands
-  of an IEEE multiplication swapped); else ``survived``.
+  is run against the tests that call its function (:mod:`ledger.mutate_runtime`: recorded once
+  per run, fastest first, ``pytest -x``); ``killed`` when a test fails; ``equivalent`` when every
+  one passes and the mutant's outputs are bit-for-bit the original's at every call they make
+  (e.g. the operands of an IEEE multiplication swapped); else ``survived``.
+
+A survivor whose equivalence needs an argument beyond bit-for-bit equality (a branch that picks one
+of two documented implementations of the same formula) is listed in :data:`ARGUED`, with the
+argument, and reported ``equivalent`` with "argued:" in its reason.
 
 Every function cached with ``functools`` anywhere in the package is cleared before and after each
 mutant (a cached unmutated value would hide the mutant; a cached mutated one would leak into the
-next). The full set of mutants is large; ``--sample N`` draws ``N`` of them with a fixed seed
-(deterministic, recorded). Writes ``mutation-derivations.json`` (or ``--out``) atomically; exit 1
-on a survivor or an error.
+next). Mutants run in ``--jobs`` forked workers, cheapest first; ``--out`` is rewritten every 30 s
+(``"complete": false``) so an interrupted run keeps what it decided, and ``--resume`` goes on from
+there. ``--sample N`` draws ``N`` mutants per target with a fixed seed. Writes
+``mutation-derivations.json`` (or ``--out``) atomically; each target's summary line gives its wall
+and CPU seconds; exit 1 on a survivor or an error.
 """
 
 from __future__ import annotations
 
-import importlib
 import multiprocessing as mp
-import pkgutil
+import os
 import random
-import re
 import sys
+import tempfile
 import time
 import traceback
 from dataclasses import dataclass
 from types import FunctionType
-from typing import Any
 
 from chaplygin_nd.ledger import mutate as mu
+from chaplygin_nd.ledger import mutate_runtime as mr
 from chaplygin_nd.ledger.catalog import ROOT, is_checkout
+from chaplygin_nd.ledger.mutate_runtime import runtime_functions, runtime_tests  # noqa: F401 - API
 from chaplygin_nd.ledger.reach import derivation_functions, load_derived, write_json_atomic
 
 from chaplygin_nd import processes
 from chaplygin_nd.console import OneLineParser, fail, path_argument, say
 
 OUT_PATH = ROOT / "mutation-derivations.json"
-_IMPORTS_RUNTIME = re.compile(r"^\s*(from chaplygin_nd\.runtime\b|import chaplygin_nd\.runtime\b|"
-                              r"from chaplygin_nd import runtime\b)", re.MULTILINE)
-
-
-def runtime_tests() -> tuple[str, ...]:
-    """The tests that check the runtime: every test file that imports it (found, not listed: a
-    hand-kept list had missed tests/test_p_coefficients.py, so p_coefficients' mutants looked
-    untested), run with ``pytest -x``."""
-    return tuple(sorted(str(p.relative_to(ROOT)) for p in (ROOT / "tests").glob("test_*.py")
-                        if _IMPORTS_RUNTIME.search(p.read_text(encoding="utf-8"))))
-
-
 SEED = 20261123
-
-
-def runtime_functions() -> dict[str, FunctionType]:
-    """``{"runtime.axisym.zeta": function}`` for every public function of ``runtime/``."""
-    import chaplygin_nd.runtime as runtime
-
-    out: dict[str, FunctionType] = {}
-    for info in sorted(pkgutil.iter_modules(runtime.__path__), key=lambda i: i.name):
-        mod = importlib.import_module(f"chaplygin_nd.runtime.{info.name}")
-        for attr, obj in sorted(vars(mod).items()):
-            if (not attr.startswith("_") and isinstance(obj, FunctionType)
-                    and obj.__module__ == mod.__name__ and not obj.__code__.co_freevars):
-                out[f"runtime.{info.name}.{attr}"] = obj
-    return out
 
 
 def functions(target: str) -> dict[str, FunctionType]:
@@ -85,8 +66,61 @@ def functions(target: str) -> dict[str, FunctionType]:
 class Task:
     target: str
     mutant: mu.Mutant
-    rows: tuple  # derivations: ((row, signature, seconds), ...); runtime: ()
+    rows: tuple  # derivations: ((row, signature, seconds), ...); runtime: (test id, ...)
     emitted: frozenset = frozenset()  # the emitted derivations (their kernels are compared too)
+    tests: tuple = ()  # derivations: the tests that reach the function (mutate_runtime.test_map)
+
+
+#: Mutants no check can tell apart although their outputs differ in the last bits, with the
+#: argument that they are equivalent: ``(function, mutation) -> reason``. Applied only to a mutant
+#: that survived every row and test reaching it (the outcome becomes ``equivalent``, the reason
+#: says "argued"). The mutation text names the line: a change of the function renews the review.
+ARGUED: dict[tuple[str, str], str] = {
+    ("runtime.axisym.angular_velocity", "const: line 88 col 34: 3 -> 4"):
+        "n = 3 then takes the documented method='matrix' path (inverse_coefficients + the six "
+        "terms, valid for any n >= 3) instead of the n = 3 component kernel: both evaluate the "
+        "same derived L_gamma^{-1}(M) (P:inversion), in a different order of floating-point "
+        "operations; the branch is a speed choice",
+    ("runtime.axisym.p_coefficients", "const: line 172 col 13: 3 -> 4"):
+        "n = 3 then takes the documented any-n path (batched eigenvalues, p affine in sigma) "
+        "instead of the n = 3 expanded-determinant kernel: both compute the coefficients of "
+        "det(M + sigma gamma gamma^T - lambda Id) (eq:pol-first-integrals), rounded differently; "
+        "the branch is a speed choice",
+    ("runtime.compiled.angular_velocity_function", "const: line 43 col 52: 53 -> 54"):
+        "HeyokaArithmetic reads its bits only for kind 'real'; for 'double' (here) they are unused",
+    **{("runtime.compiled.angular_velocity_function", mutation):
+       "renames the cfunc's variables (M<i>_<j>, gamma<i>) by another one-to-one map: the names "
+       "stay pairwise distinct and a cfunc takes its inputs by position in the list of variables "
+       "it is given (m + gamma), so the compiled function is the same map"
+       for mutation in ("sign: line 45 col 35: i + 1 -> i - 1", "sign: line 45 col 43: j + 1 -> j - 1",
+                        "sign: line 46 col 43: i + 1 -> i - 1", "const: line 45 col 39: 1 -> 2",
+                        "const: line 45 col 47: 1 -> 2", "const: line 46 col 47: 1 -> 2")},
+    **{("runtime.expressions.angular_velocity", mutation):
+       "the two factors of one product of heyoka expressions exchanged: the expression text differs "
+       "(the bit-for-bit comparison compares text), but IEEE multiplication is commutative, so the "
+       "compiled code returns the same bits"
+       for mutation in ("swap: line 98 col 21: _mul(u[i], v[j]) -> _mul(v[j], u[i])",
+                        "swap: line 98 col 44: _mul(v[i], u[j]) -> _mul(u[j], v[i])",
+                        "swap: line 102 col 39: _mul(c[1], wedge(Mg, gamma, i, j)) -> "
+                        "_mul(wedge(Mg, gamma, i, j), c[1])",
+                        "swap: line 103 col 18: _mul(c[2], wedge(Me, e, i, j)) -> "
+                        "_mul(wedge(Me, e, i, j), c[2])",
+                        "swap: line 103 col 50: _mul(c[3], wedge(Mg, e, i, j)) -> "
+                        "_mul(wedge(Mg, e, i, j), c[3])",
+                        "swap: line 104 col 18: _mul(c[4], wedge(Me, gamma, i, j)) -> "
+                        "_mul(wedge(Me, gamma, i, j), c[4])")},
+    ("runtime.expressions.structured_field", "swap: line 139 col 18: _mul(ui, Vi[k]) -> "
+                                             "_mul(Vi[k], ui)"):
+        "the two factors of one product of heyoka expressions exchanged: the expression text "
+        "differs, but IEEE multiplication is commutative, so the compiled code returns the same bits",
+}
+
+
+def _argued(record: dict) -> dict:
+    why = ARGUED.get((record["function"], record["mutation"]))
+    if record["outcome"] == "survived" and why:
+        record.update(outcome="equivalent", reason=f"argued: {why} ({record['reason']})")
+    return record
 
 
 def sample(target: str, size: int | None, seed: int = SEED) -> list[mu.Mutant]:
@@ -108,89 +142,13 @@ def clear_caches() -> None:
                     obj.cache_clear()
 
 
-def _run_tests(files) -> tuple[bool, str]:
-    """Run ``files`` with ``pytest -x`` in this process, with empty caches: the compiled heyoka
-    objects and evidence live in memory and on disk keyed by the source files' hashes, which an
-    in-memory mutant does not change, so a warm cache would hand the tests the original's
-    objects (a mutant of ``runtime.expressions`` then looked untested)."""
-    import contextlib
-    import io
-    import os
-    import tempfile
-
-    import pytest
-    from chaplygin_nd.runtime import jit_cache
-
-    from chaplygin_nd.cache import ENV
-
-    buffer = io.StringIO()
-    saved = os.environ.get(ENV)
-    with tempfile.TemporaryDirectory(prefix="chaplygin-mutant-") as empty:
-        os.environ[ENV] = empty
-        jit_cache.forget_memory()
-        try:
-            with contextlib.redirect_stdout(buffer), contextlib.redirect_stderr(buffer):
-                code = pytest.main(["-q", "-x", "-p", "no:cacheprovider", "--no-header", *files])
-        finally:
-            jit_cache.forget_memory()
-            if saved is None:
-                os.environ.pop(ENV, None)
-            else:
-                os.environ[ENV] = saved
-    lines = [ln for ln in buffer.getvalue().splitlines() if ln.startswith(("FAILED", "ERROR"))]
-    return code == 0, (lines[0] if lines else f"pytest exit {code}")[:200]
-
-
-def _bitwise_equal(x, y) -> bool:
-    import numpy as np
-
-    if isinstance(x, (tuple, list)) and isinstance(y, (tuple, list)):
-        return len(x) == len(y) and all(_bitwise_equal(u, v) for u, v in zip(x, y))
-    try:
-        xa, ya = np.asarray(x), np.asarray(y)
-    except Exception:  # noqa: BLE001 - not array-like: compare as objects
-        return x is y or x == y
-    if xa.dtype == object or ya.dtype == object:
-        return str(x) == str(y)  # e.g. heyoka expressions: the same expression text
-    return xa.shape == ya.shape and xa.dtype == ya.dtype and np.array_equal(xa, ya, equal_nan=True)
-
-
-def _runtime_equivalence(fn, mutant_code) -> tuple[bool, int]:
-    """Run the runtime tests once with both versions computed at every call of ``fn``: (all
-    outputs bit-for-bit equal, number of calls). The original's output is what the tests see."""
-    orig = FunctionType(fn.__code__, fn.__globals__, fn.__name__, fn.__defaults__)
-    orig.__kwdefaults__ = fn.__kwdefaults__
-    mut = FunctionType(mutant_code, fn.__globals__, fn.__name__, fn.__defaults__)
-    mut.__kwdefaults__ = fn.__kwdefaults__
-    state: dict[str, Any] = {"calls": 0, "same": True}
-
-    def hook(*args, **kwargs):
-        want = orig(*args, **kwargs)
-        state["calls"] += 1
-        try:
-            got = mut(*args, **kwargs)
-            state["same"] = state["same"] and _bitwise_equal(want, got)
-        except Exception:  # noqa: BLE001 - raises where the original does not
-            state["same"] = False
-        return want
-
-    name = "__mutate_runtime_hook__"
-    src = f"def {fn.__name__}(*args, **kwargs):\n    return {name}(*args, **kwargs)\n"
-    ns: dict = {}
-    exec(compile(src, "<runtime compare>", "exec"), ns)  # noqa: S102 - fixed template
-    original = fn.__code__
-    fn.__globals__[name] = hook
-    fn.__code__ = ns[fn.__name__].__code__
-    try:
-        _run_tests(runtime_tests())
-    finally:
-        fn.__code__ = original
-        fn.__globals__.pop(name, None)
-    return bool(state["same"]) and state["calls"] > 0, state["calls"]
-
-
 def evaluate(task: Task) -> dict:
-    """Decide one mutant in this process: apply it, run its rows (or tests), restore."""
+    """Decide one mutant in this process: apply it, run its rows (or tests), restore; a survivor
+    whose equivalence is argued in :data:`ARGUED` is ``equivalent``."""
+    return _argued(_evaluate(task))
+
+
+def _evaluate(task: Task) -> dict:
     fn = functions(task.target)[task.mutant.function]
     original = fn.__code__
     m = task.mutant
@@ -206,24 +164,9 @@ def evaluate(task: Task) -> dict:
     try:
         clear_caches()
         if task.target == "runtime":
-            fn.__code__ = code
-            try:
-                passed, note = _run_tests(runtime_tests())
-            finally:
-                fn.__code__ = original
-            if not passed:
-                record.update(outcome="killed", row="tests", reason=note)
-                return record
-            same, calls = _runtime_equivalence(fn, code)
-            record.update(row="tests", **(
-                {"outcome": "equivalent", "reason": f"every runtime test passed and the mutant's "
-                 f"outputs are bit-for-bit the original's at all {calls} calls the tests make"}
-                if same else {"outcome": "survived", "reason": f"every runtime test passed; "
-                              f"outputs differ or no call was made ({calls} calls)"}))
-            return record
+            return mr.evaluate(fn, code, m.function, task.rows, record)
         if not task.rows:
-            record.update(outcome="survived", reason="no ledger row reaches this derivation")
-            return record
+            return mr.evaluate(fn, code, m.function, task.tests, record)
         tried = []
         for claim_id, base, seconds in task.rows:
             fn.__code__ = code
@@ -251,6 +194,11 @@ def evaluate(task: Task) -> dict:
                               reason="no row changed, but the regenerated kernels differ: make "
                                      "verify's stale check of generated/ fails")
                 return record
+        if task.tests:
+            note = mr.kill(fn, code, m.function, task.tests)
+            if note is not None:
+                record.update(outcome="killed", row="tests", reason=f"no row changed; {note}")
+                return record
         return mu.settle(record, fn, code, task.rows, tried)
     except Exception:  # noqa: BLE001
         record.update(outcome="error", reason=traceback.format_exc(limit=3))
@@ -261,11 +209,14 @@ def evaluate(task: Task) -> dict:
         record["seconds"] = round(time.perf_counter() - start, 2)
 
 
-def plan(target: str, selection: list[mu.Mutant], jobs: int) -> list[Task]:
-    """Tasks for ``selection``: for derivations, the reaching rows (cheapest first, capped) with
-    their unmutated signatures (one baseline run of just those rows)."""
+def plan(target: str, selection: list[mu.Mutant], jobs: int, tests_for=()) -> list[Task]:
+    """Tasks for ``selection``: for derivations, the reaching rows (cheapest first) with their
+    unmutated signatures (one baseline run of just those rows), and for a derivation no row
+    reaches or one in ``tests_for`` (the survivors re-run), the tests that reach it
+    (:func:`mutate_runtime.test_map` over the test files that name it)."""
     if target == "runtime":
-        return [Task(target, m, ()) for m in selection]
+        reach = mr.test_map() if selection else {}
+        return [Task(target, m, tuple(t for t, _ in reach.get(m.function, ()))) for m in selection]
     derived, emitted = load_derived()
     _, seconds = mu_load_seconds()
     by_function: dict[str, list[str]] = {}
@@ -278,8 +229,12 @@ def plan(target: str, selection: list[mu.Mutant], jobs: int) -> list[Task]:
                                     key=lambda r: (seconds.get(r, 99), r))
     needed = sorted({r for rows in chosen.values() for r in rows})
     base = mu.baseline(needed, jobs=jobs) if needed else {}
+    every = functions(target)
+    tested = {f: every[f] for f in chosen if not chosen[f] or f in tests_for}
+    reach = mr.test_map(tested, mr.mentioning(tested)) if tested else {}
     return [Task(target, m, tuple((r, base[r][0], base[r][1]) for r in chosen[m.function]),
-                 frozenset(emitted)) for m in selection]
+                 frozenset(emitted), tuple(t for t, _ in reach.get(m.function, ())))
+            for m in selection]
 
 
 def mu_load_seconds():
@@ -294,12 +249,19 @@ def _init_worker():
     discover()
 
 
-def summary(records: list[dict], target: str, seconds: float) -> str:
+def summary(records: list[dict], target: str, seconds: float | None = None, cpu: float = 0.0,
+            ran: int | None = None) -> str:
+    """One line per target: the outcomes of all its ``records``, and (``seconds`` given) the time
+    of this run, which ran ``ran`` of them (the others were kept from the file resumed or re-run)."""
     count = {k: sum(r["outcome"] == k for r in records)
              for k in ("killed", "equivalent", "survived", "error")}
-    return (f"{target}: {len(records)} mutants of {len({r['function'] for r in records})} functions: "
-            f"{count['killed']} killed, {count['equivalent']} equivalent, {count['survived']} "
-            f"survived, {count['error']} errors; {seconds:.0f} s")
+    line = (f"{target}: {len(records)} mutants of {len({r['function'] for r in records})} "
+            f"functions: {count['killed']} killed, {count['equivalent']} equivalent, "
+            f"{count['survived']} survived, {count['error']} errors")
+    if seconds is None:
+        return line
+    ran = len(records) if ran is None else ran
+    return f"{line}; this run: {ran} mutants in {seconds:.0f} s wall, {cpu:.0f} s CPU"
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -316,6 +278,12 @@ def main(argv: list[str] | None = None) -> int:
                         help="list the functions of the targets (the names --function takes) and exit")
     parser.add_argument("--rerun", type=path_argument, default=None,
                         help="re-run only the survivors and errors recorded in this JSON file")
+    parser.add_argument("--resume", action="store_true",
+                        help="keep the mutants already decided in --out (an interrupted run) and "
+                             "run only the others")
+    parser.add_argument("--again", default="survived,error", type=lambda v: tuple(v.split(",")),
+                        help="with --rerun: the outcomes run again (default survived,error; add "
+                             "equivalent after adding a test that may tell such mutants apart)")
     parser.add_argument("--jobs", "-j", type=int, default=2)
     parser.add_argument("--out", type=path_argument, default=None,
                         help="where to write (default mutation-derivations.json in the checkout)")
@@ -340,38 +308,114 @@ def main(argv: list[str] | None = None) -> int:
         return fail(f"--out {args.out}: exists and is not a mutation JSON this program wrote; give "
                     "a new file name (nothing else is replaced)")
     args.out = args.out or OUT_PATH
-    start = time.perf_counter()
     _init_worker()
-    records, lines = [], []
-    for target in args.target or ["derivations", "runtime"]:
+    records: list[dict] = []
+    runs: list[dict] = []
+    targets = args.target or ["derivations", "runtime"]
+    if args.resume:  # keep what an earlier (interrupted) run into --out decided
+        records, runs = _read(args.out)
+        records = [r for r in records if r["outcome"] != "error"]
+    if args.rerun:  # keep what the earlier run decided, except what is run again
+        records, runs = _read(args.rerun)
+        records = [r for r in records if r["target"] not in targets or r["outcome"] not in args.again]
+    done = {(r["target"], r["function"], r["mutation"]) for r in records}
+    for target in targets:
         selection = [m for m in sample(target, None if args.function else args.sample, args.seed)
                      if not args.function or m.function in args.function]
         if args.rerun:
-            import json
-
-            again = {(r["function"], r["mutation"]) for r in json.loads(args.rerun.read_text())[
-                "mutants"] if r["outcome"] in ("survived", "error") and r["target"] == target}
+            again = {(r["function"], r["mutation"]) for r in _read(args.rerun)[0]
+                     if r["outcome"] in args.again and r["target"] == target}
             selection = [m for m in sample(target, None, args.seed)
                          if (m.function, f"{m.operator}: {m.description}") in again]
-        tasks = plan(target, selection, args.jobs)
-        print(f"{target}: {len(tasks)} mutants to run", flush=True)
-        t0 = time.perf_counter()
-        with processes.pool(args.jobs, mp.get_context("fork"), _init_worker) as pool:
-            for rec in pool.map(evaluate, tasks):
-                records.append(rec)
-                if rec["outcome"] != "killed":
-                    print(f"  {rec['outcome']:<10} {rec['function']:<40} {rec['mutation']}  "
-                          f"[{rec['row']}] {rec['reason'][:160]}", flush=True)
-        lines.append(summary([r for r in records if r["target"] == target], target,
-                             time.perf_counter() - t0))
-        print(lines[-1], flush=True)
-    write_json_atomic({"summary": lines, "seed": args.seed, "sample": args.sample,
-                       "seconds": round(time.perf_counter() - start), "mutants": records}, args.out)
+        selection = [m for m in selection
+                     if (target, m.function, f"{m.operator}: {m.description}") not in done]
+        t0, c0 = time.perf_counter(), _cpu_seconds()
+        run = {"argv": sys.argv[1:] if argv is None else list(argv), "target": target,
+               "complete": False, "load average at start": list(os.getloadavg())}
+        runs.append(run)
+        with tempfile.TemporaryDirectory(prefix="chaplygin-mutate-") as work:
+            os.environ[mr.WORK_ENV] = work  # the workers' cache folders (mutate_runtime)
+            try:
+                tasks = plan(target, selection, args.jobs,
+                             {m.function for m in selection} if args.rerun else ())
+                print(f"{target}: {len(tasks)} mutants to run", flush=True)
+                mine = _run(tasks, args.jobs, records, runs, args, run, t0, c0)
+            finally:
+                os.environ.pop(mr.WORK_ENV, None)
+        _progress(run, len(mine), len(tasks), t0, c0)
+        run["complete"] = True
+        print(summary([r for r in records if r["target"] == target], target,
+                      time.perf_counter() - t0, _cpu_seconds() - c0, len(mine)), flush=True)
+    _write(records, runs, args)
     print(f"wrote {args.out}")
     bad = [r for r in records if r["outcome"] in ("survived", "error")]
     for r in bad:
         print(f"PROBLEM: {r['function']} {r['mutation']}: {r['outcome']}", file=sys.stderr)
     return 1 if bad else 0
+
+
+def _cpu_seconds() -> float:
+    """CPU seconds of this process and its finished children (the workers, once joined; not the
+    baseline's forkserver workers, grandchildren of this process)."""
+    t = os.times()
+    return t.user + t.system + t.children_user + t.children_system
+
+
+def _read(path) -> tuple[list[dict], list[dict]]:
+    """The records and runs of an earlier run written to ``path`` (none if there is no file)."""
+    import json
+
+    if not path.is_file():
+        return [], []
+    data = json.loads(path.read_text(encoding="utf-8"))
+    return data["mutants"], data.get("runs", [])
+
+
+def _progress(run: dict, ran: int, tasks: int, t0: float, c0: float) -> None:
+    run.update({"mutants run": ran, "of": tasks, "wall seconds": round(time.perf_counter() - t0),
+                "cpu seconds (this process and joined workers)": round(_cpu_seconds() - c0)})
+
+
+def _write(records, runs, args) -> None:
+    """``--out``: one summary line per target over all its records, the runs that made them
+    (command, mutants run, wall and CPU seconds, load), ``complete`` when every run finished."""
+    order = {"derivations": 0, "runtime": 1}
+    lines = [summary([r for r in records if r["target"] == t], t)
+             for t in sorted({r["target"] for r in records}, key=lambda t: order.get(t, 2))]
+    write_json_atomic({"summary": lines, "seed": args.seed, "sample": args.sample, "runs": runs,
+                       "complete": all(r.get("complete") for r in runs),
+                       "mutants": sorted(records, key=lambda r: (order.get(r["target"], 2),
+                                                                 r["function"], r["index"]))},
+                      args.out)
+
+
+def _run(tasks: list[Task], jobs: int, records: list[dict], runs, args, run, t0, c0) -> list[dict]:
+    """Evaluate ``tasks`` in ``jobs`` forked workers, cheapest first; ``records`` grows as they
+    finish and is written to ``--out`` every 30 s (``"complete": false``), so an interrupted
+    run keeps what it decided and ``--resume`` goes on from there."""
+    from concurrent.futures import as_completed
+
+    mine: list[dict] = []
+    last = time.perf_counter()
+    with processes.pool(jobs, mp.get_context("fork"), _init_worker) as pool:
+        futures = [pool.submit(evaluate, t) for t in sorted(tasks, key=_cost)]
+        for fut in as_completed(futures):
+            rec = fut.result()
+            records.append(rec)
+            mine.append(rec)
+            if rec["outcome"] != "killed":
+                print(f"  {rec['outcome']:<10} {rec['function']:<40} {rec['mutation']}  "
+                      f"[{rec['row']}] {rec['reason'][:160]}", flush=True)
+            if time.perf_counter() - last > 30:
+                _progress(run, len(mine), len(tasks), t0, c0)
+                _write(records, runs, args)
+                last = time.perf_counter()
+    return mine
+
+
+def _cost(task: Task) -> float:
+    """Expected seconds of a task (its cheapest check), to run the cheap ones first."""
+    return task.rows[0][2] if task.rows else 0.0
 
 
 if __name__ == "__main__":

@@ -73,8 +73,14 @@ def cache_dir() -> Path:
 
 @cache
 def code_version() -> str:
-    """SHA-256 (16 hex digits) of the source files of :data:`CODE_MODULES` (read once per process)."""
+    """SHA-256 (16 hex digits) of the source files of :data:`CODE_MODULES` (read once per process)
+    and of any function of theirs whose code was replaced in memory (compiled from elsewhere than
+    its module's file, e.g. a mutant of ``make mutate-derivations``), so that such code never gets
+    the file's compiled objects nor leaves its own for them. Cached: whoever replaces code calls
+    ``code_version.cache_clear()`` (the mutation tools clear every cache)."""
     import importlib.util
+    import sys
+    from types import FunctionType
 
     h = hashlib.sha256()
     for name in CODE_MODULES:
@@ -82,6 +88,13 @@ def code_version() -> str:
         h.update(name.encode())
         if spec is not None and spec.origin:
             h.update(Path(spec.origin).read_bytes())
+        module = sys.modules.get(name)  # not loaded: its functions are its file's
+        for attr, obj in sorted(vars(module).items()) if module is not None else ():
+            code = getattr(obj, "__code__", None)
+            if (isinstance(obj, FunctionType) and obj.__module__ == name and spec is not None
+                    and code.co_filename != spec.origin):
+                h.update(f"{attr}:{code.co_filename}".encode() + code.co_code
+                         + repr(code.co_names).encode())
     return h.hexdigest()[:16]
 
 
@@ -145,7 +158,7 @@ def cache_state(key: dict, use_disk: bool = True) -> str:
 def memory_hit(token: tuple):
     """The object stored in memory under ``token`` (see :func:`load_or_build`), or None: the
     cheapest warm lookup, before a key is even made."""
-    return _MEMORY.get(("token",) + token)
+    return _MEMORY.get(("token", code_version()) + token)
 
 
 def load_or_build(key: dict, build: Callable[[], object], use_disk: bool = True,
@@ -162,11 +175,11 @@ def load_or_build(key: dict, build: Callable[[], object], use_disk: bool = True,
     hit = _MEMORY.get(mkey)
     if hit is not None:
         if token is not None:
-            _MEMORY[("token",) + token] = hit
+            _MEMORY[("token", key["code"]) + token] = hit
         return hit, 0.0, "in memory"
     obj, seconds, how = _load_or_build(key, mkey, build, use_disk, source, expect)
     if token is not None:
-        _MEMORY[("token",) + token] = obj
+        _MEMORY[("token", key["code"]) + token] = obj
     return obj, seconds, how
 
 

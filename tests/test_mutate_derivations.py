@@ -39,3 +39,51 @@ def test_a_mutant_of_the_emitted_frequency_is_killed_by_its_row():
     assert record["outcome"] == "killed", record
     assert record["row"] == "S5:H-linear"
     assert fn.__code__ is original  # restored
+
+
+def test_the_compiled_objects_key_covers_code_replaced_in_memory():
+    """A runtime mutant is a function whose ``__code__`` was replaced in memory (its file did not
+    change): the key of the compiled heyoka objects changes with it, so a mutant's compile never
+    answers for the original, nor the original's for the mutant, and the memory token too."""
+    from chaplygin_nd.runtime import expressions, jit_cache
+
+    fn = expressions.unvec
+    original = fn.__code__
+    jit_cache.code_version.cache_clear()
+    before = jit_cache.code_version()
+    obj = object()
+    jit_cache.load_or_build({"kind": "mutate-test"}, lambda: obj, use_disk=False,
+                            token=("mutate-test",))
+    assert jit_cache.memory_hit(("mutate-test",)) is obj
+    namespace: dict = {}
+    exec(compile("def unvec(m, n):\n    return m\n", "<mutant test>", "exec"), namespace)
+    try:
+        fn.__code__ = namespace["unvec"].__code__
+        jit_cache.code_version.cache_clear()
+        assert jit_cache.code_version() != before
+        assert jit_cache.memory_hit(("mutate-test",)) is None
+        other, _, how = jit_cache.load_or_build({"kind": "mutate-test"}, object, use_disk=False)
+        assert how == "cold compile" and other is not obj
+    finally:
+        fn.__code__ = original
+        jit_cache.code_version.cache_clear()
+    assert jit_cache.code_version() == before
+    assert jit_cache.memory_hit(("mutate-test",)) is obj
+    jit_cache.forget_memory()
+
+
+def test_a_runtime_mutant_runs_only_the_tests_given_and_is_killed_by_a_failing_one(tmp_path,
+                                                                                   monkeypatch):
+    from chaplygin_nd.ledger import mutate_runtime as mr
+
+    monkeypatch.setenv(mr.WORK_ENV, str(tmp_path))
+    key = "runtime.axisym.vec"
+    fn = md.functions("runtime")[key]
+    m = next(m for m, _ in mutate.all_mutants(key, fn) if m.operator == "sign")
+    code = mutate.compile_mutant(fn, m)
+    test = "tests/test_runtime_batches.py::test_vec_and_unvec_are_inverse_on_skew_matrices"
+    record = mr.evaluate(fn, code, key, (test,), {})
+    assert record["outcome"] == "killed" and test in record["reason"], record
+    assert fn.__code__ is not code
+    untested = mr.evaluate(fn, code, key, (), {})
+    assert untested["outcome"] == "survived" and "no test calls" in untested["reason"]

@@ -1,0 +1,315 @@
+r"""The runtime target of ``make mutate-derivations``: which tests reach each runtime function, and
+how one mutant of it is run against them.
+
+The checks of ``runtime/`` are tests, not rows. :func:`test_map` runs the test files that import
+the runtime (:func:`runtime_tests`) once, unmutated, in this process, with the recorder of
+:mod:`ledger.reach` watching every public runtime function around each test (its setup, call and
+teardown): ``{function: [test id, ...]}`` with each test's seconds. Before each test the
+in-memory compiled objects are dropped and the test runs against an empty disk cache, so a test
+that builds an integrator is seen calling the builders even when an earlier test built it first.
+
+A mutant of a function is then run (:func:`evaluate`) against only the tests that reach it, fastest
+first, with ``pytest -x``: ``killed`` at the first failing test; otherwise the same tests are run
+once more computing both versions at every call (:func:`equivalence`): ``equivalent`` when the
+mutant's outputs are bit-for-bit the original's at every call, else ``survived``. A test that
+reaches the function only through a subprocess, a session fixture filled by another test or
+module-level code is not in its list: that can only leave a mutant alive, never kill it falsely.
+
+**Caches.** Compiled heyoka objects are reused between mutants: their key
+(:func:`runtime.jit_cache.code_version`) covers the live code of the modules that build the
+expression graphs, so a mutant's compile never answers for the original or vice versa; each worker
+keeps one private cache folder whose ``heyoka/`` subfolder survives from mutant to mutant while
+every other subfolder (evidence, results: keyed by source files, which a mutant in memory does
+not change) is emptied before each mutant. A mutant of :mod:`runtime.jit_cache` itself runs
+against an empty cache folder and an empty memory (it may store wrong entries).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import os
+import re
+import shutil
+import tempfile
+import time
+from pathlib import Path
+from types import FunctionType
+from typing import Any
+
+from chaplygin_nd.ledger.catalog import ROOT
+
+_IMPORTS_RUNTIME = re.compile(r"^\s*(from chaplygin_nd\.runtime\b|import chaplygin_nd\.runtime\b|"
+                              r"from chaplygin_nd import runtime\b)", re.MULTILINE)
+#: The environment variable naming the parent of the workers' cache folders (set by the parent).
+WORK_ENV = "CHAPLYGIN_ND_MUTATE_WORK"
+
+
+def runtime_tests() -> tuple[str, ...]:
+    """The tests that check the runtime: every test file that imports it (found, not listed: a
+    hand-kept list had missed tests/test_p_coefficients.py, so p_coefficients' mutants looked
+    untested)."""
+    return tuple(sorted(str(p.relative_to(ROOT)) for p in (ROOT / "tests").glob("test_*.py")
+                        if _IMPORTS_RUNTIME.search(p.read_text(encoding="utf-8"))))
+
+
+def runtime_functions() -> dict[str, FunctionType]:
+    """``{"runtime.axisym.zeta": function}`` for every public function of ``runtime/``."""
+    import importlib
+    import pkgutil
+
+    import chaplygin_nd.runtime as runtime
+
+    out: dict[str, FunctionType] = {}
+    for info in sorted(pkgutil.iter_modules(runtime.__path__), key=lambda i: i.name):
+        mod = importlib.import_module(f"chaplygin_nd.runtime.{info.name}")
+        for attr, obj in sorted(vars(mod).items()):
+            if (not attr.startswith("_") and isinstance(obj, FunctionType)
+                    and obj.__module__ == mod.__name__ and not obj.__code__.co_freevars):
+                out[f"runtime.{info.name}.{attr}"] = obj
+    return out
+
+
+def _pytest(args: list[str], plugins=()) -> tuple[int, str]:
+    import pytest
+
+    buffer = io.StringIO()
+    with contextlib.redirect_stdout(buffer), contextlib.redirect_stderr(buffer):
+        code = pytest.main(["-q", "-p", "no:cacheprovider", "--no-header", *args],
+                           plugins=list(plugins))
+    lines = [ln for ln in buffer.getvalue().splitlines() if ln.startswith(("FAILED", "ERROR"))]
+    return int(code), (lines[0] if lines else f"pytest exit {code}")[:200]
+
+
+@contextlib.contextmanager
+def _cache_root(fresh: bool):
+    """``$CHAPLYGIN_ND_CACHE`` for one mutant: the worker's folder with only ``heyoka/`` kept, or
+    (``fresh``) an empty temporary one with the in-memory objects dropped before and after."""
+    from chaplygin_nd.runtime import jit_cache
+
+    from chaplygin_nd.cache import ENV
+
+    saved = os.environ.get(ENV)
+    parent = os.environ.get(WORK_ENV) or tempfile.gettempdir()
+    with contextlib.ExitStack() as stack:
+        if fresh:
+            root = Path(stack.enter_context(tempfile.TemporaryDirectory(prefix="mutant-", dir=parent)))
+            jit_cache.forget_memory()
+        else:
+            root = Path(parent) / f"worker-{os.getpid()}"
+            root.mkdir(mode=0o700, exist_ok=True)
+            for sub in root.iterdir():
+                if sub.name != "heyoka":
+                    shutil.rmtree(sub) if sub.is_dir() and not sub.is_symlink() else sub.unlink()
+        os.environ[ENV] = str(root)
+        try:
+            yield root
+        finally:
+            if fresh:
+                jit_cache.forget_memory()
+            if saved is None:
+                os.environ.pop(ENV, None)
+            else:
+                os.environ[ENV] = saved
+
+
+def _watch(functions: dict[str, FunctionType], reached: dict):
+    """A pytest plugin recording into ``reached`` ``{test id: (seconds, functions called)}`` for
+    each test (setup, call and teardown), every test with empty caches."""
+    import pytest
+    from chaplygin_nd.ledger.reach import Recorder
+    from chaplygin_nd.runtime import jit_cache
+
+    class Watch:
+        @pytest.hookimpl(hookwrapper=True)
+        def pytest_runtest_protocol(self, item, nextitem):  # noqa: ARG002 - pytest's signature
+            _empty_caches()
+            with _cache_root(fresh=True), Recorder(functions) as rec:
+                start = time.perf_counter()
+                outcome = yield
+            jit_cache.forget_memory()
+            reached[item.nodeid] = (time.perf_counter() - start, tuple(sorted(rec.calls)))
+            del outcome
+
+        @pytest.hookimpl
+        def pytest_runtest_logreport(self, report):
+            if report.failed:
+                failed.add(report.nodeid)
+
+    failed: set[str] = set()
+    return Watch(), failed
+
+
+def _empty_caches() -> None:
+    from chaplygin_nd.ledger.mutate_derivations import clear_caches
+
+    clear_caches()
+
+
+def test_map(functions: dict[str, FunctionType] | None = None,
+             files: tuple[str, ...] | None = None) -> dict[str, list[tuple[str, float]]]:
+    """``{function: [(test id, seconds), ...]}`` (fastest first): the tests of ``files`` (default
+    :func:`runtime_tests`) that call each of ``functions`` (default: the runtime's), recorded in
+    one unmutated run. A test that fails unmutated reaches nothing (it could not tell a mutant
+    apart); tests marked ``slow`` are left out (too long to run once per mutant: a function only
+    they reach is reported as reached by no test)."""
+    functions = runtime_functions() if functions is None else functions
+    reached: dict[str, tuple[float, tuple[str, ...]]] = {}
+    watch, failed = _watch(functions, reached)
+    _pytest(["-m", "not slow and not site", *(runtime_tests() if files is None else files)],
+            plugins=[watch])
+    out: dict[str, list[tuple[str, float]]] = {key: [] for key in functions}
+    for test, (seconds, calls) in reached.items():
+        for key in () if test in failed else calls:
+            out[key].append((test, round(seconds, 3)))
+    return {key: sorted(tests, key=lambda t: (t[1], t[0])) for key, tests in out.items()}
+
+
+def mentioning(keys) -> tuple[str, ...]:
+    """The test files that name the module of some key ``module.name`` (where a test of a
+    derivation no row reaches can be: a test may reach the function through another of the
+    module's functions, so the function's own name is not required)."""
+    out = []
+    for path in sorted((ROOT / "tests").glob("test_*.py")):
+        text = path.read_text(encoding="utf-8")
+        if any(re.search(rf"\b{re.escape(key.rsplit('.', 1)[0].split('.')[-1])}\b", text)
+               for key in keys):
+            out.append(str(path.relative_to(ROOT)))
+    return tuple(out)
+
+
+def _bitwise_equal(x, y) -> bool:
+    import numpy as np
+
+    if isinstance(x, (tuple, list)) and isinstance(y, (tuple, list)):
+        return len(x) == len(y) and all(_bitwise_equal(u, v) for u, v in zip(x, y))
+    try:
+        xa, ya = np.asarray(x), np.asarray(y)
+    except Exception:  # noqa: BLE001 - not array-like: compare as objects
+        return x is y or x == y
+    if xa.dtype == object or ya.dtype == object:
+        return str(x) == str(y)  # e.g. heyoka expressions: the same expression text
+    return xa.shape == ya.shape and xa.dtype == ya.dtype and np.array_equal(xa, ya, equal_nan=True)
+
+
+def _exact_or_bitwise(x, y) -> bool:
+    """Exact equality (SymPy values, :func:`ledger.mutate._same`), bit-for-bit for arrays."""
+    from chaplygin_nd.ledger.mutate import _same
+
+    try:
+        return bool(_same(x, y))
+    except Exception:  # noqa: BLE001 - e.g. NumPy arrays: compared bit for bit
+        return _bitwise_equal(x, y)
+
+
+def _code_objects(code) -> set:
+    out = {code}
+    for const in code.co_consts:
+        if hasattr(const, "co_code"):
+            out |= _code_objects(const)
+    return out
+
+
+def equivalence(fn, mutant_code, tests: list[str], fresh: bool, same=_bitwise_equal,
+                line: int | None = None) -> tuple[bool, int, bool]:
+    """Run ``tests`` once with both versions computed at every call of ``fn``: (all outputs equal
+    by ``same``, number of calls, whether the mutant executed source line ``line`` — the mutated
+    one — at least once: equal outputs prove nothing about code that never ran). The original's
+    output is what the tests see."""
+    import sys
+
+    orig = FunctionType(fn.__code__, fn.__globals__, fn.__name__, fn.__defaults__)
+    orig.__kwdefaults__ = fn.__kwdefaults__
+    mut = FunctionType(mutant_code, fn.__globals__, fn.__name__, fn.__defaults__)
+    mut.__kwdefaults__ = fn.__kwdefaults__
+    state: dict[str, Any] = {"calls": 0, "same": True, "ran": line is None}
+    codes = _code_objects(mutant_code)
+
+    def local(frame, event, arg):
+        if event == "line" and frame.f_lineno == line:
+            state["ran"] = True
+        return None if state["ran"] else local
+
+    def watch(frame, event, arg):
+        return local if frame.f_code in codes and not state["ran"] else None
+
+    def hook(*args, **kwargs):
+        want = orig(*args, **kwargs)
+        state["calls"] += 1
+        saved = sys.gettrace()
+        sys.settrace(None if state["ran"] else watch)
+        try:
+            got = mut(*args, **kwargs)
+            state["same"] = state["same"] and same(want, got)
+        except Exception:  # noqa: BLE001 - raises where the original does not
+            state["same"] = False
+        finally:
+            sys.settrace(saved)
+        return want
+
+    name = "__mutate_runtime_hook__"
+    src = f"def {fn.__name__}(*args, **kwargs):\n    return {name}(*args, **kwargs)\n"
+    ns: dict = {}
+    exec(compile(src, "<runtime compare>", "exec"), ns)  # noqa: S102 - fixed template
+    original = fn.__code__
+    fn.__globals__[name] = hook
+    fn.__code__ = ns[fn.__name__].__code__
+    try:
+        with _cache_root(fresh):
+            _pytest(tests)
+    finally:
+        fn.__code__ = original
+        fn.__globals__.pop(name, None)
+    return bool(state["same"]) and state["calls"] > 0, state["calls"], bool(state["ran"])
+
+
+def kill(fn, code, key: str, tests: tuple[str, ...]) -> str | None:
+    """Run ``tests`` (fastest first) with ``code`` in place of ``fn``'s, ``pytest -x``: the first
+    failure's line, or None when every test passes."""
+    from chaplygin_nd.ledger.mutate_derivations import clear_caches
+
+    original = fn.__code__
+    fn.__code__ = code
+    try:
+        with _cache_root(key.startswith("runtime.jit_cache.")):
+            status, note = _pytest(["-x", *tests])
+    finally:
+        fn.__code__ = original
+        clear_caches()  # e.g. jit_cache.code_version, computed with the mutant in place
+    return note if status != 0 else None
+
+
+def evaluate(fn, code, key: str, tests: tuple[str, ...], record: dict) -> dict:
+    """Decide one mutant (``code`` for ``fn``) against ``tests`` alone (the ids that reach it,
+    fastest first); fills and returns ``record``. The caller clears the functools caches."""
+    from chaplygin_nd.ledger.mutate_derivations import clear_caches
+
+    if not tests:
+        record.update(outcome="survived", row="tests",
+                      reason="no test calls this function (in this process)"
+                      + ("" if key.startswith("runtime.") else " and no ledger row reaches it"))
+        return record
+    note = kill(fn, code, key, tests)
+    if note is not None:
+        record.update(outcome="killed", row="tests", reason=note)
+        return record
+    runtime = key.startswith("runtime.")
+    found = re.search(r"\bline (\d+)\b", record.get("mutation", ""))
+    same, calls, ran = equivalence(fn, code, list(tests), key.startswith("runtime.jit_cache."),
+                                   _bitwise_equal if runtime else _exact_or_bitwise,
+                                   int(found.group(1)) if found else None)
+    clear_caches()
+    how = "bit-for-bit" if runtime else "exactly (SymPy) or bit-for-bit (arrays)"
+    passed = f"the {len(tests)} tests that reach it passed"
+    if same and ran:
+        record.update(row="tests", outcome="equivalent", reason=(
+            f"{passed} and the mutant's outputs are {how} the original's at all {calls} calls "
+            "they make, the mutated line executed"))
+    elif same:
+        record.update(row="tests", outcome="survived", reason=(
+            f"{passed}; equal outputs at all {calls} calls, but the mutated line never ran "
+            "(a branch no test takes)"))
+    else:
+        record.update(row="tests", outcome="survived", reason=(
+            f"{passed}; outputs differ or no call was made ({calls} calls)"))
+    return record
