@@ -113,6 +113,15 @@ ARGUED: dict[tuple[str, str], str] = {
                                              "_mul(Vi[k], ui)"):
         "the two factors of one product of heyoka expressions exchanged: the expression text "
         "differs, but IEEE multiplication is commutative, so the compiled code returns the same bits",
+    **{("fi_reconstruct.real_columns", mutation):
+       "scales one element of the real basis by 2: the mod-p matrix (_real_matrix) and the "
+       "expression (to_expression) both read the coefficient, so the kernel vector's entry halves "
+       "and the reconstructed integral is the same polynomial; the basis stays real, non-zero and "
+       "independent (tests/test_first_integrals.py::test_real_columns_are_a_real_basis_of_each_block)"
+       for mutation in ("const: line 80 col 24: 1 -> 2", "const: line 80 col 51: 1 -> 2")},
+    ("fi_reconstruct.real_columns", "const: line 80 col 54: 1 -> 2"):
+        "the power of i is read only as a truth value (_real_matrix: i_p if ipow else 1; "
+        "to_expression: u[0] if not ipow else -u[1]), so 2 acts as 1",
 }
 
 

@@ -49,7 +49,9 @@ def _conjugation(co: fi_basis.Coordinates):
 
 
 def real_columns(B: fi_basis.Basis, blk: fi_basis.Block) -> list[list[tuple[int, int, int]]]:
-    """Real basis of the block: each entry a list of (complex column, coefficient, power of i)."""
+    """Real basis of the block: each entry a list of (complex column, coefficient, power of i);
+    every column is mapped to +- itself by conjugation (see the loop), so each entry is one column,
+    real (power 0) or i times an imaginary one (power 1)."""
     perm, sign = _conjugation(B.coords)
     members: dict[int, dict[tuple, int]] = {}
     where: dict[tuple, int] = {}
@@ -72,11 +74,10 @@ def real_columns(B: fi_basis.Basis, blk: fi_basis.Block) -> list[list[tuple[int,
         c2 = where[img]
         s = s * members[c2][img]           # conj(column c) = s * column c2
         done |= {c, c2}
-        if c2 == c:
-            out.append([(c, 1, 0)] if s == 1 else [(c, 1, 1)])
-        else:
-            out.append([(c, 1, 0), (c2, s, 0)])
-            out.append([(c, 1, 1), (c2, -s, 1)])
+        if c2 != c:  # never: conjugation is the product of the reflections of each plane's
+            # second axis (z_k -> conj z_k), so it maps every orbit sum of the group to +- itself
+            raise ArithmeticError(f"conjugation moves column {c} of block {blk.character} to {c2}")
+        out.append([(c, 1, 0)] if s == 1 else [(c, 1, 1)])   # real, or i times imaginary
     return out
 
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import sympy as sp
-from chaplygin_nd.symbolic import fi_field, fi_known, fi_new, fi_reconstruct
+from chaplygin_nd.symbolic import fi_basis, fi_field, fi_known, fi_new, fi_reconstruct
 from chaplygin_nd.symbolic import first_integrals as fi
 from chaplygin_nd.symbolic.fi_cli import main
 
@@ -168,3 +168,22 @@ def test_new_integrals_stay_constant_along_a_float_orbit():
         return fi_new.new_integral(M, g, a, b)[0], sp.Integer(1)
 
     assert _orbit_values(5, numerator_only, -0.4, 1.5) > 1e-3
+
+
+@pytest.mark.parametrize("n, d, d_gamma", [(4, 2, 2), (5, 2, 2)])
+def test_real_columns_are_a_real_basis_of_each_block(n, d, d_gamma):
+    """Every block's real basis (fi_reconstruct.real_columns) has as many elements as the block has
+    complex columns, and its elements, written out (to_expression), are real polynomials that are
+    linearly independent: none is zero (the real part of i times a real column would be), none
+    repeats. This is what the reconstruction over QQ relies on."""
+    B_ = fi_basis.basis(n, d, d_gamma, fi_field.axisymmetric(n, A, B).planes)
+    for blk in B_.blocks:
+        cols = fi_reconstruct.real_columns(B_, blk)
+        assert len(cols) == blk.columns
+        polys = [sp.Poly(fi_reconstruct.to_expression(B_, blk, cols, [int(i == j) for i in
+                                                                         range(len(cols))]),
+                         *sum(fi_reconstruct.real_symbols(n), []))
+                 for j in range(len(cols))]
+        monomials = sorted({m for p in polys for m in p.as_dict()})
+        matrix = sp.Matrix([[p.as_dict().get(m, 0) for m in monomials] for p in polys])
+        assert matrix.rank() == len(cols), (n, blk.character)
