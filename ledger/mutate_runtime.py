@@ -74,11 +74,20 @@ def _pytest(args: list[str], plugins=()) -> tuple[int, str]:
     import pytest
 
     buffer = io.StringIO()
-    with contextlib.redirect_stdout(buffer), contextlib.redirect_stderr(buffer):
+    # the test ids are relative to the checkout: run from there whatever the caller's folder (from
+    # elsewhere pytest found no file, and every mutant was reported reached by no test)
+    with contextlib.chdir(ROOT), contextlib.redirect_stdout(buffer), \
+            contextlib.redirect_stderr(buffer):
         code = pytest.main(["-q", "-p", "no:cacheprovider", "--no-header", *args],
                            plugins=list(plugins))
+    if code == pytest.ExitCode.INTERRUPTED:  # Ctrl-C or SIGTERM reached pytest: the run ends here,
+        raise KeyboardInterrupt("pytest was interrupted")  # never a mutant counted killed by it
     lines = [ln for ln in buffer.getvalue().splitlines() if ln.startswith(("FAILED", "ERROR"))]
-    return int(code), (lines[0] if lines else f"pytest exit {code}")[:200]
+    note = (lines[0] if lines else f"pytest exit {code}")[:200]
+    if code not in (pytest.ExitCode.OK, pytest.ExitCode.TESTS_FAILED):  # usage, internal, none run
+        raise RuntimeError(f"pytest could not run {' '.join(args)[:200]}: exit {int(code)}: "
+                           + (buffer.getvalue().strip().splitlines() or [''])[-1][:200])
+    return int(code), note
 
 
 @contextlib.contextmanager

@@ -64,6 +64,25 @@ def _reset_mpmath_precision():
     mpmath.mp.dps = 15
 
 
+@pytest.fixture(autouse=True)
+def _restore_signal_handlers():
+    """A test that runs the program in-process (cli.main ignores SIGINT and SIGTERM once its
+    command has returned; entry takes them) leaves this process's handlers as it found them: else
+    a Ctrl-C of the test run, or a SIGTERM of a mutation run whose tests run in-process, was
+    ignored for the rest of the session (seen: make mutate-derivations ran to the end after a
+    SIGTERM)."""
+    import signal
+
+    from chaplygin_nd import signals
+
+    saved = {sig: signal.getsignal(sig) for sig in (signal.SIGINT, signal.SIGTERM)}
+    yield
+    for sig, handler in saved.items():
+        if signal.getsignal(sig) is not handler:
+            signal.signal(sig, handler)
+    signals.forget_received()
+
+
 def pytest_terminal_summary(terminalreporter):
     """Report the worst measured error (ulps of the condition scale) per kernel over the hard
     cases. Each hard-case test asserts its own bound; this only summarises what they measured."""
