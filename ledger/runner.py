@@ -167,13 +167,18 @@ def longest_first(ids: Sequence[str], seconds: dict[str, float]) -> list[str]:
 
 
 def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFAULT_SEED,
-        on_result: Callable[[Result], None] = lambda r: None, fresh: bool = False
-        ) -> list[Result]:
+        on_result: Callable[[Result], None] = lambda r: None, fresh: bool = False,
+        also: Callable[[], object] | None = None,
+        on_also: Callable[[object], None] = lambda value: None) -> list[Result]:
     """Decide ``rows``; registered ones run in ``jobs`` processes (started longest first,
     :func:`longest_first`), the rest are ``open``. ``on_result`` is called for each row as it is
     decided (in one process: in ledger order; in several: as the rows finish); the results are
     returned in ledger order. ``seed`` is the seed of every seeded check (passed to each worker
-    with each row); ``fresh``: see :func:`_run_one`."""
+    with each row); ``fresh``: see :func:`_run_one`. ``also``: a picklable call without
+    arguments (``verify --check-generated``: the regeneration of generated/) run after the rows
+    were handed out, by the first worker free (so the last rows and it share the cores), or
+    after the rows in one process; its value goes to ``on_also`` (an exception it raises is
+    raised here)."""
     discover()
     specs = registry()
     todo = list(dict.fromkeys(r.id for r in rows if r.id in specs))
@@ -204,10 +209,15 @@ def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFA
             pool = processes.pool(jobs, _context(), _init_worker)
             futures = {pool.submit(_run_one, claim_id, seed, fresh): claim_id
                        for claim_id in longest_first(todo, stored_seconds())}
+            extra = pool.submit(also) if also is not None else None
             for future in as_completed(futures):
                 claim_id = futures[future]
                 decided[claim_id] = result_of(claim_id, future.result())
                 on_result(decided[claim_id])
+            if extra is not None:
+                on_also(extra.result())
+        elif also is not None:
+            on_also(also())
     except BaseException:  # Ctrl-C, SIGTERM or an error: do not wait for the rows in progress
         if pool is not None:
             pool.stop()

@@ -3,6 +3,7 @@ workers and is recorded; a stale generated/ cannot give a clean-looking report; 
 prose out of the math; the claim graph is drawn deterministically."""
 
 import json
+import os
 import re
 
 import chaplygin_nd.ledger.__main__ as cli
@@ -146,10 +147,14 @@ def test_rows_start_longest_first_and_come_back_in_ledger_order(monkeypatch):
     seen: list[str] = []
     timings = {row.id: float(k) for k, row in enumerate(rows)}   # the last row is the "longest"
     monkeypatch.setattr(runner, "stored_seconds", lambda: timings)
-    results = run(rows, jobs=2, on_result=lambda r: seen.append(r.row.id))
+    beside: list = []
+    results = run(rows, jobs=2, on_result=lambda r: seen.append(r.row.id), also=os.getpid,
+                  on_also=beside.append)
     assert [r.row.id for r in results] == [row.id for row in rows]
     assert sorted(seen) == sorted(row.id for row in rows)
-    in_order = run(rows, jobs=1)
+    assert len(beside) == 1 and beside[0] != os.getpid()   # ``also`` ran once, in a worker
+    in_order = run(rows, jobs=1, also=os.getpid, on_also=beside.append)
+    assert beside[1:] == [os.getpid()]                     # in one process: here, after the rows
     assert [r.status for r in results] == [r.status for r in in_order]
     assert [r.verdict.method for r in results] == [r.verdict.method for r in in_order]
 
