@@ -1,4 +1,4 @@
-"""Run ledger rows (in parallel processes), one result per row, in ledger order."""
+"""Run ledger rows (in parallel processes, the longest first), one result per row, returned in ledger order."""
 
 from __future__ import annotations
 
