@@ -121,7 +121,12 @@ def _main(argv: list[str] | None, command: str) -> int:
                           started=datetime.now(UTC).strftime("%Y-%m-%dT%H:%M:%SZ"))
     say(f"seed {args.seed}")
     say(f"{'id':<24} {'verdict':<20} {'seconds':>8}  method [n]")
-    results = run(rows, jobs=args.jobs, seed=args.seed, on_result=lambda r: say(report.line(r)))
+    stale_text: list[str] = []
+    also = None
+    if args.check_generated:
+        from chaplygin_nd.symbolic.codegen import stale_report as also
+    results = run(rows, jobs=args.jobs, seed=args.seed, on_result=lambda r: say(report.line(r)),
+                  also=also, on_also=lambda text: stale_text.append(str(text)))
     problems = []
     for r in results:
         if r.error:
@@ -144,9 +149,7 @@ def _main(argv: list[str] | None, command: str) -> int:
     problems += [f"{i}: registered by a proof but not a ledger row" for i in unknown]
     generated = "not checked"
     if args.check_generated:
-        from chaplygin_nd.symbolic.codegen import stale_report
-
-        stale = stale_report()
+        stale = stale_text[0]   # regenerated beside the rows (runner.run's ``also``)
         generated = "STALE" if stale else "up to date"
         if stale:
             problems.append(stale)

@@ -1,4 +1,4 @@
-"""Run ledger rows (in parallel processes), one result per row, in ledger order."""
+"""Run ledger rows (in parallel processes, the longest first), one result per row, returned in ledger order."""
 
 from __future__ import annotations
 
@@ -8,6 +8,7 @@ import signal
 import time
 import traceback
 from collections.abc import Callable, Sequence
+from concurrent.futures import as_completed
 from dataclasses import dataclass, replace
 
 from chaplygin_nd.ledger.catalog import Row, all_rows, discover
@@ -134,45 +135,93 @@ def unknown_registrations() -> list[str]:
     return sorted(set(registry()) - known)
 
 
+#: The seconds assumed for a row the stored timings do not name (:func:`longest_first`).
+UNTIMED_SECONDS = 1.0
+
+
+def stored_seconds() -> dict[str, float]:
+    """Each row's seconds as the last ``python -m chaplygin_nd.ledger.remap`` measured them
+    (``ledger/reach.json``); empty when the map is missing or unreadable (then the rows run in
+    ledger order)."""
+    from chaplygin_nd.ledger import reach
+
+    try:
+        _rows, seconds = reach.load()
+    except (OSError, ValueError, KeyError, TypeError):
+        return {}
+    if not isinstance(seconds, dict):
+        return {}
+    return {k: float(v) for k, v in seconds.items()
+            if isinstance(k, str) and isinstance(v, (int, float)) and not isinstance(v, bool)}
+
+
+def longest_first(ids: Sequence[str], seconds: dict[str, float]) -> list[str]:
+    """``ids`` in the order the workers take them: longest expected row first (``seconds``;
+    :data:`UNTIMED_SECONDS` for a row it does not name), ties in ledger order. With rows of
+    very unequal length (the evidence rows take 20-40 s, most rows 1-3 s) the ledger order left
+    the longest rows, which come last in it, to run alone at the end; longest-first (LPT) ends
+    within the longest row of the lower bound total / jobs. The order changes no verdict: each
+    row is decided in its own call with the seed passed to it."""
+    rank = {claim_id: k for k, claim_id in enumerate(ids)}
+    return sorted(ids, key=lambda i: (-seconds.get(i, UNTIMED_SECONDS), rank[i]))
+
+
 def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFAULT_SEED,
-        on_result: Callable[[Result], None] = lambda r: None, fresh: bool = False
-        ) -> list[Result]:
-    """Decide ``rows``; registered ones run in ``jobs`` processes, the rest are ``open``.
-    ``seed`` is the seed of every seeded check (passed to each worker with each row);
-    ``fresh``: see :func:`_run_one`."""
+        on_result: Callable[[Result], None] = lambda r: None, fresh: bool = False,
+        also: Callable[[], object] | None = None,
+        on_also: Callable[[object], None] = lambda value: None) -> list[Result]:
+    """Decide ``rows``; registered ones run in ``jobs`` processes (started longest first,
+    :func:`longest_first`), the rest are ``open``. ``on_result`` is called for each row as it is
+    decided (in one process: in ledger order; in several: as the rows finish); the results are
+    returned in ledger order. ``seed`` is the seed of every seeded check (passed to each worker
+    with each row); ``fresh``: see :func:`_run_one`. ``also``: a picklable call without
+    arguments (``verify --check-generated``: the regeneration of generated/) run after the rows
+    were handed out, by the first worker free (so the last rows and it share the cores), or
+    after the rows in one process; its value goes to ``on_also`` (an exception it raises is
+    raised here)."""
     discover()
     specs = registry()
-    todo = [r.id for r in rows if r.id in specs]
-    seeds = [seed] * len(todo)
-    freshness = [fresh] * len(todo)
+    todo = list(dict.fromkeys(r.id for r in rows if r.id in specs))
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(todo) or 1))
     pool = None
-    results = []
+    decided: dict[str, Result] = {}
+
+    def result_of(claim_id: str, outcome) -> Result:
+        verdict, seconds, error, printed, derived = outcome
+        spec = specs[claim_id]
+        return Result(by_id[claim_id], verdict, seconds, spec.module, spec.uses, error, printed,
+                      derived)
+
+    by_id = {r.id: r for r in rows}
     try:
-        if jobs == 1:
-            iterator = map(_run_one, todo, seeds, freshness)
-        else:  # started whole before a Ctrl-C is taken (chaplygin_nd.processes.Pool)
-            pool = processes.pool(jobs, _context(), _init_worker)
-            iterator = pool.map(_run_one, todo, seeds, freshness)
-        pending = iter(todo)
         for row in rows:
-            if row.id in specs:
-                claim_id = next(pending)
-                assert claim_id == row.id
-                verdict, seconds, error, printed, derived = next(iterator)
-                spec = specs[row.id]
-                result = Result(row, verdict, seconds, spec.module, spec.uses, error, printed,
-                                derived)
-            else:
+            if row.id in decided:
+                continue
+            if row.id not in specs:
                 # No proof registered: an open row WITHOUT a reason (fails the run).
-                verdict = Verdict("open", "not yet checked")
-                result = Result(row, verdict, 0.0)
-            results.append(result)
-            on_result(result)
+                decided[row.id] = Result(row, Verdict("open", "not yet checked"), 0.0)
+            elif jobs == 1:
+                decided[row.id] = result_of(row.id, _run_one(row.id, seed, fresh))
+            else:
+                continue
+            on_result(decided[row.id])
+        if jobs > 1:  # started whole before a Ctrl-C is taken (chaplygin_nd.processes.Pool)
+            pool = processes.pool(jobs, _context(), _init_worker)
+            futures = {pool.submit(_run_one, claim_id, seed, fresh): claim_id
+                       for claim_id in longest_first(todo, stored_seconds())}
+            extra = pool.submit(also) if also is not None else None
+            for future in as_completed(futures):
+                claim_id = futures[future]
+                decided[claim_id] = result_of(claim_id, future.result())
+                on_result(decided[claim_id])
+            if extra is not None:
+                on_also(extra.result())
+        elif also is not None:
+            on_also(also())
     except BaseException:  # Ctrl-C, SIGTERM or an error: do not wait for the rows in progress
         if pool is not None:
             pool.stop()
         raise
     if pool is not None:
         pool.shutdown()
-    return results
+    return [decided[row.id] for row in rows]

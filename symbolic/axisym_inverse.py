@@ -78,7 +78,9 @@ def inverse_closed_form(M: sp.Matrix, gamma: sp.Matrix, a_=a, b_=b) -> sp.Matrix
     valid for $\gamma \in S^{n-1}$ with $\Delta(x)(2+a+b) \neq 0$, any $n \ge 3$."""
     xval = gamma[gamma.rows - 1]
     sub = {a: a_, b: b_, x: xval}
-    coeffs = [c.subs(sub, simultaneous=True) for c in inverse_coefficients()]
+    # xreplace: the simultaneous replacement of the three symbols, as subs(..., simultaneous=True)
+    # gives, without subs's pattern machinery (30x faster; a fifth of the Th:Re rows' time)
+    coeffs = [c.xreplace(sub) for c in inverse_coefficients()]
     terms = ansatz_terms(M, gamma)
     return sum((c * T for c, T in zip(coeffs, terms, strict=True)), sp.zeros(M.rows, M.rows))
 
@@ -101,6 +103,6 @@ def inverse_numerator(M: sp.Matrix, gamma: sp.Matrix, a_=a, b_=b) -> sp.Matrix:
     r"""$D\,L_\gamma^{-1}(M) = \sum_k (D c_k)\, T_k(M)$ with $D$ of :func:`inverse_denominator` at
     $x = \gamma_n$: polynomial in $M, \gamma, a, b$ (for fast exact identities, P:inversion)."""
     sub = {a: a_, b: b_, x: gamma[gamma.rows - 1]}
-    coeffs = [sp.expand(c.subs(sub, simultaneous=True)) for c in _numerator_coefficients()]
+    coeffs = [sp.expand(c.xreplace(sub)) for c in _numerator_coefficients()]
     terms = ansatz_terms(M, gamma)
     return sum((c * T for c, T in zip(coeffs, terms, strict=True)), sp.zeros(M.rows, M.rows)).applyfunc(sp.expand)

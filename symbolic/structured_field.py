@@ -120,9 +120,9 @@ def structured_field(M: sp.Matrix, gamma: sp.Matrix, a_=None, b_=None) -> tuple[
     Mdot = sp.zeros(n, n)
     for (i, j), wij in zip(PAIRS, w):
         if wij != 0:
-            Mdot += wij.subs(sub, simultaneous=True) * wedge(V[i], V[j])
+            Mdot += wij.xreplace(sub) * wedge(V[i], V[j])   # = subs(sub, simultaneous=True)
     gdot = sp.zeros(n, 1)
     for ui, v in zip(u, V):
         if ui != 0:
-            gdot += ui.subs(sub, simultaneous=True) * v
+            gdot += ui.xreplace(sub) * v
     return Mdot, gdot

@@ -78,7 +78,7 @@ def zeta_coefficient() -> sp.Expr:
 def zeta(M0: sp.Matrix, gamma0: sp.Matrix, a_=a, b_=b) -> sp.Matrix:
     r"""The velocity $\zeta = \kappa(x_0) M_0 - L_{\gamma_0}^{-1}(M_0) \in \mathfrak{so}(n-1)$ of the
     relative equilibrium through $(M_0, \gamma_0) \in \mathcal{V}$ (Th:Re); $n \ge 3$."""
-    kappa = zeta_coefficient().subs({a: a_, b: b_, x: gamma0[gamma0.rows - 1]}, simultaneous=True)
+    kappa = zeta_coefficient().xreplace({a: a_, b: b_, x: gamma0[gamma0.rows - 1]})
     return kappa * M0 - inverse_closed_form(M0, gamma0, a_, b_)
 
 

@@ -67,6 +67,18 @@ def test_new_integral_exact():
     assert sp.sympify(text).free_symbols >= {sp.Symbol("a"), sp.Symbol("b"), sp.Symbol("M_12")}
 
 
+def test_new_integral_text_is_the_derived_integral():
+    # the text writes the square unexpanded; parsed, it is new_integral's num / Delta exactly
+    from chaplygin_nd.symbolic.algebra import unvec
+
+    for n in (3, 5):
+        Ms, gs = fi_reconstruct.real_symbols(n)
+        a, b = sp.symbols("a b")
+        num, den = fi_new.new_integral(unvec(Ms, n), sp.Matrix(gs), a, b)
+        text = sp.sympify(fi_new.new_integral_text(n))
+        assert sp.expand(sp.numer(text) - num) == 0 and sp.expand(sp.denom(text) - den) == 0
+
+
 def test_new_integral_is_independent_for_n5_only():
     m5 = fi_field.axisymmetric(5, A, B)
     assert fi_known.jacobian_rank(m5, 1, include_new=True)["rank"] == 6

@@ -3,6 +3,7 @@ workers and is recorded; a stale generated/ cannot give a clean-looking report; 
 prose out of the math; the claim graph is drawn deterministically."""
 
 import json
+import os
 import re
 
 import chaplygin_nd.ledger.__main__ as cli
@@ -132,6 +133,44 @@ def test_two_seeds_give_the_same_verdicts_and_the_seed_reaches_the_workers():
     leg = {r.row.id: r for r in second}["eq:inverse-Leg"]
     assert "(seed 7)" in leg.verdict.method                 # drawn in a worker with seed 7
     assert points.ledger_seed() == points.DEFAULT_SEED      # the parent's seed is untouched
+
+
+def test_rows_start_longest_first_and_come_back_in_ledger_order(monkeypatch):
+    from chaplygin_nd.ledger import runner
+
+    ids = ["a", "b", "c", "d"]
+    assert runner.longest_first(ids, {"b": 3.0, "d": 9.0, "a": 0.5}) == ["d", "b", "c", "a"]
+    assert runner.longest_first(ids, {}) == ids                 # no timings: ledger order
+    # the stored timings make the slowest fast row start first, yet the results, and the
+    # verdicts, are those of the ledger order
+    rows = select(list(FAST_ROWS))
+    seen: list[str] = []
+    timings = {row.id: float(k) for k, row in enumerate(rows)}   # the last row is the "longest"
+    monkeypatch.setattr(runner, "stored_seconds", lambda: timings)
+    beside: list = []
+    results = run(rows, jobs=2, on_result=lambda r: seen.append(r.row.id), also=os.getpid,
+                  on_also=beside.append)
+    assert [r.row.id for r in results] == [row.id for row in rows]
+    assert sorted(seen) == sorted(row.id for row in rows)
+    assert len(beside) == 1 and beside[0] != os.getpid()   # ``also`` ran once, in a worker
+    in_order = run(rows, jobs=1, also=os.getpid, on_also=beside.append)
+    assert beside[1:] == [os.getpid()]                     # in one process: here, after the rows
+    assert [r.status for r in results] == [r.status for r in in_order]
+    assert [r.verdict.method for r in results] == [r.verdict.method for r in in_order]
+
+
+def test_stored_timings_are_read_and_a_bad_map_means_ledger_order(monkeypatch):
+    from chaplygin_nd.ledger import reach, runner
+
+    assert runner.stored_seconds()                      # the committed ledger/reach.json
+    monkeypatch.setattr(reach, "load", lambda: ({}, ["not", "a", "dict"]))
+    assert runner.stored_seconds() == {}
+
+    def broken():
+        raise ValueError("damaged")
+
+    monkeypatch.setattr(reach, "load", broken)
+    assert runner.stored_seconds() == {}
 
 
 def test_uses_cycles_are_split_and_the_graph_is_layered():
