@@ -24,6 +24,7 @@ import os
 import sys
 import time
 import uuid
+from collections.abc import Callable
 from datetime import UTC, datetime
 from pathlib import Path
 
@@ -122,9 +123,11 @@ def _main(argv: list[str] | None, command: str) -> int:
     say(f"seed {args.seed}")
     say(f"{'id':<24} {'verdict':<20} {'seconds':>8}  method [n]")
     stale_text: list[str] = []
-    also = None
+    also: Callable[..., object] | None = None
     if args.check_generated:
-        from chaplygin_nd.symbolic.codegen import stale_report as also
+        from chaplygin_nd.symbolic.codegen import stale_report
+
+        also = stale_report
     results = run(rows, jobs=args.jobs, seed=args.seed, on_result=lambda r: say(report.line(r)),
                   also=also, on_also=lambda text: stale_text.append(str(text)))
     problems = []

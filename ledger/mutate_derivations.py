@@ -204,9 +204,9 @@ def _evaluate(task: Task) -> dict:
                                      "verify's stale check of generated/ fails")
                 return record
         if task.tests:
-            note = mr.kill(fn, code, m.function, task.tests)
-            if note is not None:
-                record.update(outcome="killed", row="tests", reason=f"no row changed; {note}")
+            failed = mr.kill(fn, code, m.function, task.tests)
+            if failed is not None:
+                record.update(outcome="killed", row="tests", reason=f"no row changed; {failed}")
                 return record
         return mu.settle(record, fn, code, task.rows, tried)
     except Exception:  # noqa: BLE001

@@ -90,9 +90,10 @@ def code_version() -> str:
             h.update(Path(spec.origin).read_bytes())
         module = sys.modules.get(name)  # not loaded: its functions are its file's
         for attr, obj in sorted(vars(module).items()) if module is not None else ():
-            code = getattr(obj, "__code__", None)
-            if (isinstance(obj, FunctionType) and obj.__module__ == name and spec is not None
-                    and code.co_filename != spec.origin):
+            if not (isinstance(obj, FunctionType) and obj.__module__ == name and spec is not None):
+                continue
+            code = obj.__code__
+            if code.co_filename != spec.origin:
                 h.update(f"{attr}:{code.co_filename}".encode() + code.co_code
                          + repr(code.co_names).encode())
     return h.hexdigest()[:16]

@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import hashlib
 from dataclasses import asdict, dataclass, field, replace
+from typing import Any
 
 import numpy as np
 from chaplygin_nd.simulate.analysis import chaos, combinations, draws, kept, naff
@@ -343,7 +344,7 @@ def _measure(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int) -> list[Orbit
     for k, spec in enumerate(specs):
         spec = _limited(spec, s.limit)
         expected = s.expected_at(float(ens.a[k]))
-        info = {"large": 0, "ambiguous": 0, "p_false": 0.0, "relations": []}
+        info: dict[str, Any] = {"large": 0, "ambiguous": 0, "p_false": 0.0, "relations": []}
         if expected is not None and spec.diffusion < REGULAR and spec.count > expected:
             # lines beyond the |c| <= 4 lattice: search combinations up to |c| <= 12
             scale = max(abs(w) for w, _ in spec.lines)
