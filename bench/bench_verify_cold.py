@@ -22,6 +22,8 @@ import sys
 import tempfile
 import time
 
+from chaplygin_nd import processes
+
 #: ``<linux/prctl.h>``: become the reaper of orphaned descendants.
 PR_SET_CHILD_SUBREAPER = 36
 
@@ -34,7 +36,7 @@ def measure(command: list[str], env: dict[str, str] | None = None) -> dict:
         ctypes.CDLL(None, use_errno=True).prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0)
     load_before = os.getloadavg()[0]
     start = time.perf_counter()
-    rc = subprocess.run(command, env=env, check=False).returncode
+    rc = subprocess.run(command, env=env, check=False, **processes.popen_kwargs()).returncode
     while True:  # the fork server and anything else handed to this process
         try:
             os.wait()
