@@ -317,6 +317,10 @@ def main(argv: list[str] | None = None) -> int:
         return fail(f"--out {args.out}: exists and is not a mutation JSON this program wrote; give "
                     "a new file name (nothing else is replaced)")
     args.out = args.out or OUT_PATH
+    folder = args.out.parent
+    if not folder.is_dir() or not os.access(folder, os.W_OK | os.X_OK):  # before the run, not after
+        return fail(f"--out {args.out}: the folder {folder} does not exist or is not writable; "
+                    "give a file in a folder you can write")
     _init_worker()
     records: list[dict] = []
     runs: list[dict] = []

@@ -153,6 +153,16 @@ def test_mutate_derivations_never_replaces_a_foreign_file_and_reads_rerun_first(
     assert one_error_line(capsys).startswith("error: --rerun ")
     assert not out.exists()
 
+
+def test_mutate_derivations_checks_the_out_folder_before_the_run(tmp_path, capsys):
+    """An --out in a folder that does not exist is refused before any mutant runs (the trial of
+    round 22: the whole run ran, then the atomic write failed with a traceback)."""
+    out = tmp_path / "missing" / "m.json"
+    argv = ["--target", "runtime", "--function", "runtime.axisym.vec", "--out", str(out)]
+    assert mutate_derivations.main(argv) == 2
+    assert "does not exist or is not writable" in one_error_line(capsys)
+    assert not out.parent.exists()
+
 # 7. the notebook API checks the domain it documents
 def _state(n=4, seed=5):
     rng = np.random.default_rng(seed)
