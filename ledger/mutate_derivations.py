@@ -48,7 +48,13 @@ from chaplygin_nd.ledger import mutate as mu
 from chaplygin_nd.ledger import mutate_runtime as mr
 from chaplygin_nd.ledger.catalog import ROOT, is_checkout
 from chaplygin_nd.ledger.mutate_runtime import runtime_functions, runtime_tests  # noqa: F401 - API
-from chaplygin_nd.ledger.reach import derivation_functions, load_derived, write_json_atomic
+from chaplygin_nd.ledger.reach import (
+    clear_caches,
+    derivation_functions,
+    load,
+    load_derived,
+    write_json_atomic,
+)
 
 from chaplygin_nd import processes
 from chaplygin_nd.console import OneLineParser, fail, path_argument, say
@@ -142,15 +148,6 @@ def sample(target: str, size: int | None, seed: int = SEED) -> list[mu.Mutant]:
                   key=lambda m: (m.function, m.index))
 
 
-def clear_caches() -> None:
-    """``cache_clear()`` every ``functools`` cache of the package's loaded modules."""
-    for name, mod in list(sys.modules.items()):
-        if name.startswith("chaplygin_nd.") and mod is not None:
-            for obj in list(vars(mod).values()):
-                if callable(getattr(obj, "cache_clear", None)) and hasattr(obj, "cache_info"):
-                    obj.cache_clear()
-
-
 def evaluate(task: Task) -> dict:
     """Decide one mutant in this process: apply it, run its rows (or tests), restore; a survivor
     whose equivalence is argued in :data:`ARGUED` is ``equivalent``."""
@@ -227,7 +224,7 @@ def plan(target: str, selection: list[mu.Mutant], jobs: int, tests_for=()) -> li
         reach = mr.test_map() if selection else {}
         return [Task(target, m, tuple(t for t, _ in reach.get(m.function, ()))) for m in selection]
     derived, emitted = load_derived()
-    _, seconds = mu_load_seconds()
+    _, seconds = load()
     by_function: dict[str, list[str]] = {}
     for row, fs in derived.items():
         for f in fs:
@@ -244,12 +241,6 @@ def plan(target: str, selection: list[mu.Mutant], jobs: int, tests_for=()) -> li
     return [Task(target, m, tuple((r, base[r][0], base[r][1]) for r in chosen[m.function]),
                  frozenset(emitted), tuple(t for t, _ in reach.get(m.function, ())))
             for m in selection]
-
-
-def mu_load_seconds():
-    from chaplygin_nd.ledger.reach import load
-
-    return load()
 
 
 def _init_worker():

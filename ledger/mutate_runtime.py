@@ -150,7 +150,7 @@ def _watch(functions: dict[str, FunctionType], reached: dict):
 
 
 def _empty_caches() -> None:
-    from chaplygin_nd.ledger.mutate_derivations import clear_caches
+    from chaplygin_nd.ledger.reach import clear_caches
 
     clear_caches()
 
@@ -275,7 +275,7 @@ def equivalence(fn, mutant_code, tests: list[str], fresh: bool, same=_bitwise_eq
 def kill(fn, code, key: str, tests: tuple[str, ...]) -> str | None:
     """Run ``tests`` (fastest first) with ``code`` in place of ``fn``'s, ``pytest -x``: the first
     failure's line, or None when every test passes."""
-    from chaplygin_nd.ledger.mutate_derivations import clear_caches
+    from chaplygin_nd.ledger.reach import clear_caches
 
     original = fn.__code__
     fn.__code__ = code
@@ -291,7 +291,7 @@ def kill(fn, code, key: str, tests: tuple[str, ...]) -> str | None:
 def evaluate(fn, code, key: str, tests: tuple[str, ...], record: dict) -> dict:
     """Decide one mutant (``code`` for ``fn``) against ``tests`` alone (the ids that reach it,
     fastest first); fills and returns ``record``. The caller clears the functools caches."""
-    from chaplygin_nd.ledger.mutate_derivations import clear_caches
+    from chaplygin_nd.ledger.reach import clear_caches
 
     if not tests:
         record.update(outcome="survived", row="tests",

@@ -198,17 +198,24 @@ def unreached(printed_by_row: dict[str, list[str]]) -> list[str]:
     return sorted(set(printed_functions()) - seen)
 
 
-def clear_derivation_caches() -> None:
-    """Empty every ``functools`` cache of ``symbolic/`` (private helpers too: a cached helper
-    would hide the derivations it calls), so the next calls are misses."""
+def clear_caches(prefix: str = "chaplygin_nd.") -> None:
+    """``cache_clear()`` every ``functools`` cache (private helpers too: a cached helper would hide
+    the functions it calls) of the loaded modules whose name starts with ``prefix``, so the next
+    calls are misses."""
     import sys
 
-    derivation_functions()  # imports every module of symbolic/
     for name, mod in list(sys.modules.items()):
-        if name.startswith("chaplygin_nd.symbolic.") and mod is not None:
+        if name.startswith(prefix) and mod is not None:
             for obj in list(vars(mod).values()):
                 if callable(getattr(obj, "cache_clear", None)) and hasattr(obj, "cache_info"):
                     obj.cache_clear()
+
+
+def clear_derivation_caches() -> None:
+    """Empty every ``functools`` cache of ``symbolic/`` (:func:`clear_caches`), every module of it
+    imported first."""
+    derivation_functions()  # imports every module of symbolic/
+    clear_caches("chaplygin_nd.symbolic.")
 
 
 def emitted_derivations() -> list[str]:
