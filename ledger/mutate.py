@@ -300,19 +300,67 @@ def _alarm(signum, frame):
     raise _Timeout()
 
 
-def run_row(claim_id: str, budget: float | None = None) -> tuple[tuple, str]:
-    """Run one ledger row in this process: (signature, note). ``budget``: seconds, else raises."""
-    from chaplygin_nd.ledger.registry import registry
+class _PartChanged(BaseException):  # not an Exception: a row's own ``except Exception`` must
+    # not turn the stop into a part of its own
+    def __init__(self, note: str):
+        super().__init__(note)
+        self.note = note
+
+
+class PartContractError(RuntimeError):
+    """A row announced a part with ``registry.decided`` that its verdict does not contain."""
+
+
+def _part_watch(base: tuple):
+    """The callback of :func:`registry.observing_parts` for a run compared with ``base`` (a
+    signature): raises :class:`_PartChanged` at the first final part that is not the base's
+    part of the same name (its k-th occurrence for the k-th announced)."""
+    expected: dict[str, list[tuple]] = {}
+    for p in base[2] if len(base) == 3 else ():
+        expected.setdefault(p[0], []).append(p)
+    count: dict[str, int] = {}
+
+    def watch(part) -> None:
+        k = count[part.name] = count.get(part.name, 0) + 1
+        got = (part.name, part.verdict, part.counterexample)
+        want = expected.get(part.name, [])
+        if k > len(want):
+            raise _PartChanged(f"part '{part.name}' is new (stopped there)")
+        if want[k - 1] != got:
+            what = f"{want[k - 1][1]} -> {got[1]}" + (
+                " (counterexample changed)" if want[k - 1][1] == got[1] else "")
+            raise _PartChanged(f"part '{part.name}': {what} (stopped at that part)")
+
+    return watch
+
+
+def run_row(claim_id: str, budget: float | None = None, base: tuple | None = None,
+            ) -> tuple[tuple, str]:
+    """Run one ledger row in this process: (signature, note). ``budget``: seconds, else raises.
+    ``base`` (the unmutated row's signature): stop at the first part the row announces final
+    (``registry.decided``) that differs from the base's; the signature is then ``("part
+    changed", name)`` — it differs from the base, as the whole row's would."""
+    from chaplygin_nd.ledger.registry import observing_parts, registry
 
     spec = registry()[claim_id]
     if budget:
         signal.signal(signal.SIGALRM, _alarm)
         signal.setitimer(signal.ITIMER_REAL, budget)
+    watch = observing_parts(_part_watch(base) if base is not None else (lambda part: None))
     try:
-        verdict = spec.run()
+        with watch:
+            verdict = spec.run()
+        missing = [p.name for p in watch.seen if p not in verdict.parts]
+        if missing:
+            raise PartContractError(f"{claim_id}: parts announced final are not in its verdict: "
+                                    f"{', '.join(missing)}")
         return signature(verdict), ""
+    except _PartChanged as stop:
+        return ("part changed", stop.note), stop.note
     except _Timeout:
         return ("timeout",), f"ran past its budget of {budget:.0f} s"
+    except PartContractError:
+        raise
     except Exception as err:  # noqa: BLE001 - a raising proof is an observed change
         return ("error",), f"raised {type(err).__name__}: {str(err)[:120]}"
     finally:
@@ -362,10 +410,13 @@ def _proportional(want, got, positive: bool = False) -> bool:
 
 
 def _equivalence(fn, mutant_code, claim_id: str, budget: float, key: str = "",
-                 ) -> tuple[bool, int, str]:
+                 line: int | None = None) -> tuple[bool, int, str, bool]:
     """Run ``claim_id`` with a wrapper computing both the original and the mutant at every call
     of ``fn``; (all equal, number of calls compared, the kind of equality: "exact", or a declared
-    invariance of the claim: "scale", "sign of <argument>")."""
+    invariance of the claim: "scale", "sign of <argument>"; whether the mutant's source line
+    ``line`` — the mutated one — ran at least once)."""
+    from chaplygin_nd.ledger.mutate_replay import LineWatch
+
     original = fn.__code__
     orig_fn = FunctionType(original, fn.__globals__, fn.__name__, fn.__defaults__)
     orig_fn.__kwdefaults__ = fn.__kwdefaults__
@@ -376,12 +427,14 @@ def _equivalence(fn, mutant_code, claim_id: str, budget: float, key: str = "",
         ["sign"] if key in ARGUMENT_SIGN_INVARIANT else [])
     state: dict[str, Any] = {"calls": 0, "ok": dict.fromkeys(kinds, True)}
     hook_name = "__mutate_compare_hook__"
+    watch = LineWatch(mutant_code, line)
 
     def hook(*args, **kwargs):
         want = orig_fn(*args, **kwargs)
         state["calls"] += 1
         try:
-            got = mut_fn(*args, **kwargs)
+            with watch:
+                got = mut_fn(*args, **kwargs)
         except Exception:  # noqa: BLE001 - a mutant that raises where the original does not
             state["ok"] = dict.fromkeys(kinds, False)
             return want
@@ -413,17 +466,25 @@ def _equivalence(fn, mutant_code, claim_id: str, budget: float, key: str = "",
         fn.__code__ = original
         fn.__globals__.pop(hook_name, None)
     kind = next((k for k in kinds if state["ok"][k]), "")
-    return bool(kind) and state["calls"] > 0, state["calls"], kind
+    return bool(kind) and state["calls"] > 0, state["calls"], kind, watch.ran
 
 
-def settle(record: dict, fn, code, rows, tried: list[str], key: str = "") -> dict:
+def settle(record: dict, fn, code, rows, tried: list[str], key: str = "",
+           line: int | None = None, ran: bool = False) -> dict:
     """A mutant that changed no row: ``equivalent`` only if its value equals the original's (or
-    differs by an invariance registered for ``key``) at every call the cheapest row makes, else
-    ``survived``; fills and returns ``record`` (also used by ``mutate_derivations``)."""
+    differs by an invariance registered for ``key``) at every call the cheapest row makes and
+    the mutated source ``line`` executed there (or ``ran`` says it did elsewhere: equal values
+    on a branch no row takes prove nothing), else ``survived``; fills and returns ``record``
+    (also used by ``mutate_derivations``)."""
     claim_id, _base, seconds = rows[0]
-    equal, calls, kind = _equivalence(fn, code, claim_id,
-                                      max(MIN_BUDGET, BUDGET_FACTOR * seconds), key)
-    if equal:
+    equal, calls, kind, line_ran = _equivalence(fn, code, claim_id,
+                                                max(MIN_BUDGET, BUDGET_FACTOR * seconds), key,
+                                                line)
+    if equal and not (ran or line_ran):
+        record.update(outcome="survived", row=", ".join(tried), reason=(
+            f"equal values at all {calls} calls of row {claim_id}, but the mutated line never "
+            f"ran there (a branch no row takes); no row ({', '.join(tried)}) changed"))
+    elif equal:
         what = {"exact": "exactly the original value",
                 "scale": "a non-zero constant times the original value ("
                          + SCALE_INVARIANT.get(key, "") + ")",
@@ -461,7 +522,7 @@ def evaluate(task: tuple[Mutant, list[tuple[str, tuple, float]]]) -> dict:
             budget = max(MIN_BUDGET, BUDGET_FACTOR * seconds)
             fn.__code__ = code
             try:
-                got, note = run_row(claim_id, budget)
+                got, note = run_row(claim_id, budget, base)
             finally:
                 fn.__code__ = original
             tried.append(claim_id)
@@ -469,7 +530,9 @@ def evaluate(task: tuple[Mutant, list[tuple[str, tuple, float]]]) -> dict:
                 why = note or _difference(base, got)
                 record.update(outcome="killed", row=claim_id, reason=why)
                 return record
-        return settle(record, fn, code, rows, tried, mutant.function)
+        from chaplygin_nd.ledger.mutate_replay import mutated_line
+
+        return settle(record, fn, code, rows, tried, mutant.function, mutated_line(mutant.description))
     except Exception:  # noqa: BLE001
         record.update(outcome="error", reason=traceback.format_exc(limit=3))
         return record

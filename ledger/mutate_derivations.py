@@ -47,6 +47,8 @@ from types import FunctionType
 from chaplygin_nd.ledger import mutate as mu
 from chaplygin_nd.ledger import mutate_runtime as mr
 from chaplygin_nd.ledger.catalog import ROOT, is_checkout
+from chaplygin_nd.ledger.mutate_replay import Recording, mutated_line, replay
+from chaplygin_nd.ledger.mutate_replay import record as record_calls
 from chaplygin_nd.ledger.mutate_runtime import runtime_functions, runtime_tests  # noqa: F401 - API
 from chaplygin_nd.ledger.reach import (
     clear_caches,
@@ -173,39 +175,7 @@ def _evaluate(task: Task) -> dict:
             return mr.evaluate(fn, code, m.function, task.rows, record)
         if not task.rows:
             return mr.evaluate(fn, code, m.function, task.tests, record)
-        tried = []
-        for claim_id, base, seconds in task.rows:
-            fn.__code__ = code
-            try:
-                got, note = mu.run_row(claim_id, max(mu.MIN_BUDGET, mu.BUDGET_FACTOR * seconds))
-            finally:
-                fn.__code__ = original
-                clear_caches()
-            tried.append(claim_id)
-            if got != base:
-                record.update(outcome="killed", row=claim_id,
-                              reason=note or mu._difference(base, got))
-                return record
-        if task.mutant.function in task.emitted:
-            fn.__code__ = code
-            try:
-                from chaplygin_nd.symbolic.codegen import stale_report
-
-                stale = stale_report()
-            finally:
-                fn.__code__ = original
-                clear_caches()
-            if stale:
-                record.update(outcome="killed", row="generated/",
-                              reason="no row changed, but the regenerated kernels differ: make "
-                                     "verify's stale check of generated/ fails")
-                return record
-        if task.tests:
-            failed = mr.kill(fn, code, m.function, task.tests)
-            if failed is not None:
-                record.update(outcome="killed", row="tests", reason=f"no row changed; {failed}")
-                return record
-        return mu.settle(record, fn, code, task.rows, tried)
+        return _decide_by_rows(task, fn, code, record)
     except Exception:  # noqa: BLE001
         record.update(outcome="error", reason=traceback.format_exc(limit=3))
         return record
@@ -213,6 +183,125 @@ def _evaluate(task: Task) -> dict:
         fn.__code__ = original
         clear_caches()
         record["seconds"] = round(time.perf_counter() - start, 2)
+
+
+#: This worker's recordings of one function's calls in each check ((function, check) -> Recording);
+#: tasks come grouped by function, so only the current function's are kept.
+_RECORDINGS: dict[tuple[str, str], Recording] = {}
+GENERATED_CHECK = "generated/"
+
+
+def _recording(key: str, fn, check: str, base, seconds: float) -> Recording:
+    """The calls of ``fn`` in one check (a row, or :data:`GENERATED_CHECK`: the regeneration of
+    the kernels), recorded once per worker; a run whose outcome is not the baseline's is not
+    replayed (the recorder itself must not change what it watches)."""
+    if (key, check) in _RECORDINGS:
+        return _RECORDINGS[(key, check)]
+    if any(k != key for k, _ in _RECORDINGS):
+        _RECORDINGS.clear()
+    outcome: dict = {}
+    if check == GENERATED_CHECK:
+        from chaplygin_nd.symbolic.codegen import stale_report
+
+        def run():
+            outcome["same"] = not stale_report()
+    else:
+        def run():
+            got, _note = mu.run_row(check, max(mu.MIN_BUDGET, mu.BUDGET_FACTOR * seconds))
+            outcome["same"] = got == base
+    rec = record_calls(fn, run)
+    if not rec.problem and not outcome.get("same"):
+        rec.problem, rec.calls = "the recorded run did not reproduce the baseline", []
+    _RECORDINGS[(key, check)] = rec
+    return rec
+
+
+_TESTS: dict[str, tuple[str, ...]] = {}
+
+
+def _tests_reaching(key: str, fn) -> tuple[str, ...]:
+    """The tests (fastest first) that call ``fn``, among the test files naming its module: found
+    once per worker by one instrumented run (:func:`mutate_runtime.test_map`), only for a mutant
+    its rows did not kill."""
+    if key not in _TESTS:
+        files = mr.mentioning([key])
+        reach = mr.test_map({key: fn}, files) if files else {}
+        _TESTS[key] = tuple(t for t, _ in reach.get(key, ()))
+    return _TESTS[key]
+
+
+def _run_check(fn, code, original, check: str, base, seconds: float) -> tuple[bool, str]:
+    """Run one check with the mutant ``code`` in place of ``original``: (changed, why)."""
+    fn.__code__ = code
+    try:
+        if check == GENERATED_CHECK:
+            from chaplygin_nd.symbolic.codegen import stale_report
+
+            return (True, "no row changed, but the regenerated kernels differ: make verify's "
+                          "stale check of generated/ fails") if stale_report() else (False, "")
+        got, note = mu.run_row(check, max(mu.MIN_BUDGET, mu.BUDGET_FACTOR * seconds), base)
+        return got != base, note or (mu._difference(base, got) if got != base else "")
+    finally:
+        fn.__code__ = original
+        clear_caches()
+
+
+def _decide_by_rows(task: Task, fn, code, record: dict) -> dict:
+    """A derivation's mutant against its rows (cheapest first) and, if emitted, the regenerated
+    kernels. Each check is first *replayed* (:mod:`ledger.mutate_replay`): when the mutant returns
+    exactly the recorded value at every call the check makes, the check cannot change and is not
+    run; otherwise it is run with the mutant, and a change kills. ``equivalent`` needs every
+    check replayed equal and the mutated line executed; a check that cannot be replayed falls
+    back to running it and comparing values on the cheapest such row (:func:`ledger.mutate.settle`)."""
+    m = task.mutant
+    original = fn.__code__
+    line = mutated_line(m.description)
+    checks = [(row, base, seconds) for row, base, seconds in task.rows]
+    if m.function in task.emitted:
+        checks.append((GENERATED_CHECK, None, 0.0))
+    replayed: list[str] = []
+    differing: list[str] = []
+    unreplayed: list[tuple[str, object, float]] = []
+    calls, ran = 0, False
+    for check, base, seconds in checks:  # cheapest first: replay, and run only what may change
+        rec = _recording(m.function, fn, check, base, seconds)
+        if rec.problem:
+            unreplayed.append((check, base, seconds))
+        else:
+            same, line_ran = replay(fn, code, rec, line)
+            ran = ran or line_ran
+            if same:
+                replayed.append(check)
+                calls += len(rec.calls)
+                continue
+            differing.append(check)
+        changed, why = _run_check(fn, code, original, check, base, seconds)
+        if changed:
+            record.update(outcome="killed", row=check, reason=why)
+            return record
+    to_run = [*differing, *(r[0] for r in unreplayed)]
+    rows = [r for r in unreplayed if r[0] != GENERATED_CHECK]
+    if differing:
+        record.update(outcome="survived", row=", ".join(differing), reason=(
+            f"the mutant's value differs at a call of {', '.join(differing)}, but no check "
+            "changed"))
+    elif rows:
+        mu.settle(record, fn, code, rows, to_run, line=line, ran=ran)
+    elif not ran:
+        record.update(outcome="survived", row=", ".join(replayed), reason=(
+            f"equal values at all {calls} calls of {', '.join(replayed)}, but the mutated line "
+            "never ran there (a branch no check takes)"))
+    else:
+        record.update(outcome="equivalent", row=", ".join(replayed), reason=(
+            f"replayed: the mutant returns exactly the recorded value (and leaves its arguments "
+            f"as the original does) at all {calls} calls made by {', '.join(replayed)}, the "
+            "mutated line executed; so no check can change"))
+    if record["outcome"] == "survived":  # no check changed: the tests that reach it may tell
+        tests = task.tests or _tests_reaching(m.function, fn)
+        failed = mr.kill(fn, code, m.function, tests) if tests else None
+        if failed is not None:
+            record.update(outcome="killed", row="tests", reason=f"no row changed; {failed}")
+    return record
 
 
 def plan(target: str, selection: list[mu.Mutant], jobs: int, tests_for=()) -> list[Task]:

@@ -13,6 +13,12 @@ The verdict of a comparison is *computed*, never asserted: :meth:`Verdict.decide
 ``holds`` when the printed formula agrees with the derivation, ``corrected`` when it does not but
 a stated correction is proved, ``fails`` otherwise. A row may consist of named :class:`Part`\ s,
 each with its own verdict; the row's verdict is then the worst of its parts.
+
+A row may announce each part as soon as it is final with :func:`decided` (``parts.append(
+decided(Part(...)))``): the part must then appear, unchanged, in the row's verdict. Nothing
+observes it in a normal run; ``make mutate-derivations`` does (:func:`observing_parts`), and
+stops a mutant's run of the row at the first final part that differs from the unmutated row's —
+the row's signature has changed whatever the later parts say.
 """
 
 from __future__ import annotations
@@ -24,7 +30,7 @@ from chaplygin_nd.symbolic.exact import Check
 
 __all__ = ["Verdict", "Part", "claim", "registry", "VERDICTS", "ClaimSpec", "KINDS",
            "ERRATA_KINDS", "NEEDS_KIND",
-           "EVIDENCE_FIELDS"]
+           "EVIDENCE_FIELDS", "decided", "observing_parts"]
 
 #: Verdicts, best first. ``error`` is set only by the runner when a proof raises. ``evidence`` is
 #: numerical support for a qualitative statement (never counted as ``holds``).
@@ -293,6 +299,37 @@ def claim(claim_id: str, *, uses: Sequence[str] = (), adds: tuple[str, str] | No
         return fn
 
     return register
+
+
+#: The observers of :func:`decided` (a stack; empty in a normal run).
+_OBSERVERS: list[Callable[[Part], None]] = []
+
+
+def decided(part: Part) -> Part:
+    """Announce that ``part`` is final (it will be in the row's verdict as it is); returns it."""
+    for observe in _OBSERVERS:
+        observe(part)
+    return part
+
+
+class observing_parts:  # noqa: N801 - used as a context manager, like contextlib's
+    """``with observing_parts(callback):`` calls ``callback(part)`` at each :func:`decided` part of
+    the rows run inside it (the callback may raise to stop the row there); ``.seen`` lists them."""
+
+    def __init__(self, callback: Callable[[Part], None]):
+        self.callback = callback
+        self.seen: list[Part] = []
+
+    def _observe(self, part: Part) -> None:
+        self.seen.append(part)
+        self.callback(part)
+
+    def __enter__(self) -> observing_parts:
+        _OBSERVERS.append(self._observe)
+        return self
+
+    def __exit__(self, *exc) -> None:
+        _OBSERVERS.remove(self._observe)
 
 
 def registry() -> dict[str, ClaimSpec]:

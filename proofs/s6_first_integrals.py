@@ -52,9 +52,10 @@ from __future__ import annotations
 
 import os
 import time
+from collections.abc import Callable
 
 import sympy as sp
-from chaplygin_nd.ledger.registry import Part, Verdict, claim
+from chaplygin_nd.ledger.registry import Part, Verdict, claim, decided
 from chaplygin_nd.symbolic import fi_field, fi_known, fi_new
 from chaplygin_nd.symbolic import first_integrals as fi
 from chaplygin_nd.symbolic.points import ledger_seed
@@ -78,16 +79,21 @@ def model_for(n: int) -> fi_field.Model:
 def degree_table(boxes: dict) -> list[dict]:
     """One record per box: unknowns, found (F_p nullity), known (rank of the known algebra,
     with and without F), settled, recovered, seconds."""
-    out = []
-    for n, bx in boxes.items():
-        model = model_for(n)
-        for d, dg, k in bx:
-            r = fi.search_degree(model, d, dg, k, seed=ledger_seed())
-            paper = sum(fi.known_ranks(model, d, dg, k, False, seed=ledger_seed()).values())
-            rec = {key: val for key, val in r.as_dict().items() if key != "blocks"}
-            rec["known_paper_only"] = paper
-            out.append(rec)
-    return out
+    return [box_record(n, box) for n, bx in boxes.items() for box in bx]
+
+
+def box_record(n: int, box: tuple[int, int, int]) -> dict:
+    """The record of one box (d, d_gamma, k) of :func:`degree_table` for the model at ``n``."""
+    model = model_for(n)
+    r = fi.search_degree(model, *box, seed=ledger_seed())
+    paper = sum(fi.known_ranks(model, *box, False, seed=ledger_seed()).values())
+    rec = {key: val for key, val in r.as_dict().items() if key != "blocks"}
+    rec["known_paper_only"] = paper
+    return rec
+
+
+def _is_control(n: int, box: tuple[int, int, int]) -> bool:
+    return n in (3, 4) or (n == 5 and box[0] < 4)
 
 
 def _controls(table) -> Part:
@@ -115,48 +121,63 @@ def _finding(table) -> Part:
                 f"{row['known_paper_only']}, with F {row['known']}: the excess is exactly F")
 
 
-def _proofs() -> list[Part]:
-    deep = bool(os.environ.get("CHAPLYGIN_ND_DEEP"))
-    parts = []
-    for n in ((3, 5) if deep else (3,)):
-        c = fi_new.prove_symbolic(n)
-        parts.append(Part(f"X(F) = 0, n = {n}, symbolic a, b", "holds" if c.ok else "fails",
-                          f"{c.method} ({c.engines})"))
-    for n in ((5, 7, 9) if deep else (5,)):
-        c = fi_new.prove_at_points(n, 2, seed=ledger_seed())
-        parts.append(Part(f"X(F) = 0, n = {n}, random a, b", "holds" if c.ok else "fails",
-                          f"{c.method} ({c.engines})"))
-    c = fi_new.prove_at_points(6, 2, seed=ledger_seed(), builder=fi_new.new_integral_6)
-    parts.append(Part("X(G) = 0, n = 6, random a, b", "holds" if c.ok else "fails",
-                      f"{c.method} ({c.engines})"))
-    for n in ((5, 6, 7, 8) if deep else (5, 6)):
-        c = fi_new.prove_at_points(n, 2, seed=ledger_seed(), builder=fi_new.general_integral)
-        parts.append(Part(f"X(G_n) = 0 (general form), n = {n}, random a, b",
-                          "holds" if c.ok else "fails", f"{c.method} ({c.engines})"))
-    if deep:
-        c = fi_new.prove_symbolic(6, builder=fi_new.new_integral_6)
-        parts.append(Part("X(G) = 0, n = 6, symbolic a, b", "holds" if c.ok else "fails",
-                          f"{c.method} ({c.engines})"))
-    if deep:
-        r = fi_known.jacobian_rank_mod_p(model_for(6), True, seed=ledger_seed())
-        parts.append(Part("independence n = 6: the coefficients of p, H and G",
-                          "holds" if r["rank_mod_p"] == r["functions"] else "fails",
-                          f"Jacobian rank mod {r['prime']} = {r['rank_mod_p']} of {r['functions']} "
-                          "(full rank mod p proves independence over QQ)"))
-    if deep:
-        for n in (7, 9):
-            r = fi_known.jacobian_rank_mod_p(model_for(n), True, seed=ledger_seed())
-            parts.append(Part(f"independence n = {n}: the coefficients of p, H, F and G_n",
-                              "holds" if r["rank_mod_p"] == r["functions"] else "fails",
-                              f"Jacobian rank mod {r['prime']} = {r['rank_mod_p']} of "
-                              f"{r['functions']} at an integer-seeded rational point (a lower bound "
-                              "of the rank over QQ: full rank mod p proves independence)"))
+def _identity(name: str, check) -> Part:
+    return Part(name, "holds" if check.ok else "fails", f"{check.method} ({check.engines})")
+
+
+def _rank_mod_p(name: str, n: int, what: str) -> Part:
+    r = fi_known.jacobian_rank_mod_p(model_for(n), True, seed=ledger_seed())
+    return Part(name, "holds" if r["rank_mod_p"] == r["functions"] else "fails",
+                f"Jacobian rank mod {r['prime']} = {r['rank_mod_p']} of {r['functions']} {what}")
+
+
+def _varies(name: str, n: int, builder) -> Part:
+    ok, text = fi_new.varies_in_M(n, builder, ledger_seed())
+    return Part(name, "holds" if ok else "fails", f"exact evaluation: {text}")
+
+
+def _rank_n5() -> Part:
     r = fi_known.jacobian_rank(model_for(5), ledger_seed(), include_new=True)
-    parts.append(Part("independence n = 5: rank of (4 coefficients of p, H, F) on TP",
-                      "holds" if r["rank"] == 6 else "fails",
-                      f"exact Jacobian rank {r['rank']} of {r['functions']} at a seeded rational "
-                      f"point ({r['engines']})"))
-    return parts
+    return Part("independence n = 5: rank of (4 coefficients of p, H, F) on TP",
+                "holds" if r["rank"] == 6 else "fails",
+                f"exact Jacobian rank {r['rank']} of {r['functions']} at a seeded rational "
+                f"point ({r['engines']})")
+
+
+def _proofs(deep: bool) -> list[tuple[bool, Callable[[], Part]]]:
+    """The proof parts of the row in the order of its verdict, as (cheap, compute): the row
+    computes the cheap ones (n <= 5) before the degree table and the others after it."""
+    seed = ledger_seed()
+    steps: list[tuple[bool, Callable[[], Part]]] = []
+    for n in ((3, 5) if deep else (3,)):
+        steps.append((n < 5, lambda n=n: _identity(f"X(F) = 0, n = {n}, symbolic a, b",
+                                                   fi_new.prove_symbolic(n))))
+    for n in ((5, 7, 9) if deep else (5,)):
+        steps.append((n <= 5, lambda n=n: _identity(f"X(F) = 0, n = {n}, random a, b",
+                                                    fi_new.prove_at_points(n, 2, seed=seed))))
+    steps.append((False, lambda: _identity("X(G) = 0, n = 6, random a, b", fi_new.prove_at_points(
+        6, 2, seed=seed, builder=fi_new.new_integral_6))))
+    steps.append((False, lambda: _varies("G is not constant, n = 6", 6, fi_new.new_integral_6)))
+    for n in ((5, 6, 7, 8) if deep else (5, 6)):
+        steps.append((n <= 5, lambda n=n: _identity(
+            f"X(G_n) = 0 (general form), n = {n}, random a, b",
+            fi_new.prove_at_points(n, 2, seed=seed, builder=fi_new.general_integral))))
+    for n in (5, 6):
+        steps.append((n <= 5, lambda n=n: _varies(f"G_n (general form) is not constant, n = {n}",
+                                                  n, fi_new.general_integral)))
+    if deep:
+        steps.append((False, lambda: _identity("X(G) = 0, n = 6, symbolic a, b",
+                                               fi_new.prove_symbolic(6, builder=fi_new.new_integral_6))))
+        steps.append((False, lambda: _rank_mod_p(
+            "independence n = 6: the coefficients of p, H and G", 6,
+            "(full rank mod p proves independence over QQ)")))
+        for n in (7, 9):
+            steps.append((False, lambda n=n: _rank_mod_p(
+                f"independence n = {n}: the coefficients of p, H, F and G_n", n,
+                "at an integer-seeded rational point (a lower bound of the rank over QQ: full "
+                "rank mod p proves independence)")))
+    steps.append((True, _rank_n5))
+    return steps
 
 
 @claim("S6:first-integrals", uses=("eq:motion-general", "eq:pol-first-integrals", "P:inversion",
@@ -167,12 +188,30 @@ def _proofs() -> list[Part]:
                       "Pfaffian vector), independent of the known five; for n = 6 a new G"))
 def s6_first_integrals() -> Verdict:
     t0 = time.perf_counter()
+    deep = bool(os.environ.get("CHAPLYGIN_ND_DEEP"))
     boxes = dict(CHEAP)
-    if os.environ.get("CHAPLYGIN_ND_DEEP"):
+    if deep:
         for n, bx in DEEP.items():
             boxes[n] = tuple(boxes.get(n, ())) + bx
-    table = degree_table(boxes)
-    parts = [_controls(table), _finding(table), *_proofs()]
+    # each part is announced final (registry.decided) as soon as it is computed, the cheap ones
+    # first; the verdict lists them in the fixed order of the report
+    steps = _proofs(deep)
+    done = {i: decided(run()) for i, (cheap, run) in enumerate(steps) if cheap}
+    records: dict[tuple, dict] = {}
+
+    def searched(wanted: Callable[[int, tuple], bool]) -> list[dict]:
+        for n, bx in boxes.items():
+            for box in bx:
+                if wanted(n, box) and (n, box) not in records:
+                    records[(n, box)] = box_record(n, box)
+        return list(records.values())
+
+    controls = decided(_controls(searched(_is_control)))
+    finding = decided(_finding(searched(lambda n, box: (n, box) == (5, (4, 4, 1)))))
+    done |= {i: decided(run()) for i, (cheap, run) in enumerate(steps) if not cheap}
+    searched(lambda n, box: True)
+    table = [records[(n, box)] for n, bx in boxes.items() for box in bx]
+    parts = [controls, finding, *(done[i] for i in range(len(steps)))]
     n5 = [r for r in table if r["n"] == 5]
     reached = max(r["d"] for r in n5)
     v = Verdict.of_parts(

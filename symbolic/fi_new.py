@@ -20,7 +20,7 @@ import sympy as sp
 from chaplygin_nd.symbolic.algebra import unvec
 
 __all__ = ["pfaffian", "pfaffian_vector", "denominator", "new_integral", "new_integral_text", "prove_symbolic",
-           "prove_at_points", "hodge_square", "new_integral_6", "new_integral_6_text",
+           "prove_at_points", "varies_in_M", "hodge_square", "new_integral_6", "new_integral_6_text",
            "general_integral"]
 
 
@@ -213,3 +213,23 @@ def prove_at_points(n: int, count: int = 2, seed: int | None = None, builder=Non
 
     return zero_at_points(residual, sample, count=count, seed=seed,
                           label=f"S6:first-integrals n={n}")
+
+
+def varies_in_M(n: int, builder, seed: int) -> tuple[bool, str]:
+    r"""Whether the integral of ``builder`` (numerator $P$, denominator a power of $\Delta$, which
+    depends on $\gamma$ alone) is **not constant**: $\frac{d}{d\varepsilon}P(M + \varepsilon N,
+    \gamma)|_0 \ne 0$ at a seeded exact rational point with a random skew $N$ and random
+    $a, b$. An exact non-zero rational is a witness. Without it, $X(F) = 0$ says nothing: the
+    zero function passes it (row S6:first-integrals)."""
+    from chaplygin_nd.symbolic import points
+
+    eps = sp.Symbol("eps")
+    rng = points.generator(seed, f"S6:first-integrals varies n={n}", 0)
+    par = points.axisymmetric_parameters(rng)
+    M, N = points.skew_matrix(rng, n), points.skew_matrix(rng, n)
+    gamma = points.sphere_point(rng, n)
+    num, _den = builder(M + eps * N, gamma, par["a"], par["b"])
+    slope = sp.Poly(sp.expand(num), eps).coeff_monomial(eps)
+    verdict = "non-zero, so the integral is not constant" if slope != 0 else "zero"
+    return slope != 0, (f"dP/d eps = {slope} at a seeded rational point (seed {seed}, a = "
+                        f"{par['a']}, b = {par['b']}): {verdict}")

@@ -79,6 +79,27 @@ def test_new_integral_text_is_the_derived_integral():
         assert sp.expand(sp.numer(text) - num) == 0 and sp.expand(sp.denom(text) - den) == 0
 
 
+def test_new_integral_6_text_is_the_derived_integral_at_a_rational_point():
+    # G's text against new_integral_6 at an exact point where a, b and every coordinate differ (so
+    # no exchange of two names goes unseen). The text is evaluated as Python over exact Rationals
+    # (sympify takes ~45 s on its 85 kB); that is exact because no integer/integer literal occurs
+    import re
+
+    from chaplygin_nd.symbolic.algebra import unvec
+
+    Ms, gs = fi_reconstruct.real_symbols(6)
+    a, b = sp.symbols("a b")
+    values = {s: sp.Rational(k + 2, 7 + 3 * k) for k, s in enumerate([*Ms, *gs, a, b])}
+    num, den = fi_new.new_integral_6(unvec(Ms, 6).xreplace(values),
+                                     sp.Matrix(gs).xreplace(values), values[a], values[b])
+    text = fi_new.new_integral_6_text()
+    assert not re.search(r"(?<![\w.)])\d+\s*/\s*\d+", text)
+    assert set(re.findall(r"[A-Za-z_]\w*", text)) <= {str(s) for s in values}
+    value = eval(compile(text, "<G>", "eval"), {"__builtins__": {}},  # noqa: S307 - our own text
+                 {str(s): v for s, v in values.items()})
+    assert den != 0 and isinstance(value, sp.Rational) and value == num / den
+
+
 def test_new_integral_is_independent_for_n5_only():
     m5 = fi_field.axisymmetric(5, A, B)
     assert fi_known.jacobian_rank(m5, 1, include_new=True)["rank"] == 6
@@ -116,6 +137,24 @@ def test_jacobian_mod_p_is_a_lower_bound_that_matches_the_exact_rank():
     for n, rank in ((4, 4), (5, 6)):
         r = fi_known.jacobian_rank_mod_p(fi_field.axisymmetric(n, A, B), True)
         assert r["rank_mod_p"] == rank == r["functions"]
+
+
+def _unit_skew(n: int, i: int, j: int) -> sp.Matrix:
+    E = sp.zeros(n, n)
+    E[i, j], E[j, i] = 1, -1
+    return E
+
+
+def test_hodge_square_of_a_decomposable_pair_is_the_complementary_plane():
+    """W = *(M^M)/8 from its definition, by hand: for M = E_12 + E_34, M^M = 2 e1^e2^e3^e4, whose
+    Hodge star is 2 e5^e6; the 1/8 and the 8 signed orderings of the 4 indices give W = E_56
+    exactly (so a sign, a scale or a dropped factor of the sum is caught, which G = q(W) cannot
+    see: G is quadratic in W). A single plane has M^M = 0."""
+    M = _unit_skew(6, 0, 1) + _unit_skew(6, 2, 3)
+    assert fi_new.hodge_square(M) == _unit_skew(6, 4, 5)
+    assert fi_new.hodge_square(_unit_skew(6, 1, 4)) == sp.zeros(6, 6)
+    with pytest.raises(ValueError, match="n = 6"):
+        fi_new.hodge_square(sp.zeros(5, 5))
 
 
 def test_n6_integral_at_an_exact_point_and_counted_in_the_box():

@@ -1,0 +1,287 @@
+r"""Record a derivation's calls in a ledger row once, then replay them on each mutant.
+
+A mutant of a derivation ``f`` can change a ledger row only through the values ``f`` returns
+there (and what it does to its arguments). :func:`record` runs one row unmutated, with every call
+of ``f`` recorded: its arguments before the call, its value, and its arguments after it.
+:func:`replay` calls a mutant on the recorded arguments. When the mutant returns exactly the
+recorded value (and leaves the arguments as the original did) at **every** recorded call, the row
+run with the mutant makes the same calls and sees the same values as the unmutated one, so its
+verdict, counterexample and parts are the baseline's — the row cannot kill that mutant and need
+not be run with it. When some value differs, the row is run with the mutant, as before.
+
+The argument needs ``f`` to be a function of its arguments alone. Two guards, both conservative
+(a function they refuse is simply run against its rows as before):
+
+* **syntactic** (:func:`impure`): the code of ``f`` writes no global and names nothing that acts
+  outside its arguments (``print``, ``open``, ``write*``, ``mkdir``, ``unlink``, ``os.environ``,
+  ``seed``); the module-level lists, dicts and sets it reads must be left as they were by every
+  call, recorded or replayed (:func:`mutable_globals`);
+* **dynamic**: right after recording, the *original* code is replayed on the recorded arguments
+  and must give back every recorded value; a function that depends on state the row changes, on a
+  clock or on an unseeded generator fails this and is not replayed.
+
+A recording is abandoned (``None``) past :data:`MAX_CALLS` calls or when an argument or value
+cannot be copied. Values are compared as a row would see them (:func:`identical`: same type and structure, floats and
+arrays bit for bit). While replaying, a line tracer on the mutant's own code
+notes whether the mutated line ran: equal values on a branch no call takes prove nothing.
+"""
+
+from __future__ import annotations
+
+import copy
+import dis
+import sys
+from dataclasses import dataclass, field
+from types import CodeType, FunctionType
+from typing import Any
+
+#: Past this many calls of ``f`` in one row, the row is run with the mutant instead of replayed.
+MAX_CALLS = 20_000
+#: Names whose use in ``f`` means it may act outside its arguments and value.
+_EFFECTS = frozenset({"print", "open", "input", "exec", "eval", "setattr", "delattr", "globals",
+                      "environ", "write", "write_text", "write_bytes", "writelines", "mkdir",
+                      "unlink", "rmdir", "rename", "replace_file", "write_json_atomic", "seed",
+                      "putenv", "system", "popen"})
+_MUTABLE = (dict, list, set, bytearray)
+_IMMUTABLE = (int, float, complex, str, bytes, bool, type(None), frozenset)
+
+
+@dataclass
+class Recording:
+    """The calls of one function in one row: ``(args, kwargs, value, args_after, kwargs_after)``
+    (copies; a value that raised is ``_Raised``)."""
+
+    calls: list = field(default_factory=list)
+    problem: str = ""  # why it cannot be replayed ("" when it can)
+
+
+@dataclass(frozen=True)
+class _Raised:
+    kind: type
+    text: str
+
+
+def _code_objects(code: CodeType) -> list[CodeType]:
+    out = [code]
+    for const in code.co_consts:
+        if isinstance(const, CodeType):
+            out += _code_objects(const)
+    return out
+
+
+def impure(fn: FunctionType) -> str:
+    """Why ``fn`` may act beyond its arguments and value (a name of :data:`_EFFECTS`, a global
+    store), or "" when its code shows none. (The mutable module-level containers it reads are
+    watched call by call instead: :func:`mutable_globals`.)"""
+    for code in _code_objects(fn.__code__):
+        for ins in dis.get_instructions(code):
+            if ins.opname in ("STORE_GLOBAL", "DELETE_GLOBAL"):
+                return f"writes the global {ins.argval}"
+            if ins.opname in ("LOAD_GLOBAL", "LOAD_NAME", "LOAD_ATTR", "LOAD_METHOD"):
+                name = ins.argval if isinstance(ins.argval, str) else str(ins.argval)
+                if name in _EFFECTS:
+                    return f"uses {name}"
+    return ""
+
+
+def mutable_globals(fn: FunctionType) -> tuple[str, ...]:
+    """The module-level lists, dicts, sets and bytearrays ``fn``'s code names: each call (recorded
+    or replayed) must leave them as it found them."""
+    names = {ins.argval for code in _code_objects(fn.__code__) for ins in dis.get_instructions(code)
+             if ins.opname == "LOAD_GLOBAL"}
+    return tuple(sorted(n for n in names if isinstance(fn.__globals__.get(n), _MUTABLE)))
+
+
+def _globals_state(fn: FunctionType, names: tuple[str, ...]) -> tuple:
+    return tuple(_snapshot(fn.__globals__[n]) for n in names)
+
+
+def _frozen(value: Any) -> bool:
+    """Whether nothing can change ``value`` in place (scalars, strings, SymPy expressions and
+    immutable matrices, and tuples of those)."""
+    import sympy as sp
+
+    if isinstance(value, _IMMUTABLE) or (isinstance(value, sp.Basic)):
+        return True
+    return isinstance(value, tuple) and all(_frozen(v) for v in value)
+
+
+def _snapshot(value: Any) -> Any:
+    """A copy of ``value`` that later changes to the original cannot reach (``value`` itself
+    when nothing can change it)."""
+    if _frozen(value):
+        return value
+    if isinstance(value, dict) and all(_frozen(v) for v in value.values()):
+        return dict(value)
+    return copy.deepcopy(value)
+
+
+def identical(x, y) -> bool:
+    """Whether a row could tell ``x`` from ``y``: same type and structure (SymPy's structural
+    ``==``, not mathematical equality: ``x*(x+1)`` and ``x**2 + x`` differ in what a row prints),
+    floats and arrays bit for bit, containers element by element in their iteration order."""
+    import numpy as np
+    import sympy as sp
+
+    if type(x) is not type(y):
+        return False
+    if isinstance(x, (tuple, list)):
+        return len(x) == len(y) and all(identical(u, v) for u, v in zip(x, y))
+    if isinstance(x, (set, frozenset)):
+        return len(x) == len(y) and all(identical(u, v) for u, v in zip(x, y))
+    if isinstance(x, dict):
+        return (len(x) == len(y) and all(identical(a, b) for a, b in zip(x, y))
+                and all(identical(x[k], y[k]) for k in x))
+    if isinstance(x, (float, complex, np.ndarray, np.generic)):
+        xa, ya = np.asarray(x), np.asarray(y)
+        if xa.dtype == object:
+            return xa.shape == ya.shape and all(identical(u, v) for u, v in zip(xa.flat, ya.flat))
+        return xa.shape == ya.shape and xa.dtype == ya.dtype and xa.tobytes() == ya.tobytes()
+    if isinstance(x, sp.MatrixBase) and not isinstance(x, sp.Basic):
+        return x.shape == y.shape and all(identical(u, v) for u, v in zip(x, y))
+    try:
+        return bool(x == y)  # SymPy: structural; FLINT, dataclasses, _Raised: exact
+    except Exception:  # noqa: BLE001 - cannot be compared: treated as different
+        return False
+
+
+def _call(fn: FunctionType, args, kwargs):
+    try:
+        return fn(*args, **kwargs)
+    except Exception as err:  # noqa: BLE001 - a raise is a value the row may catch
+        return _Raised(type(err), str(err))
+
+
+def _clone(fn: FunctionType, code: CodeType) -> FunctionType:
+    out = FunctionType(code, fn.__globals__, fn.__name__, fn.__defaults__, fn.__closure__)
+    out.__kwdefaults__ = fn.__kwdefaults__
+    return out
+
+
+def record(fn: FunctionType, run) -> Recording:
+    """Run ``run()`` (one ledger row, unmutated) with every call of ``fn`` recorded; then replay
+    the original on the records (the dynamic guard). ``fn``'s code is restored on return."""
+    from chaplygin_nd.ledger.reach import clear_caches
+
+    rec = Recording()
+    why = impure(fn)
+    if why:
+        rec.problem = why
+        return rec
+    original = fn.__code__
+    orig = _clone(fn, original)
+    hook_name = "__mutate_replay_hook__"
+    names = mutable_globals(fn)
+
+    def hook(*args, **kwargs):
+        if rec.problem:
+            return orig(*args, **kwargs)
+        try:
+            before = (_snapshot(args), _snapshot(kwargs))
+            state = _globals_state(fn, names)
+        except Exception as err:  # noqa: BLE001 - e.g. an object deepcopy cannot copy
+            rec.problem = f"an argument cannot be copied ({type(err).__name__})"
+            return orig(*args, **kwargs)
+        try:
+            value = orig(*args, **kwargs)
+        except Exception as err:
+            rec.calls.append((*before, _Raised(type(err), str(err)), _snapshot(args),
+                              _snapshot(kwargs)))
+            raise
+        finally:
+            if not identical(state, _globals_state(fn, names)):
+                rec.problem = "a call changes a module-level container"
+        try:
+            rec.calls.append((*before, _snapshot(value), _snapshot(args), _snapshot(kwargs)))
+        except Exception as err:  # noqa: BLE001
+            rec.problem = f"a value cannot be copied ({type(err).__name__})"
+        if len(rec.calls) > MAX_CALLS:
+            rec.problem, rec.calls = f"more than {MAX_CALLS} calls", []
+        return value
+
+    src = f"def {fn.__name__}(*args, **kwargs):\n    return {hook_name}(*args, **kwargs)\n"
+    ns: dict = {}
+    exec(compile(src, "<mutate record>", "exec"), ns)  # noqa: S102 - fixed template
+    fn.__globals__[hook_name] = hook
+    fn.__code__ = ns[fn.__name__].__code__
+    try:
+        clear_caches()
+        run()
+    finally:
+        fn.__code__ = original
+        fn.__globals__.pop(hook_name, None)
+        clear_caches()
+    if not rec.problem and not rec.calls:
+        rec.problem = "not called"
+    if not rec.problem:
+        same, _ran = replay(fn, original, rec)
+        clear_caches()
+        if not same:
+            rec.problem = "the original itself gives other values on replay (depends on state)"
+    if rec.problem:
+        rec.calls = []
+    return rec
+
+
+class LineWatch:
+    """Notes whether source line ``line`` of ``code`` (a mutant: the mutated line) runs while
+    watching (``with watch:``; nested code objects too). ``line`` None: counted as run."""
+
+    def __init__(self, code: CodeType, line: int | None):
+        self.line, self.ran = line, line is None
+        self._codes = set(_code_objects(code))
+        self._saved: list = []  # a stack: the watched code may call itself through the watch
+
+    def _local(self, frame, event, arg):
+        if event == "line" and frame.f_lineno == self.line:
+            self.ran = True
+        return None if self.ran else self._local
+
+    def _watch(self, frame, event, arg):
+        return self._local if frame.f_code in self._codes and not self.ran else None
+
+    def __enter__(self) -> LineWatch:
+        self._saved.append(sys.gettrace())
+        sys.settrace(None if self.ran else self._watch)
+        return self
+
+    def __exit__(self, *exc) -> None:
+        sys.settrace(self._saved.pop())
+
+
+def mutated_line(description: str) -> int | None:
+    """The source line a mutant's description names (``"... line 80 col 24: ..."``)."""
+    import re
+
+    found = re.search(r"\bline (\d+)\b", description)
+    return int(found.group(1)) if found else None
+
+
+def replay(fn: FunctionType, code: CodeType, rec: Recording, line: int | None = None,
+           ) -> tuple[bool, bool]:
+    """Call ``code`` (a mutant of ``fn``, installed as ``fn`` so recursive calls take it too) on
+    every recorded call, caches emptied first: (every value and every argument afterwards equal
+    to the recording, whether source line ``line`` of the mutant ran). Stops at the first
+    difference."""
+    from chaplygin_nd.ledger.reach import clear_caches
+
+    mutant = _clone(fn, code)
+    watch = LineWatch(code, line)
+    names = mutable_globals(fn)
+    original = fn.__code__
+    fn.__code__ = code
+    clear_caches()
+    try:
+        for args, kwargs, value, args_after, kwargs_after in rec.calls:
+            a, k = _snapshot(args), _snapshot(kwargs)
+            state = _globals_state(fn, names)
+            with watch:
+                got = _call(mutant, a, k)
+            if not (identical(value, got) and identical(args_after, a)
+                    and identical(kwargs_after, k)
+                    and identical(state, _globals_state(fn, names))):
+                return False, watch.ran
+    finally:
+        fn.__code__ = original
+        clear_caches()
+    return True, watch.ran
