@@ -1,5 +1,5 @@
-"""How the project writes a file: whole or not at all, with the mode a plain ``open()`` gives
-(issue 25; beyond the paper).
+"""How the project writes a file: whole or not at all, with the mode a plain ``open()`` gives; and
+how a command checks, before any work, that it will be able to (issue 25; beyond the paper).
 
 * :func:`write_atomic` writes through a temporary file beside the target and ``os.replace``: a
   reader never sees half a file, and an interrupted write leaves the old file and no temporary.
@@ -10,6 +10,12 @@
   writer that moves several files into place together (:func:`chaplygin_nd.ledger.report.write_files`).
   The temporary name is ``.NAME.XXXXXXXX.tmpSUFFIX``, the target's suffix kept, so that
   ``np.savez`` or ``savefig`` see the format they expect.
+* :func:`folder_problem` says why a folder cannot be created or written into, found by really
+  creating what the program would create (the missing folders and a file in the last one) and
+  removing it again: ``os.access`` says yes to root on ``/proc`` or a read-only mount. Every option
+  that names an output folder checks it so before any work (``verify --report-dir``, ``simulate
+  --out``, ``bench --out``, the folder of ``first-integrals --json``). :func:`probe_problem` is the
+  file part alone, for a folder that exists.
 """
 
 from __future__ import annotations
@@ -19,7 +25,7 @@ import secrets
 from collections.abc import Callable
 from pathlib import Path
 
-__all__ = ["write_atomic", "write_temporary"]
+__all__ = ["write_atomic", "write_temporary", "folder_problem", "probe_problem"]
 
 _FLAGS = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_CLOEXEC", 0)
 
@@ -82,3 +88,56 @@ def write_atomic(path: str | Path, data: str | bytes | Callable[[Path], object],
         tmp.unlink(missing_ok=True)
         raise
     return path
+
+
+def probe_problem(folder: str | Path) -> str:
+    """Why no file can be created in the existing folder ``folder`` (``""`` when one can): a file
+    is really created there (as :func:`write_temporary` would) and removed."""
+    try:
+        tmp = write_temporary(Path(folder) / ".chaplygin-probe", b"", mode=0o600)
+    except OSError as exc:
+        return exc.strerror or str(exc)
+    try:
+        tmp.unlink()
+    except OSError as exc:
+        return f"a file created there cannot be removed ({exc.strerror or exc})"
+    return ""
+
+
+def folder_problem(path: str | Path) -> str:
+    """Why ``path`` cannot be a folder this program creates (if missing) and writes files into
+    (``""`` when it can), in words that follow ``--option PATH:``. Checked by doing it: the missing
+    folders are created, a file is created in the last one, and all of it is removed again (also
+    when interrupted: nothing is left that was not there)."""
+    path = Path(path)
+    if path.is_symlink() and not path.exists():
+        return "is a broken symbolic link"
+    if path.exists() and not path.is_dir():
+        return "exists and is not a folder"
+    absolute = path.absolute()
+    missing = []
+    base = absolute
+    while not (base.exists() or base.is_symlink()):
+        missing.append(base)
+        base = base.parent
+    if not base.is_dir():
+        return f"cannot create it ({base} is not a folder)"
+    created: list[Path] = []
+    try:
+        for folder in reversed(missing):
+            try:
+                folder.mkdir()  # 0o777 & ~umask, as the program's own mkdir
+            except OSError as exc:
+                return f"cannot create it (creating {folder}: {exc.strerror or exc})"
+            created.append(folder)
+        problem = probe_problem(absolute)
+        if problem:
+            return (f"cannot create files in it ({problem})" if created else
+                    f"the folder is not writable ({problem})")
+        return ""
+    finally:
+        for folder in reversed(created):
+            try:
+                folder.rmdir()
+            except OSError:
+                pass  # something else put a file there meanwhile: left as it is

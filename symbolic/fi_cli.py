@@ -59,6 +59,7 @@ def parse_model(n: int, a, b, J):
 def main(argv: list[str]) -> int:
     """Run the search; exit status 0, or 2 on bad input (one line)."""
     from chaplygin_nd.console import OneLineParser, fail, path_argument, positive_int
+    from chaplygin_nd.writing import probe_problem
 
     parser = OneLineParser(prog="chaplygin first-integrals",
                            description="Exact search for polynomial and rational first integrals "
@@ -89,6 +90,8 @@ def main(argv: list[str]) -> int:
             raise ValueError(f"--json {args.json}: is a folder; give a file name")
         if args.json is not None and not args.json.absolute().parent.is_dir():
             raise ValueError(f"--json {args.json}: no folder {args.json.absolute().parent}")
+        if args.json is not None and (problem := probe_problem(args.json.absolute().parent)):
+            raise ValueError(f"--json {args.json}: cannot write into its folder ({problem})")
     except ValueError as err:
         return fail(str(err))
     import sys

@@ -8,11 +8,12 @@ import contextlib
 import json
 import os
 import stat
+from pathlib import Path
 
 import pytest
 from chaplygin_nd.ledger.reach import write_json_atomic
 
-from chaplygin_nd.writing import write_atomic, write_temporary
+from chaplygin_nd.writing import folder_problem, write_atomic, write_temporary
 
 
 @contextlib.contextmanager
@@ -92,3 +93,77 @@ def test_forced_mode_and_no_temporary_left_on_error(tmp_path):
     assert [p.name for p in tmp_path.iterdir()] == ["entry.pkl"]
     tmp = write_temporary(target, "new")
     assert tmp.parent == tmp_path and tmp.read_text() == "new" and mode(tmp) == 0o600
+
+
+# --- an output folder is checked by creating what the program would create (issue 25, item 2) ---
+def _really_writable(folder) -> bool:
+    """The oracle: can a file be opened for writing in ``folder`` right now (removed again)?"""
+    probe = folder / "oracle-probe"
+    try:
+        probe.open("w").close()
+    except OSError:
+        return False
+    probe.unlink()
+    return True
+
+
+def test_folder_problem_refuses_what_cannot_be_created_as_root_too(tmp_path):
+    """``os.access`` says yes to root on /proc; creating a folder there fails for everyone."""
+    for path in ("/proc/x", "/proc/x/y", "/sys/x"):
+        assert folder_problem(path).startswith("cannot create it"), path
+        assert not os.path.exists(path)
+    blocker = tmp_path / "file"
+    blocker.write_text("mine")
+    assert folder_problem(blocker) == "exists and is not a folder"
+    assert folder_problem(blocker / "sub") == f"cannot create it ({blocker} is not a folder)"
+    assert blocker.read_text() == "mine"
+
+
+def test_folder_problem_creates_nothing_it_leaves(tmp_path):
+    assert folder_problem(tmp_path / "a" / "b" / "c") == ""
+    assert folder_problem(tmp_path) == ""
+    assert list(tmp_path.iterdir()) == []  # the folders and the probe file were removed again
+
+
+def test_folder_problem_agrees_with_really_writing(tmp_path):
+    """A read-only folder: refused unless a file can really be written there (root can)."""
+    ro = tmp_path / "ro"
+    ro.mkdir()
+    os.chmod(ro, 0o555)
+    try:
+        writable = _really_writable(ro)
+        assert (folder_problem(ro) == "") == writable
+        assert (folder_problem(ro / "new") == "") == writable
+        assert list(ro.iterdir()) == []
+    finally:
+        os.chmod(ro, 0o755)
+
+
+def test_verify_refuses_an_uncreatable_report_dir_before_any_row(monkeypatch, capsys):
+    """``chaplygin verify --report-dir /proc/x``: one ``error:`` line, exit 2, no row run."""
+    from chaplygin_nd.ledger import __main__ as ledger_main
+
+    def no_rows(*args, **kwargs):
+        raise AssertionError("a row ran although --report-dir cannot be created")
+
+    monkeypatch.setattr(ledger_main, "run", no_rows)
+    assert ledger_main.main(["--report-dir", "/proc/x"]) == 2
+    captured = capsys.readouterr()
+    err = captured.err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("error: --report-dir /proc/x: cannot create it"), err
+    assert "seed" not in captured.out and not os.path.exists("/proc/x")
+
+
+@pytest.mark.parametrize("path", ["/proc/x", "/sys/x"])
+def test_every_output_option_uses_the_same_check(tmp_path, capsys, path):
+    """``simulate --out``, ``bench --out`` and ``first-integrals --json`` refuse the same places."""
+    from chaplygin_nd.bench.__main__ import _unusable_out
+    from chaplygin_nd.simulate.scene import cli as simulate_cli
+    from chaplygin_nd.symbolic import fi_cli
+
+    assert _unusable_out(Path(path)).startswith("cannot create it")
+    assert simulate_cli.main(["steady4d", "--out", path, "--no-plots"]) == 2
+    assert fi_cli.main(["3", "1", "--a", "1/2", "--b", "1", "--json", str(Path(path).parent / "t.json")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 2 and all(line.startswith("error: ") for line in err), err
+    assert not os.path.exists(path)

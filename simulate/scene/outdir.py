@@ -45,6 +45,8 @@ import uuid
 from collections.abc import Callable, Iterable
 from pathlib import Path
 
+from chaplygin_nd.writing import probe_problem
+
 __all__ = ["MANIFEST", "OutputError", "OutputFolder", "claim", "lock_file", "SIBLING"]
 
 MANIFEST = ".chaplygin-run.json"
@@ -64,16 +66,9 @@ def _umask() -> int:
 
 def _probe_writable(folder: Path) -> bool:
     """True when a file can really be created in ``folder`` (``os.access`` alone is wrong for
-    root, which bypasses permission bits but not read-only mounts); the probe file is removed."""
-    if not os.access(folder, os.W_OK | os.X_OK):
-        return False
-    try:
-        fd, name = tempfile.mkstemp(prefix=".chaplygin-probe-", dir=folder)
-    except OSError:
-        return False
-    os.close(fd)
-    os.unlink(name)
-    return True
+    root, which bypasses permission bits but not read-only mounts); the probe file is removed
+    (:func:`chaplygin_nd.writing.probe_problem`, the check of every output option)."""
+    return not probe_problem(folder)
 
 
 def _read_manifest(folder: Path) -> dict | None:
