@@ -110,17 +110,7 @@ def main(argv: list[str]) -> int:
               f"known {r.known}, {'settled' if r.settled else 'NOT settled (candidates)'}, "
               f"{time.perf_counter() - t0:.1f} s", flush=True)
     if args.json:
-        import os
-        import tempfile
-        from pathlib import Path
+        from chaplygin_nd.writing import write_atomic
 
-        out = Path(args.json).absolute()
-        fd, tmp = tempfile.mkstemp(dir=out.parent, prefix=f".{out.name}.", suffix=".tmp")
-        try:
-            with os.fdopen(fd, "w") as f:
-                json.dump(rows, f, indent=1, default=str)
-            os.replace(tmp, out)
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
+        write_atomic(args.json.absolute(), json.dumps(rows, indent=1, default=str))
     return 0

@@ -167,3 +167,61 @@ def test_every_output_option_uses_the_same_check(tmp_path, capsys, path):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 2 and all(line.startswith("error: ") for line in err), err
     assert not os.path.exists(path)
+
+
+# --- every atomic writer of the package goes through chaplygin_nd.writing (issue 25, item 4) ---
+ROOT = Path(__file__).resolve().parent.parent
+PACKAGE = ("chaplygin_nd", "ledger", "symbolic", "runtime", "proofs", "simulate", "bench", "docs")
+
+
+def test_no_atomic_writer_of_its_own():
+    """A temporary file moved into place is made in one module; ledger/report.py moves its pair
+    (written by writing.write_temporary) with the signals held, the one other os.replace; a
+    hand-made '.tmp' name (bench wrote '.horizontal.md.tmp', shared by two concurrent runs) is
+    refused too."""
+    allowed = {"chaplygin_nd/writing.py": {"os.replace("}, "ledger/report.py": {"os.replace("},
+               "simulate/scene/outdir.py": {'".tmp'}}  # it recognises the writer's leftovers
+    found = []
+    for folder in PACKAGE:
+        for path in sorted((ROOT / folder).rglob("*.py")):
+            rel = path.relative_to(ROOT).as_posix()
+            text = path.read_text(encoding="utf-8")
+            for pattern in ("mkstemp(", "os.replace(", "NamedTemporaryFile(", '".tmp', "'.tmp"):
+                if pattern in text and pattern not in allowed.get(rel, set()):
+                    found.append(f"{rel}: {pattern}")
+    assert found == []
+
+
+def test_the_report_pair_keeps_the_mode_of_the_files_it_replaces(tmp_path):
+    from chaplygin_nd.ledger import report
+
+    old, new = tmp_path / "VERIFICATION.md", tmp_path / "verification.json"
+    old.write_text("old")
+    os.chmod(old, 0o640)
+    with umask(0o022):
+        report.write_files({old: "new md", new: "{}"})
+    assert (mode(old), mode(new)) == (0o640, 0o644)
+    assert old.read_text() == "new md" and sorted(p.name for p in tmp_path.iterdir()) == [
+        "VERIFICATION.md", "verification.json"]
+
+
+def test_bench_files_keep_the_mode_of_the_files_they_replace(tmp_path):
+    from chaplygin_nd.bench.report import write_atomic as bench_write
+
+    target = tmp_path / "sub" / "rows.json"
+    with umask(0o022):
+        bench_write(target, "[]")
+        assert mode(target) == 0o644
+        os.chmod(target, 0o664)
+        bench_write(target, b"[1]")
+    assert mode(target) == 0o664 and target.read_text() == "[1]"
+
+
+def test_first_integrals_json_gets_the_mode_of_a_plain_open(tmp_path, capsys):
+    from chaplygin_nd.symbolic import fi_cli
+
+    out = tmp_path / "table.json"
+    with umask(0o022):
+        assert fi_cli.main(["3", "1", "--a", "1/2", "--b", "1", "--json", str(out)]) == 0
+    assert mode(out) == 0o644 and isinstance(json.loads(out.read_text()), list)
+    assert [p.name for p in tmp_path.iterdir()] == ["table.json"]

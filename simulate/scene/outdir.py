@@ -45,7 +45,7 @@ import uuid
 from collections.abc import Callable, Iterable
 from pathlib import Path
 
-from chaplygin_nd.writing import probe_problem
+from chaplygin_nd.writing import probe_problem, write_atomic
 
 __all__ = ["MANIFEST", "OutputError", "OutputFolder", "claim", "lock_file", "SIBLING"]
 
@@ -187,16 +187,7 @@ class OutputFolder:
 
     @staticmethod
     def _atomic(folder: Path, name: str, writer: Callable[[Path], object]) -> None:
-        fd, tmp = tempfile.mkstemp(prefix=f".{name}.", suffix=f".tmp{Path(name).suffix}",
-                                   dir=folder)
-        os.close(fd)
-        try:
-            writer(Path(tmp))
-            os.chmod(tmp, 0o666 & ~_umask())
-            os.replace(tmp, folder / name)
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
+        write_atomic(folder / name, writer)  # '.NAME.XXXXXXXX.tmpSUFFIX' until it is whole
 
     def write(self, files: dict[str, Callable[[Path], None]]) -> Path:
         """Write every ``name -> writer(path)`` of ``files`` (rules in the module docstring);
