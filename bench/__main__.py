@@ -17,6 +17,7 @@ from pathlib import Path
 
 from chaplygin_nd.cli import version_line
 from chaplygin_nd.console import fail, interruptible, path_argument
+from chaplygin_nd.writing import folder_problem
 
 OUT = Path(__file__).resolve().parent / "out"
 #: Written into every ``--out`` folder the bench uses: a non-empty folder without it holds files
@@ -98,14 +99,15 @@ def _main(argv: list[str] | None) -> int:
 
 def _unusable_out(out: Path) -> str:
     """Why ``out`` cannot take the bench's files (``""`` when it can): it must be a new folder, an
-    empty one, one with :data:`MARKER`, or the checkout's default ``bench/out``."""
+    empty one, one with :data:`MARKER`, or the checkout's default ``bench/out``, and one this
+    program can create and write into (:func:`chaplygin_nd.writing.folder_problem`)."""
     if out.exists() and not out.is_dir():
         return "exists and is not a folder; give a new or empty folder"
     if (out.is_dir() and out.resolve() != OUT.resolve() and not (out / MARKER).is_file()
             and any(out.iterdir())):
         return ("the folder holds files this program did not write; give a new or empty folder, "
                 "or one an earlier `chaplygin bench --out` wrote")
-    return ""
+    return folder_problem(out)  # really created and removed: os.access says yes to root on /proc
 
 
 CACHES = ("references", "jit", "heyoka-llvm")

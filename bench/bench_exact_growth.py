@@ -27,6 +27,8 @@ import time
 from collections import defaultdict
 from pathlib import Path
 
+from chaplygin_nd.writing import write_atomic
+
 #: The rows with seeded point checks for every n (the [n] column reaches ALL_N_MAX).
 ROWS = ("eq:M-O-axi-symm", "P:inversion", "eq:aux-inversion", "P:Measure", "eq:action",
         "eq:V-velocity", "Th:Re", "Th:Re-corollary", "eq:xiVnD", "eq:itildendim",
@@ -166,16 +168,14 @@ def figure(result: dict, path: Path) -> None:
                  "step FLINT only re-tests SymPy's value there (tiny times); right of it FLINT "
                  "evaluates alone", fontsize=10, wrap=True)
     fig.tight_layout()
-    tmp = path.with_suffix(".tmp.png")
-    fig.savefig(tmp, dpi=90)
-    plt.close(fig)
-    tmp.replace(path)
+    try:
+        write_atomic(path, lambda tmp: fig.savefig(tmp, dpi=90))
+    finally:
+        plt.close(fig)
 
 
 def _write(path: Path, text: str) -> None:
-    tmp = path.with_suffix(path.suffix + ".tmp")
-    tmp.write_text(text)
-    tmp.replace(path)
+    write_atomic(path, text)
 
 
 def main(out: Path, quick: bool = False) -> int:

@@ -20,6 +20,7 @@ from multiprocessing import get_context
 from pathlib import Path
 
 from chaplygin_nd import processes
+from chaplygin_nd.writing import write_atomic
 
 QUICK = {3: ((1, 2, 0), (2, 4, 1), (3, 4, 1)), 4: ((2, 4, 1), (3, 5, 1), (4, 6, 1)),
          5: ((2, 4, 1), (3, 5, 1), (4, 4, 1))}
@@ -72,9 +73,7 @@ def markdown(result: dict) -> str:
 
 
 def _write(path: Path, text: str) -> None:
-    tmp = path.with_suffix(path.suffix + ".tmp")
-    tmp.write_text(text)
-    os.replace(tmp, path)
+    write_atomic(path, text)
 
 
 def main(out: Path, quick: bool = False) -> int:

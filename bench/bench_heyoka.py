@@ -30,6 +30,7 @@ from pathlib import Path
 
 import mpmath
 import numpy as np
+from chaplygin_nd.bench.report import write_atomic
 from chaplygin_nd.runtime import jit_cache
 from chaplygin_nd.simulate.dynamics import families
 from chaplygin_nd.simulate.dynamics.field import FullField, ReducedField
@@ -336,7 +337,7 @@ def main(outdir) -> int:
     tp = throughput_rows()
     lines = targets(wp, tp)
     print("\n".join(lines))
-    (outdir / "heyoka.json").write_text(json.dumps({"work_precision": wp, "throughput": tp}, indent=1))
+    write_atomic(outdir / "heyoka.json", json.dumps({"work_precision": wp, "throughput": tp}, indent=1))
     md = ["# heyoka against our integrators (bench/bench_heyoka.py)", "", *[f"- {li}" for li in lines],
           "", "| scene | T | method | setting | error | seconds | compile/load s |", "|---|---|---|---|---|---|---|"]
     md += [f"| {r['scene']} | {r['T']:g} | {r['method']} | {r['setting']} | {r['error']:.2e} | "
@@ -344,7 +345,7 @@ def main(outdir) -> int:
     md += ["", "| kernel | backend | points | bytes | seconds |", "|---|---|---|---|---|"]
     md += [f"| {r['kernel']} | {r['backend']} | {r['points']} | {r['bytes']} | {r['seconds']:.6f} |"
            for r in tp]
-    (outdir / "heyoka.md").write_text("\n".join(md) + "\n")
+    write_atomic(outdir / "heyoka.md", "\n".join(md) + "\n")
     return 0
 
 

@@ -32,6 +32,8 @@ from chaplygin_nd.simulate.integrators import dop853
 from chaplygin_nd.simulate.integrators.taylor import L_matrix_mp
 from chaplygin_nd.simulate.kernels import active
 
+from chaplygin_nd.writing import write_atomic
+
 QUICK = os.environ.get("BENCH_QUICK") == "1"
 #: (scene name, n, a, b, seed) — seeded horizontal initial conditions.
 SCENES = (("horizontal5d", 5, 0.7, 0.4, 3), ("horizontal6d", 6, -0.4, 1.5, 7))
@@ -114,9 +116,8 @@ def main(outdir="bench/out") -> None:
     print(text)
     out = Path(outdir)
     out.mkdir(parents=True, exist_ok=True)
-    tmp = out / ".horizontal.md.tmp"
-    tmp.write_text("# Horizontal closed form vs full system (S5:H-linear-nD)\n\n" + text + "\n")
-    os.replace(tmp, out / "horizontal.md")
+    write_atomic(out / "horizontal.md",
+                 "# Horizontal closed form vs full system (S5:H-linear-nD)\n\n" + text + "\n")
 
 
 if __name__ == "__main__":

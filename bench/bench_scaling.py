@@ -355,6 +355,6 @@ def main(outdir, quick: bool = False) -> int:
            f"{r['predicted_run'] if r['predicted_run'] is not None else ''} | {r['method']} |"
            for r in first]
     write_atomic(outdir / "scaling.md", "\n".join(md) + "\n")
-    (outdir / "scaling_fixed.json").write_text(json.dumps({"fixed_cost": fixed, "cfunc": cfuncs},
-                                                          indent=1) + "\n")
+    write_atomic(outdir / "scaling_fixed.json",
+                 json.dumps({"fixed_cost": fixed, "cfunc": cfuncs}, indent=1) + "\n")
     return 0

@@ -7,12 +7,13 @@ import json
 import math
 import os
 import platform
-import tempfile
 import time
 from collections.abc import Callable, Iterable
 from pathlib import Path
 
 import numpy as np
+
+from chaplygin_nd import writing
 
 
 def write_atomic(path: Path, data: str | bytes) -> None:
@@ -20,17 +21,7 @@ def write_atomic(path: Path, data: str | bytes) -> None:
     reader never sees half a file, and an interrupted run leaves the old file intact."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data.encode() if isinstance(data, str) else data)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; an output file is as readable as any
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    writing.write_atomic(path, data)  # the project's one atomic writer (mode as a plain open())
 
 
 def _plain(value):

@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import os
 import sys
 import time
 import uuid
@@ -42,6 +41,7 @@ from chaplygin_nd.console import (
     positive_int,
     say,
 )
+from chaplygin_nd.writing import folder_problem
 
 #: command -> its one-line description (``-h``).
 _DESCRIPTIONS = {
@@ -195,16 +195,11 @@ def _report_paths(report_dir: str | Path | None, whole: bool):
             return None
         return ROOT / "VERIFICATION.md", ROOT / "verification.json", ROOT / report.GRAPH_PATH
     folder = Path(report_dir)
-    if folder.exists() and not folder.is_dir():
-        return fail(f"--report-dir {report_dir}: exists and is not a folder")
-    # created only when the reports are written (an interrupted run leaves no empty folder):
-    # here the nearest existing ancestor must be a writable folder
-    base = next(p for p in (folder, *folder.absolute().parents) if p.exists() or p.is_symlink())
-    if not base.is_dir():
-        return fail(f"--report-dir {report_dir}: cannot create it ({base} is not a folder)")
-    if not os.access(base, os.W_OK | os.X_OK):
-        return fail(f"--report-dir {report_dir}: " + ("the folder is not writable" if base == folder
-                    else f"cannot create it ({base} is not writable)"))
+    # created only when the reports are written (an interrupted run leaves no empty folder); here
+    # it is created with a file in it and removed again (os.access says yes to root on /proc)
+    problem = folder_problem(folder)
+    if problem:
+        return fail(f"--report-dir {report_dir}: {problem}")
     targets = folder / "VERIFICATION.md", folder / "verification.json", folder / "claim-graph.svg"
     foreign = _foreign_reports(*targets)
     if foreign:

@@ -33,10 +33,10 @@ from __future__ import annotations
 
 import importlib
 import json
-import os
-import tempfile
 from pathlib import Path
 from types import CodeType, FunctionType
+
+from chaplygin_nd.writing import write_atomic
 
 PRINTED_MODULES = ("section2", "section3", "section4", "section5")
 MAP_PATH = Path(__file__).resolve().parent / "reach.json"
@@ -255,16 +255,9 @@ def rows_by_function(printed_by_row: dict[str, list[str]]) -> dict[str, list[str
 
 
 def write_json_atomic(data: dict, path: Path) -> None:
-    """Write ``data`` as JSON to ``path`` through a temporary file and ``os.replace``."""
-    fd, tmp = tempfile.mkstemp(prefix=path.name + ".", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            json.dump(data, fh, indent=1, sort_keys=True)
-            fh.write("\n")
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    """Write ``data`` as JSON to ``path``, whole or not at all, with the mode a plain ``open()``
+    gives (or the replaced file's): :func:`chaplygin_nd.writing.write_atomic`."""
+    write_atomic(path, json.dumps(data, indent=1, sort_keys=True) + "\n")
 
 
 def load(path: Path = MAP_PATH) -> tuple[dict[str, list[str]], dict[str, float]]:

@@ -13,7 +13,6 @@ import json
 import os
 import platform
 import signal
-import tempfile
 from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -24,6 +23,8 @@ from chaplygin_nd.ledger import sources
 from chaplygin_nd.ledger.registry import ERRATA_KINDS, KINDS, NEEDS_KIND, VERDICTS, registry
 from chaplygin_nd.ledger.runner import Result
 from chaplygin_nd.symbolic.points import n_text
+
+from chaplygin_nd.writing import write_temporary
 
 #: What each verdict means, for the reader of the report (one entry per verdict of the ledger).
 VERDICT_TEXT = {
@@ -163,7 +164,7 @@ def write_files(texts: dict[Path, str]) -> None:
     The folders it had to create are removed again when it does not get to the end (an
     interrupted ``verify --report-dir NEW`` leaves nothing it created). An ``OSError`` names the
     path that failed (``exc.filename``)."""
-    temps: list[tuple[str, Path]] = []
+    temps: list[tuple[Path, Path]] = []
     created: list[Path] = []
     done = False
     try:
@@ -171,13 +172,8 @@ def write_files(texts: dict[Path, str]) -> None:
             missing = [p for p in (path.parent, *path.parent.parents) if not p.exists()]
             path.parent.mkdir(parents=True, exist_ok=True)
             created += [p for p in missing if p not in created]
-            fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-            temps.append((tmp, path))
-            with os.fdopen(fd, "w", encoding="utf-8") as fh:
-                fh.write(text)
-            mask = os.umask(0)
-            os.umask(mask)
-            os.chmod(tmp, 0o666 & ~mask)
+            # whole, at a unique temporary name, with the mode of a plain open() (or the old file's)
+            temps.append((write_temporary(path, text), path))
         held = {signal.SIGINT, signal.SIGTERM}
         old = signal.pthread_sigmask(signal.SIG_BLOCK, held)
         try:

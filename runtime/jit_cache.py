@@ -38,9 +38,7 @@ from __future__ import annotations
 
 import hashlib
 import json
-import os
 import pickle
-import tempfile
 import time
 import warnings
 from collections.abc import Callable
@@ -48,6 +46,7 @@ from functools import cache
 from pathlib import Path
 
 from chaplygin_nd import cache as project_cache
+from chaplygin_nd.writing import write_atomic
 
 __all__ = ["cache_dir", "load_or_build", "memory_hit", "CacheWarning", "code_version", "forget_memory",
            "cache_state", "unsafe_reason"]
@@ -122,14 +121,7 @@ def _chain_unsafe(path: Path) -> tuple[Path, str] | None:
 
 
 def _write_atomic(path: Path, payload: bytes) -> None:
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name + ".", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(payload)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    write_atomic(path, payload, mode=0o600)  # private, as its folder: it is unpickled
 
 
 def _memory_key(key: dict) -> tuple:

@@ -59,6 +59,7 @@ def parse_model(n: int, a, b, J):
 def main(argv: list[str]) -> int:
     """Run the search; exit status 0, or 2 on bad input (one line)."""
     from chaplygin_nd.console import OneLineParser, fail, path_argument, positive_int
+    from chaplygin_nd.writing import probe_problem
 
     parser = OneLineParser(prog="chaplygin first-integrals",
                            description="Exact search for polynomial and rational first integrals "
@@ -89,6 +90,8 @@ def main(argv: list[str]) -> int:
             raise ValueError(f"--json {args.json}: is a folder; give a file name")
         if args.json is not None and not args.json.absolute().parent.is_dir():
             raise ValueError(f"--json {args.json}: no folder {args.json.absolute().parent}")
+        if args.json is not None and (problem := probe_problem(args.json.absolute().parent)):
+            raise ValueError(f"--json {args.json}: cannot write into its folder ({problem})")
     except ValueError as err:
         return fail(str(err))
     import sys
@@ -107,17 +110,7 @@ def main(argv: list[str]) -> int:
               f"known {r.known}, {'settled' if r.settled else 'NOT settled (candidates)'}, "
               f"{time.perf_counter() - t0:.1f} s", flush=True)
     if args.json:
-        import os
-        import tempfile
-        from pathlib import Path
+        from chaplygin_nd.writing import write_atomic
 
-        out = Path(args.json).absolute()
-        fd, tmp = tempfile.mkstemp(dir=out.parent, prefix=f".{out.name}.", suffix=".tmp")
-        try:
-            with os.fdopen(fd, "w") as f:
-                json.dump(rows, f, indent=1, default=str)
-            os.replace(tmp, out)
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
+        write_atomic(args.json.absolute(), json.dumps(rows, indent=1, default=str))
     return 0

@@ -17,7 +17,6 @@ import os
 import shutil
 import subprocess
 import sys
-import tempfile
 import tomllib
 from dataclasses import replace
 from pathlib import Path
@@ -27,6 +26,8 @@ import pytest
 from chaplygin_nd.simulate.analysis import frequencies as fq
 from chaplygin_nd.simulate.analysis import result_cache as rc
 from chaplygin_nd.simulate.analysis.evidence import orbits
+
+from chaplygin_nd import writing
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -204,7 +205,8 @@ def test_a_read_only_cache_runs_uncached(cache, monkeypatch):
     def read_only(*args, **kwargs):
         raise OSError(errno.EROFS, "Read-only file system")
 
-    monkeypatch.setattr(tempfile, "mkstemp", read_only)      # every write of an entry fails
+    # every write of an entry fails (they all go through the project's one atomic writer)
+    monkeypatch.setattr(writing, "write_temporary", read_only)
     with pytest.warns(rc.ResultCacheWarning, match="Read-only file system.*uncached"):
         orb = orbits(exp)
         specs = fq.spectra(exp)

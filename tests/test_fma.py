@@ -113,3 +113,19 @@ def test_the_scene_validates_and_runs(tmp_path):
     assert names == ["fma.npz", "fma_axisymmetric.png", "fma_control.png", "summary.txt"]
     with np.load(out / "fma.npz") as d:
         assert d["D_axisymmetric"].shape == d["D_control"].shape == (3, 3)
+
+
+def test_no_plots_writes_no_map_figure(tmp_path):
+    """--no-plots covers the frequency-map scenes too (the new-user trial of round 22 found
+    fma_*.png written under --no-plots): the arrays and the summary, no PNG."""
+    from chaplygin_nd.simulate.scene.cli import main
+
+    text = (ROOT / "scenes" / "fma4d.toml").read_text()
+    small = (text.replace("grid = 200", "grid = 2").replace("samples = 2048", "samples = 64")
+             .replace("dt = 1.0", "dt = 0.5"))
+    path = tmp_path / "tiny.toml"
+    path.write_text(small)
+    out = tmp_path / "out"
+    assert main([str(path), "--out", str(out), "--workers", "1", "--no-plots"]) == 0
+    names = sorted(p.name for p in out.iterdir() if not p.name.startswith("."))
+    assert names == ["fma.npz", "summary.txt"]

@@ -185,3 +185,20 @@ def test_every_time_series_output_has_a_figure(tmp_path):
     assert sorted(p.name for p in (tmp_path / "out").glob("*.png")) == ["horizontal.png", "x.png"]
     fig = figure("horizontal", T, np.zeros((len(T), 2, 4)) + T[:, None, None])
     assert [ax.get_ylabel() for ax in fig.axes if ax.axison][2:] == ["$A$", "$B$"]
+
+
+@pytest.mark.parametrize("no_plots", [False, True])
+def test_no_plots_leaves_out_the_poincare_figure_too(tmp_path, capsys, no_plots):
+    """A figure asked for as an output (poincare.png of the tori scenes) is a figure: --no-plots
+    leaves it out as it does the other PNGs, and the summary says it was not drawn."""
+    scene = tmp_path / "s.toml"
+    scene.write_text('n = 4\na = -0.5\nb = 0.5\n[initial]\nfamily = "generic"\nseed = 3\n'
+                     'members = [3, 1]\n[times]\nt_end = 10.0\nsamples = 64\n'
+                     '[outputs]\nwant = ["x", "poincare"]\n')
+    out = tmp_path / "out"
+    assert cli.main([str(scene), "--out", str(out)] + (["--no-plots"] if no_plots else [])) == 0
+    pngs = sorted(p.name for p in out.glob("*.png"))
+    assert pngs == ([] if no_plots else ["poincare.png", "x.png"])
+    assert (out / "x.csv").exists()
+    line = next(s for s in capsys.readouterr().out.splitlines() if s.startswith("poincare"))
+    assert ("not drawn" in line) == no_plots and ("poincare.png" in line) != no_plots

@@ -37,12 +37,12 @@ import importlib.util
 import json
 import os
 import sys
-import tempfile
 import warnings
 from collections.abc import Iterator
 from pathlib import Path
 
 from chaplygin_nd import cache as project_cache
+from chaplygin_nd import writing
 
 __all__ = ["ResultCacheWarning", "private_folder", "code_manifest", "code_unchanged",
            "environment", "write_atomic", "warn_once", "locked", "read_entry", "settings_key",
@@ -179,23 +179,15 @@ def environment(heyoka: bool = False) -> dict[str, str]:
 
 
 def write_atomic(path: Path, write) -> bool:
-    """``write(tmp_path)`` into a temporary file beside ``path``, then move it into place; False
-    (after one warning) if the folder refuses the write. Never raises :class:`OSError`."""
-    tmp = None
+    """``write(tmp_path)`` into a temporary file beside ``path``, then move it into place
+    (:func:`chaplygin_nd.writing.write_atomic`; a cache entry is private, 0600, as its folder);
+    False (after one warning) if the folder refuses the write. Never raises :class:`OSError`."""
     try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=path.suffix, dir=path.parent)
-        os.close(fd)
-        write(tmp)
-        os.replace(tmp, path)
-        tmp = None
+        writing.write_atomic(path, write, mode=0o600)
         return True
     except OSError as exc:
         warn_once(f"writing the cache entry {path} failed ({exc.strerror or exc}); running uncached")
         return False
-    finally:
-        if tmp is not None:
-            with contextlib.suppress(OSError):
-                os.unlink(tmp)
 
 
 @contextlib.contextmanager

@@ -21,7 +21,7 @@ from chaplygin_nd.simulate.kernels import KernelMissing
 from chaplygin_nd.simulate.scene import tori as tori_scene
 from chaplygin_nd.simulate.scene.frequency_map import FrequencyMapScene
 from chaplygin_nd.simulate.scene.outdir import OutputError, claim
-from chaplygin_nd.simulate.scene.outputs import collect, max_drift, write
+from chaplygin_nd.simulate.scene.outputs import collect, max_drift, without_figures, write
 from chaplygin_nd.simulate.scene.planner import plan
 from chaplygin_nd.simulate.scene.run import execute
 from chaplygin_nd.simulate.scene.spec import SceneError, builtin_scenes, find
@@ -113,10 +113,12 @@ def main(argv: list[str] | None = None) -> int:
                                          "(e.g. fma4d)")
             out = out or Path("out") / scene.name
             folder = claim(out, scene.name)
-            if isinstance(scene, FrequencyMapScene):  # a frequency map (simulate/scene/frequency_map.py)
-                return _frequency_map(scene, folder, out, args, start)
-            if not args.no_plots:
+            # figures or none, decided once for every scene kind (outputs.without_figures drops them)
+            plots = not args.no_plots and scene.figures
+            if plots:
                 usable_backend()
+            if isinstance(scene, FrequencyMapScene):  # a frequency map (simulate/scene/frequency_map.py)
+                return _frequency_map(scene, folder, out, args, start, plots)
             # inf/nan are not warned about but checked: every field and output, naming it and the time
             with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
                 p = plan(scene)
@@ -132,13 +134,13 @@ def main(argv: list[str] | None = None) -> int:
                         {k: traj.data[k] for k in ("M", "gamma") if k in traj.data}
                              if tori_scene.wants(scene) else None)
                     check = cross_check(scene, p, arrays, force=args.force, state=state)
-                extra, extra_lines = (tori_scene.files(scene, traj) if tori_scene.wants(scene)
+                extra, extra_lines = (tori_scene.files(scene, traj, plots) if tori_scene.wants(scene)
                                       else ({}, []))
             rest = "\n".join([summary(scene, p, traj, arrays, time.perf_counter() - start, check,
                                        out, with_heading=False), *extra_lines])
             text = heading(scene, p) + "\n" + rest  # summary.txt: the whole summary
             try:
-                write(folder, arrays, text, plots=not args.no_plots and scene.figures, extra=extra)
+                write(folder, arrays, text, plots=plots, extra=extra)
             except OSError as exc:
                 return fail(f"writing --out {out}: {exc.strerror or exc}")
         except (SceneError, OutputError, RunStopped) as exc:
@@ -157,8 +159,9 @@ def main(argv: list[str] | None = None) -> int:
     return 1 if check is not None and not check.passed else 0
 
 
-def _frequency_map(scene, folder, out, args, start) -> int:
-    """Run a frequency-map scene into ``folder`` (claimed) and print its summary."""
+def _frequency_map(scene, folder, out, args, start, plots: bool) -> int:
+    """Run a frequency-map scene into ``folder`` (claimed) and print its summary; without the two
+    map figures when ``plots`` is false (``--no-plots``)."""
     from chaplygin_nd.simulate.scene import frequency_map as fma_scene
 
     if args.workers is not None and args.workers < 1:
@@ -174,7 +177,7 @@ def _frequency_map(scene, folder, out, args, start) -> int:
           f"(heyoka batch), T = {2 * scene.spec.samples * scene.spec.dt:g}; {where}", flush=True)
     files, text = fma_scene.run(scene, workers=args.workers, scheduler=args.scheduler)
     text += f"\nwall    {time.perf_counter() - start:.1f} s in all\nwritten {out}"
-    folder.write(files)
+    folder.write(files if plots else without_figures(files))
     print(text)
     return 0
 

@@ -19,8 +19,8 @@ r"""Scenes with an ``[fma]`` table: a frequency map of the 4D sphere beside one 
     tol = 1e-12              # Taylor tolerance (heyoka)
     chunk = 64               # orbits per task
 
-Writes ``fma_axisymmetric.png``, ``fma_control.png`` (the two maps), ``fma.npz`` (the diffusion
-arrays and the axes) and ``summary.txt``.
+Writes ``fma_axisymmetric.png``, ``fma_control.png`` (the two maps; not with ``--no-plots``),
+``fma.npz`` (the diffusion arrays and the axes) and ``summary.txt``.
 """
 
 from __future__ import annotations
@@ -53,6 +53,8 @@ class FrequencyMapScene:
     source: str = "<scene>"
     name: str = "scene"
     raw: dict = field(default_factory=dict, repr=False)
+    #: the map figures are drawn unless ``--no-plots`` is given (no [outputs] table to turn them off)
+    figures: bool = True
 
     @property
     def orbits(self) -> int:

@@ -45,6 +45,8 @@ import uuid
 from collections.abc import Callable, Iterable
 from pathlib import Path
 
+from chaplygin_nd.writing import probe_problem, write_atomic
+
 __all__ = ["MANIFEST", "OutputError", "OutputFolder", "claim", "lock_file", "SIBLING"]
 
 MANIFEST = ".chaplygin-run.json"
@@ -64,16 +66,9 @@ def _umask() -> int:
 
 def _probe_writable(folder: Path) -> bool:
     """True when a file can really be created in ``folder`` (``os.access`` alone is wrong for
-    root, which bypasses permission bits but not read-only mounts); the probe file is removed."""
-    if not os.access(folder, os.W_OK | os.X_OK):
-        return False
-    try:
-        fd, name = tempfile.mkstemp(prefix=".chaplygin-probe-", dir=folder)
-    except OSError:
-        return False
-    os.close(fd)
-    os.unlink(name)
-    return True
+    root, which bypasses permission bits but not read-only mounts); the probe file is removed
+    (:func:`chaplygin_nd.writing.probe_problem`, the check of every output option)."""
+    return not probe_problem(folder)
 
 
 def _read_manifest(folder: Path) -> dict | None:
@@ -192,16 +187,7 @@ class OutputFolder:
 
     @staticmethod
     def _atomic(folder: Path, name: str, writer: Callable[[Path], object]) -> None:
-        fd, tmp = tempfile.mkstemp(prefix=f".{name}.", suffix=f".tmp{Path(name).suffix}",
-                                   dir=folder)
-        os.close(fd)
-        try:
-            writer(Path(tmp))
-            os.chmod(tmp, 0o666 & ~_umask())
-            os.replace(tmp, folder / name)
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
+        write_atomic(folder / name, writer)  # '.NAME.XXXXXXXX.tmpSUFFIX' until it is whole
 
     def write(self, files: dict[str, Callable[[Path], None]]) -> Path:
         """Write every ``name -> writer(path)`` of ``files`` (rules in the module docstring);

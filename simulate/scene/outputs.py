@@ -30,7 +30,18 @@ from chaplygin_nd.simulate.kernels import active
 from chaplygin_nd.simulate.scene.figures import plot
 from chaplygin_nd.simulate.scene.outdir import OutputFolder
 
-__all__ = ["collect", "integrals", "p_coefficients", "write"]
+__all__ = ["collect", "integrals", "p_coefficients", "write", "FIGURE_SUFFIX", "without_figures"]
+
+#: What a figure is, for every scene kind: an output file with this suffix (trajectory outputs,
+#: ``poincare.png``, the frequency maps' ``fma_*.png``).
+FIGURE_SUFFIX = ".png"
+
+
+def without_figures(files: dict[str, Callable[[Path], Any]]) -> dict[str, Callable[[Path], Any]]:
+    """``files`` (``{name: writer(path)}``) without its figures: what ``--no-plots`` or
+    ``outputs.figures = false`` writes, for every scene kind (the one place that drops them; the
+    writers are lazy, so a dropped figure is never drawn)."""
+    return {name: w for name, w in files.items() if not name.endswith(FIGURE_SUFFIX)}
 
 
 def p_coefficients(M: np.ndarray, gamma: np.ndarray) -> np.ndarray:
@@ -118,7 +129,9 @@ def write(folder: OutputFolder, arrays: dict[str, np.ndarray], summary: str,
           plots: bool = True, extra: dict | None = None) -> Path:
     """Write ``arrays`` (NPZ, CSV per output, PNG per output), the ``extra`` files
     (``{name: writer(path)}``, e.g. :func:`simulate.scene.tori.files`) and ``summary.txt`` into
-    ``folder`` (claimed by :func:`simulate.scene.outdir.claim`), whole or not at all; returns its path."""
+    ``folder`` (claimed by :func:`simulate.scene.outdir.claim`), whole or not at all; returns its
+    path. ``plots`` false (``--no-plots``, ``outputs.figures = false``) leaves out every figure, the
+    extra ones included (:func:`without_figures`)."""
     t = arrays["t"]
     files: dict[str, Callable[[Path], Any]] = {
         "outputs.npz": lambda p: np.savez(p, **arrays)}  # type: ignore[arg-type]  # numpy stub: **kwds
@@ -129,8 +142,8 @@ def write(folder: OutputFolder, arrays: dict[str, np.ndarray], summary: str,
             files[f"{name}.csv"] = partial(_csv, t=t, arr=arr, name=name.replace(".", "_"))
         else:
             files["zeta.csv"] = partial(np.savetxt, X=arr.reshape(arr.shape[0], -1), delimiter=",")
-        if plots and not name.startswith("integrals."):
-            files[f"{name}.png"] = partial(plot, t=t, arr=arr, name=name)
+        if not name.startswith("integrals."):
+            files[f"{name}{FIGURE_SUFFIX}"] = partial(plot, t=t, arr=arr, name=name)
     files.update(extra or {})
     files["summary.txt"] = lambda p: p.write_text(summary + "\n", encoding="utf-8")
-    return folder.write(files)
+    return folder.write(files if plots else without_figures(files))

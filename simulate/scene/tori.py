@@ -86,9 +86,11 @@ def _entry(orb: Orbits, note: str) -> dict:
             "orbits": [s.to_dict() for s in specs]}
 
 
-def files(scene, traj) -> tuple[dict, list[str]]:
+def files(scene, traj, plots: bool = True) -> tuple[dict, list[str]]:
     """The requested files as ``{name: writer(path)}`` for :meth:`simulate.scene.outdir.OutputFolder.write`
-    (computed here, written atomically there) and one summary line per file."""
+    (computed here, written atomically there) and one summary line per file; ``plots`` false
+    (``--no-plots``) only rewords the Poincaré line (the figure is left out by
+    :func:`simulate.scene.outputs.without_figures`, with every other)."""
     dt = np.diff(scene.t)
     if not np.allclose(dt, dt[0], rtol=1e-12, atol=0):
         raise SceneError(scene.source, "times.t", "frequencies/poincare need uniformly spaced times",
@@ -125,6 +127,6 @@ def files(scene, traj) -> tuple[dict, list[str]]:
         title = (f"Poincaré section G = 0, dG/dt < 0 (maxima of x = γ₄), t ≤ {scene.t[-1]:g}; "
                  f"level set L: (F₁, F₂, F₃, H) = ({level})")
         out["poincare.png"] = lambda path: figure(path, panels, title)
-        lines.append("poincare    poincare.png: section of "
-                     f"{reduced.y.shape[1]} reduced and {scene.count} control orbits")
+        lines.append(f"poincare    {'poincare.png' if plots else 'not drawn (no figures)'}: "
+                     f"section of {reduced.y.shape[1]} reduced and {scene.count} control orbits")
     return out, lines
