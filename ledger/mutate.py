@@ -713,6 +713,13 @@ def main(argv: list[str] | None = None) -> int:
     os.environ[ENGINES_ENV] = args.engines
     if args.out is None:
         args.out = OUT_PATH if args.engines == "both" else ROOT / "mutation-flint.json"
+    from chaplygin_nd.writing import probe_problem
+
+    folder = args.out.parent
+    where = probe_problem(folder) if folder.is_dir() else "no such folder"
+    if where:  # before the run, not after it (checked by creating a file there, as root too)
+        return fail(f"--out {args.out}: cannot write in {folder} ({where}); give a file in a "
+                    "folder you can write")
     start = time.perf_counter()
     from chaplygin_nd.ledger.catalog import discover
 

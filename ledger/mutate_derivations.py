@@ -60,6 +60,7 @@ from chaplygin_nd.ledger.reach import (
 
 from chaplygin_nd import processes
 from chaplygin_nd.console import OneLineParser, fail, path_argument, say
+from chaplygin_nd.writing import probe_problem
 
 OUT_PATH = ROOT / "mutation-derivations.json"
 SEED = 20261123
@@ -398,9 +399,10 @@ def main(argv: list[str] | None = None) -> int:
                     "a new file name (nothing else is replaced)")
     args.out = args.out or OUT_PATH
     folder = args.out.parent
-    if not folder.is_dir() or not os.access(folder, os.W_OK | os.X_OK):  # before the run, not after
-        return fail(f"--out {args.out}: the folder {folder} does not exist or is not writable; "
-                    "give a file in a folder you can write")
+    where = probe_problem(folder) if folder.is_dir() else "no such folder"
+    if where:  # before the run, not after it (checked by creating a file there, as root too)
+        return fail(f"--out {args.out}: cannot write in {folder} ({where}); give a file in a "
+                    "folder you can write")
     _init_worker()
     records: list[dict] = []
     runs: list[dict] = []

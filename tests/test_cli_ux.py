@@ -160,8 +160,22 @@ def test_mutate_derivations_checks_the_out_folder_before_the_run(tmp_path, capsy
     out = tmp_path / "missing" / "m.json"
     argv = ["--target", "runtime", "--function", "runtime.axisym.vec", "--out", str(out)]
     assert mutate_derivations.main(argv) == 2
-    assert "does not exist or is not writable" in one_error_line(capsys)
+    assert "no such folder" in one_error_line(capsys)
     assert not out.parent.exists()
+
+
+@pytest.mark.parametrize("module", ["mutate", "mutate_derivations"])
+def test_mutation_tools_refuse_an_out_folder_they_cannot_write_even_as_root(module, capsys):
+    """/proc accepts no new file, whatever os.access says to root: both tools refuse it before
+    any mutant runs (round-22 trial)."""
+    import importlib
+
+    tool = importlib.import_module(f"chaplygin_nd.ledger.{module}")
+    argv = ["--out", "/proc/chaplygin-m.json"]
+    if module == "mutate_derivations":
+        argv += ["--target", "runtime", "--function", "runtime.axisym.vec"]
+    assert tool.main(argv) == 2
+    assert "cannot write in /proc" in one_error_line(capsys)
 
 # 7. the notebook API checks the domain it documents
 def _state(n=4, seed=5):
