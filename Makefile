@@ -56,7 +56,7 @@ mutate: setup
 ## workers, cheapest first; writes mutation-derivations.json (every 30 s; --resume goes on).
 ## `make mutate-derivations MUTATE_ARGS="--sample 150"` draws a seeded sample.
 mutate-derivations: setup
-	$(PY) -m chaplygin_nd.ledger.mutate_derivations $(MUTATE_ARGS)
+	$(CLI) mutate-derivations $(MUTATE_ARGS)
 
 ## generate: rewrite generated/ from the derived (proved) expressions.
 generate: setup

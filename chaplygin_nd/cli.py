@@ -6,6 +6,8 @@
 ``chaplygin bench [NAME ...]``  the benchmarks (``make bench``)
 ``chaplygin generate``          rewrite ``generated/`` from the proved formulas (``make generate``)
 ``chaplygin mutate``            mutation testing of the printed formulas (``make mutate``)
+``chaplygin mutate-derivations`` the same for the derivations and the runtime
+                                (``make mutate-derivations``)
 ``chaplygin docs [REPORT]``     build the reading site into docs/_build/html (``make docs-html``;
                                 in a source checkout, with the ``docs`` extra installed)
 ``chaplygin --version``         the version and, in a source checkout, the commit
@@ -29,6 +31,8 @@ COMMANDS = {
     "bench": ("chaplygin_nd.bench.__main__", "main", "run the benchmarks"),
     "generate": ("chaplygin_nd.symbolic.codegen", "main", "rewrite generated/ from the proofs"),
     "mutate": ("chaplygin_nd.ledger.mutate", "main", "mutation testing of the printed formulas"),
+    "mutate-derivations": ("chaplygin_nd.ledger.mutate_derivations", "main",
+                           "mutation testing of the derivations and the runtime"),
     "first-integrals": ("chaplygin_nd.symbolic.fi_cli", "main",
                         "exact search for first integrals, degree by degree"),
     "docs": ("chaplygin_nd.cli", "docs", "build the reading site (a source checkout)"),
@@ -106,15 +110,17 @@ def _usage() -> str:
             + "\n\n`chaplygin COMMAND -h` shows the options of COMMAND.")
 
 
-def main(argv: list[str] | None = None) -> int:
+def main(argv: list[str] | None = None, *, program: bool = False) -> int:
     """Run the ``chaplygin`` command; the exit status of the subcommand (2 on a usage error,
     130 when interrupted by Ctrl-C, 143 by SIGTERM). Ctrl-C or SIGTERM at any moment of the
     command — while a module is imported (the signal then waits for the import to end:
     :mod:`chaplygin_nd.console`), while the subcommand runs or while it prints its last line —
     ends it with one line, ``interrupted``; a signal received before the subcommand returned is
-    never lost, even if something on the way swallowed it (the run then says ``interrupted``);
-    once the subcommand has returned, its files are whole and a late signal no longer changes the
-    exit status (the interpreter's shutdown ignores it)."""
+    never lost, even if something on the way swallowed it (the run then says ``interrupted``).
+    As the program (``program``, from :func:`entry`): once the subcommand has returned, its files
+    are whole and a late signal no longer changes the exit status (the process ignores both
+    signals until it exits). Called in-process (a test, a mutant's test run) it leaves the
+    signals as it found them: ignoring them there lost a SIGTERM sent to the caller later."""
     import signal
 
     from chaplygin_nd import console, signals
@@ -124,8 +130,9 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         status = console.fail("interrupted", 130)
     finally:
-        for sig in (signal.SIGINT, signal.SIGTERM):
-            signal.signal(sig, signal.SIG_IGN)
+        if program:
+            for sig in (signal.SIGINT, signal.SIGTERM):
+                signal.signal(sig, signal.SIG_IGN)
     first = signals.received()
     if first is not None:
         if status != 130:
@@ -145,7 +152,7 @@ def entry() -> None:
     from chaplygin_nd.signals import take_signals
 
     take_signals()  # first, before any heavy import: an interrupt is one line from here on
-    status = main()
+    status = main(program=True)
     if status in (130, 143):
         for stream in (sys.stdout, sys.stderr):
             try:

@@ -1,18 +1,23 @@
-r"""``python -m chaplygin_nd.ledger.mutate_derivations`` (``make mutate-derivations``) — mutants of derivations and runtime.
+r"""``chaplygin mutate-derivations`` (``make mutate-derivations``) — mutants of derivations and runtime.
 
 :mod:`ledger.mutate` mutates the printed transcriptions. This module applies the same one-token AST
 mutants (:func:`ledger.mutate.all_mutants`: sign, const, swap, exponent, factor) to two other
 targets:
 
 * ``derivations`` — the public functions of ``symbolic/`` that derive
-  (:func:`ledger.reach.derivation_functions`). A mutant is run against the ledger rows that reach
-  the function (the ``derived`` map of ``ledger/reach.json``, cheapest first, all of them until
-  one changes), as ``make mutate`` does for printed functions: ``killed`` when a row's verdict,
-  counterexample or parts change (or it raises or runs past its budget); for a derivation emitted
-  into ``generated/``, also when the regenerated kernels differ (``make verify``'s stale check
-  fails); ``equivalent`` when nothing changed and the mutant returns exactly the original value at
-  every call of the cheapest row, else ``survived``. A derivation no row reaches (and, with
-  ``--rerun``, a survivor) is run against the tests that reach it instead (as the runtime is).
+  (:func:`ledger.reach.derivation_functions`). A mutant's checks are the ledger rows that reach the
+  function (the ``derived`` map of ``ledger/reach.json``, cheapest first) and, for a derivation
+  emitted into ``generated/``, the regeneration of the kernels. Each check is first **replayed**
+  (:mod:`ledger.mutate_replay`: the function's calls in that check, recorded once per worker, are
+  made again with the mutant): a check at whose every call the mutant returns exactly the recorded
+  value cannot change, and is not run. Any other check is run with the mutant, and stops at the
+  first part the row announces final that differs (``registry.decided``). ``killed`` when a check
+  changes (a row's verdict, counterexample or parts, a raise, its budget exceeded; stale kernels);
+  ``equivalent`` when every check replayed equal and the mutated line ran (a check that cannot be
+  replayed is run, then the values compared on the cheapest such row); otherwise the tests that
+  reach the function (found by one instrumented run of the test files naming its module) are
+  run, and a failure kills; else ``survived``. A derivation no row reaches is run against those
+  tests alone (as the runtime is).
 * ``runtime`` — the public functions of ``runtime/``. Their checks are tests, not rows: a mutant
   is run against the tests that call its function (:mod:`ledger.mutate_runtime`: recorded once
   per run, fastest first, ``pytest -x``); ``killed`` when a test fails; ``equivalent`` when every
@@ -345,17 +350,22 @@ def summary(records: list[dict], target: str, seconds: float | None = None, cpu:
     of this run, which ran ``ran`` of them (the others were kept from the file resumed or re-run)."""
     count = {k: sum(r["outcome"] == k for r in records)
              for k in ("killed", "equivalent", "survived", "error")}
-    line = (f"{target}: {len(records)} mutants of {len({r['function'] for r in records})} "
-            f"functions: {count['killed']} killed, {count['equivalent']} equivalent, "
-            f"{count['survived']} survived, {count['error']} errors")
+    functions = len({(r["target"], r["function"]) for r in records})
+    line = (f"{target}: {_plural(len(records), 'mutant')} of {_plural(functions, 'function')}: "
+            f"{count['killed']} killed, {count['equivalent']} equivalent, "
+            f"{count['survived']} survived, {_plural(count['error'], 'error')}")
     if seconds is None:
         return line
     ran = len(records) if ran is None else ran
     return f"{line}; this run: {ran} mutants in {seconds:.0f} s wall, {cpu:.0f} s CPU"
 
 
+def _plural(count: int, noun: str) -> str:
+    return f"{count} {noun}{'' if count == 1 else 's'}"
+
+
 def main(argv: list[str] | None = None) -> int:
-    parser = OneLineParser(prog="python -m chaplygin_nd.ledger.mutate_derivations",
+    parser = OneLineParser(prog="chaplygin mutate-derivations",
                            description=__doc__.splitlines()[0])
     parser.add_argument("--target", choices=("derivations", "runtime"), action="append",
                         help="what to mutate (default: both)")
@@ -475,8 +485,10 @@ def _write(records, runs, args) -> None:
     """``--out``: one summary line per target over all its records, the runs that made them
     (command, mutants run, wall and CPU seconds, load), ``complete`` when every run finished."""
     order = {"derivations": 0, "runtime": 1}
-    lines = [summary([r for r in records if r["target"] == t], t)
-             for t in sorted({r["target"] for r in records}, key=lambda t: order.get(t, 2))]
+    targets = sorted({r["target"] for r in records}, key=lambda t: order.get(t, 2))
+    lines = [summary([r for r in records if r["target"] == t], t) for t in targets]
+    if len(targets) > 1:
+        lines.append(summary(records, "total"))
     write_json_atomic({"summary": lines, "seed": args.seed, "sample": args.sample, "runs": runs,
                        "complete": all(r.get("complete") for r in runs),
                        "mutants": sorted(records, key=lambda r: (order.get(r["target"], 2),

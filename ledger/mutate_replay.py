@@ -109,10 +109,18 @@ def _frozen(value: Any) -> bool:
 def _snapshot(value: Any) -> Any:
     """A copy of ``value`` that later changes to the original cannot reach (``value`` itself
     when nothing can change it)."""
+    from sympy.polys.rings import PolyElement
+
     if _frozen(value):
         return value
-    if isinstance(value, dict) and all(_frozen(v) for v in value.values()):
-        return dict(value)
+    if type(value) is tuple:
+        return tuple(_snapshot(v) for v in value)
+    if type(value) is list:
+        return [_snapshot(v) for v in value]
+    if type(value) is dict:
+        return {k: _snapshot(v) for k, v in value.items()}
+    if isinstance(value, PolyElement):  # a dict of its ring; deepcopy fails on the ring
+        return value.copy()
     return copy.deepcopy(value)
 
 

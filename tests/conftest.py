@@ -66,8 +66,9 @@ def _reset_mpmath_precision():
 
 @pytest.fixture(autouse=True)
 def _restore_signal_handlers():
-    """A test that runs the program in-process (cli.main ignores SIGINT and SIGTERM once its
-    command has returned; entry takes them) leaves this process's handlers as it found them: else
+    """A test that runs the program in-process leaves this process's handlers as it found them
+    (cli.main does so itself since round 23; the program's entry takes them; a scene's own
+    handlers may not): else
     a Ctrl-C of the test run, or a SIGTERM of a mutation run whose tests run in-process, was
     ignored for the rest of the session (seen: make mutate-derivations ran to the end after a
     SIGTERM)."""

@@ -154,6 +154,26 @@ def test_mutate_derivations_never_replaces_a_foreign_file_and_reads_rerun_first(
     assert not out.exists()
 
 
+def test_main_in_process_leaves_the_signal_handlers_as_it_found_them(capsys):
+    """cli.main called in-process (a test, a mutant's test run) must not ignore SIGINT/SIGTERM
+    after its command: a SIGTERM to a mutation worker running such a test was lost (round 22)."""
+    import signal
+
+    before = {sig: signal.getsignal(sig) for sig in (signal.SIGINT, signal.SIGTERM)}
+    assert exit_code(cli.main, ["prove", "-h"]) == 0
+    assert cli.main(["--version"]) == 0
+    assert {sig: signal.getsignal(sig) for sig in before} == before
+    capsys.readouterr()
+
+
+def test_mutate_derivations_is_a_chaplygin_command(capsys):
+    """`chaplygin mutate-derivations` (what make mutate-derivations runs): the program's signal
+    handling (one line on Ctrl-C or SIGTERM), not a bare `python -m` traceback."""
+    assert "mutate-derivations" in cli.COMMANDS
+    assert exit_code(cli.main, ["mutate-derivations", "-h"]) == 0
+    assert "--target" in capsys.readouterr().out
+
+
 def test_mutate_derivations_checks_the_out_folder_before_the_run(tmp_path, capsys):
     """An --out in a folder that does not exist is refused before any mutant runs (the trial of
     round 22: the whole run ran, then the atomic write failed with a traceback)."""
