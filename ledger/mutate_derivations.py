@@ -273,6 +273,7 @@ def _decide_by_rows(task: Task, fn, code, record: dict) -> dict:
         rec = _recording(m.function, fn, check, base, seconds)
         if rec.problem:
             unreplayed.append((check, base, seconds))
+            record.setdefault("not replayed", {})[check] = rec.problem
         else:
             same, line_ran = replay(fn, code, rec, line)
             ran = ran or line_ran
