@@ -497,33 +497,63 @@ def _write(records, runs, args) -> None:
                       args.out)
 
 
+#: Mutants of one function decided by one worker in a row (its recordings are made once for
+#: them); a function with more is split, so an interrupted run loses at most one such group.
+GROUP = 40
+
+
+def groups(tasks: list[Task]) -> list[list[Task]]:
+    """``tasks`` grouped by function (in chunks of at most :data:`GROUP`), the most expensive group
+    first (cheapest check times mutants: the long groups start early and the two workers end
+    together)."""
+    by: dict[tuple[str, str], list[Task]] = {}
+    for t in tasks:
+        by.setdefault((t.target, t.mutant.function), []).append(t)
+    out = [ts[i:i + GROUP] for ts in by.values() for i in range(0, len(ts), GROUP)]
+    return sorted(out, key=lambda g: -sum(max(_cost(t), 0.1) for t in g))
+
+
+def _cost(task: Task) -> float:
+    """Expected seconds of a task (its cheapest check)."""
+    return task.rows[0][2] if task.rows and task.target == "derivations" else 0.0
+
+
+def evaluate_group(tasks: list[Task]) -> list[dict]:
+    """Decide the mutants of one group in this worker, in order."""
+    return [evaluate(t) for t in tasks]
+
+
 def _run(tasks: list[Task], jobs: int, records: list[dict], runs, args, run, t0, c0) -> list[dict]:
-    """Evaluate ``tasks`` in ``jobs`` forked workers, cheapest first; ``records`` grows as they
-    finish and is written to ``--out`` every 30 s (``"complete": false``), so an interrupted
-    run keeps what it decided and ``--resume`` goes on from there."""
+    """Evaluate ``tasks`` in ``jobs`` forked workers, a group of one function's mutants at a time
+    (:func:`groups`); ``records`` grows as groups finish and is written to ``--out`` every 30 s
+    (``"complete": false``), so an interrupted run keeps what it decided and ``--resume`` goes on
+    from there. A progress line (mutants decided, the time left at the rate so far) every 30 s."""
     from concurrent.futures import as_completed
 
     mine: list[dict] = []
     last = time.perf_counter()
     with processes.pool(jobs, mp.get_context("fork"), _init_worker) as pool:
-        futures = [pool.submit(evaluate, t) for t in sorted(tasks, key=_cost)]
+        futures = [pool.submit(evaluate_group, g) for g in groups(tasks)]
         for fut in as_completed(futures):
-            rec = fut.result()
-            records.append(rec)
-            mine.append(rec)
-            if rec["outcome"] != "killed":
-                print(f"  {rec['outcome']:<10} {rec['function']:<40} {rec['mutation']}  "
-                      f"[{rec['row']}] {rec['reason'][:160]}", flush=True)
+            for rec in fut.result():
+                records.append(rec)
+                mine.append(rec)
+                if rec["outcome"] != "killed":
+                    print(f"  {rec['outcome']:<10} {rec['function']:<40} {rec['mutation']}  "
+                          f"[{rec['row']}] {rec['reason'][:160]}", flush=True)
             if time.perf_counter() - last > 30:
                 _progress(run, len(mine), len(tasks), t0, c0)
                 _write(records, runs, args)
                 last = time.perf_counter()
+                print(progress_line(len(mine), len(tasks), last - t0), flush=True)
     return mine
 
 
-def _cost(task: Task) -> float:
-    """Expected seconds of a task (its cheapest check), to run the cheap ones first."""
-    return task.rows[0][2] if task.rows else 0.0
+def progress_line(done: int, total: int, seconds: float) -> str:
+    """``N of M mutants decided, S s so far, about T min left`` (at the rate so far)."""
+    left = seconds / done * (total - done) if done else float("nan")
+    eta = f"about {left / 60:.0f} min left" if done else "no estimate yet"
+    return f"  ... {done} of {total} mutants decided in {seconds:.0f} s, {eta}"
 
 
 if __name__ == "__main__":
