@@ -272,10 +272,10 @@ def energy():
 
 
 def integrals():
-    r"""The first integrals of the 4D field as SymPy expressions in $a, b, k, u, q, x$ (S5:F123, S5:H4D,
-    derived): ``F1``, ``F2``, ``F3`` ($= -[\lambda\sigma]p$) and the energy ``H`` (rational, on $S^3$)."""
-    return {"F1": F1().as_expr(), "F2": F2().as_expr(), "F3": F3().as_expr(),
-            "H": energy().as_expr() / (2 * D.as_expr())}
+    r"""The polynomial first integrals of the 4D field as SymPy expressions in $k, u$ (S5:F123,
+    derived): ``F1``, ``F2``, ``F3`` ($= -[\lambda\sigma]p$). (The energy is :func:`energy`, over
+    $2D$; an ``H`` entry here was read by nothing, so nothing checked it: round 23's mutants.)"""
+    return {"F1": F1().as_expr(), "F2": F2().as_expr(), "F3": F3().as_expr()}
 
 
 @cache
