@@ -1,0 +1,68 @@
+"""symbolic/wedge_integrals.py (row S6:wedge-integrals) against its definitions, at exact points.
+
+The row checks dH_k/dt = 0 and a Jacobian rank. Both are blind to some errors: each of the two
+terms of the rate vanishes on its own at the points checked, so a wrong factor on either term
+(or on B-dot) leaves the rate zero, and a rank is the same for almost any perturbed gradient
+(round 23's mutation run: such mutants survived the row). These tests compare the pieces with
+independent computations: B and B-dot with SymPy's differentiation of the definition, M-dot and
+gamma-dot with the exact angular velocity of symbolic.model, the M-gradient with the exact
+derivative of the value (a polynomial of degree 2k in M along a line, so 2k + 1 values give it
+exactly by interpolation).
+"""
+
+from __future__ import annotations
+
+import pytest
+import sympy as sp
+from chaplygin_nd.symbolic import model, points
+from chaplygin_nd.symbolic import wedge_integrals as wi
+
+
+def _point(n: int, seed: int = 7):
+    rng = points.generator(seed, "tests/test_wedge_integrals", n)
+    M, gamma = points.skew_matrix(rng, n), points.sphere_point(rng, n)
+    return M, gamma, sp.Rational(-2, 7), sp.Rational(5, 3)
+
+
+@pytest.mark.parametrize("engine", ["sympy", "flint"])
+def test_point_fields_are_the_definitions(engine):
+    n = 5
+    M, gamma, a, b = _point(n)
+    Mq, g, Md, gd, B, Bd, _ = wi.point_fields(M, gamma, a, b, engine)
+    rat = (lambda v: sp.Rational(int(v.p), int(v.q))) if engine == "flint" else sp.Rational
+    as_matrix = lambda rows: sp.Matrix([[rat(v) for v in row] for row in rows])  # noqa: E731
+    J = sp.diag(*([1] * (n - 1) + [1 + a]))
+    Omega = model.angular_velocity(M, gamma, J, b)             # eq:M-O solved, not wedge_integrals
+    assert as_matrix(Mq) == M and sp.Matrix([rat(v) for v in g]) == gamma
+    assert as_matrix(Md) == M * Omega - Omega * M                 # M-dot = [M, Omega]
+    assert sp.Matrix([rat(v) for v in gd]) == -Omega * gamma      # gamma-dot = -Omega gamma
+    eps = sp.Symbol("eps")
+    E = sp.zeros(n, 1)
+    E[n - 1] = 1
+    B_of = lambda g_: a * E * E.T + b * g_ * g_.T  # noqa: E731 - B of the module docstring
+    assert as_matrix(B) == B_of(gamma)
+    moved = gamma + eps * sp.Matrix([rat(v) for v in gd])
+    assert as_matrix(Bd) == sp.diff(B_of(moved), eps).subs(eps, 0)
+
+
+@pytest.mark.parametrize("n, k", [(4, 2), (5, 2), (6, 2)])
+def test_gradient_in_M_is_the_derivative_of_the_value(n, k):
+    M, gamma, a, b = _point(n, seed=11)
+    grad = wi.gradient(M, gamma, a, b, k)
+    hs = list(range(2 * k + 1))
+    for col, (i, j) in enumerate(wi.subsets(n, 2)):
+        E = sp.zeros(n, n)
+        E[i, j], E[j, i] = 1, -1
+        values = [wi.value(M + h * E, gamma, a, b, k) for h in hs]
+        h = sp.Symbol("h")
+        slope = sp.diff(sp.interpolate(list(zip(hs, values)), h), h).subs(h, 0)
+        assert grad[col] == slope, (i, j)
+
+
+def test_value_is_the_energy_for_k_1():
+    """H_1 = 2H = <M, Omega> with Omega = L_gamma^{-1} M (the module docstring), exactly."""
+    n = 5
+    M, gamma, a, b = _point(n, seed=3)
+    Omega = model.angular_velocity(M, gamma, sp.diag(*([1] * (n - 1) + [1 + a])), b)
+    pairing = sum(M[i, j] * Omega[i, j] for i in range(n) for j in range(i + 1, n))
+    assert wi.value(M, gamma, a, b, 1) == pairing
