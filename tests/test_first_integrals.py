@@ -100,6 +100,13 @@ def test_new_integral_6_text_is_the_derived_integral_at_a_rational_point():
     assert den != 0 and isinstance(value, sp.Rational) and value == num / den
 
 
+def test_real_symbols_follow_the_naming_of_the_published_text():
+    # the names verification.json's integrals are written in (1-based, i < j): a reader parses them
+    Ms, gs = fi_reconstruct.real_symbols(4)
+    assert [str(s) for s in Ms] == ["M_12", "M_13", "M_14", "M_23", "M_24", "M_34"]
+    assert [str(s) for s in gs] == ["gamma_1", "gamma_2", "gamma_3", "gamma_4"]
+
+
 def test_new_integral_is_independent_for_n5_only():
     m5 = fi_field.axisymmetric(5, A, B)
     assert fi_known.jacobian_rank(m5, 1, include_new=True)["rank"] == 6
