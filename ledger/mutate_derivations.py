@@ -442,8 +442,11 @@ def main(argv: list[str] | None = None) -> int:
         with tempfile.TemporaryDirectory(prefix="chaplygin-mutate-") as work:
             os.environ[mr.WORK_ENV] = work  # the workers' cache folders (mutate_runtime)
             try:
-                tasks = plan(target, selection, args.jobs,
-                             {m.function for m in selection} if args.rerun else ())
+                try:
+                    tasks = plan(target, selection, args.jobs,
+                                 {m.function for m in selection} if args.rerun else ())
+                except RuntimeError as err:  # e.g. a test file that does not collect, an unmutated
+                    return fail(f"{parser.prog}: {err}")  # row that raises: nothing to compare
                 print(f"{target}: {len(tasks)} mutants to run", flush=True)
                 mine = _run(tasks, args.jobs, records, runs, args, run, t0, c0)
             finally:

@@ -71,10 +71,21 @@ def runtime_functions() -> dict[str, FunctionType]:
     return out
 
 
+class _InterruptSeen:
+    """A pytest plugin noting a real Ctrl-C or SIGTERM: pytest's exit status INTERRUPTED also
+    means a collection error, which must stop the run as an error, not as an interrupt."""
+
+    seen = False
+
+    def pytest_keyboard_interrupt(self, excinfo):  # noqa: ARG002 - pytest's hook signature
+        self.seen = True
+
+
 def _pytest(args: list[str], plugins=()) -> tuple[int, str]:
     import pytest
 
     buffer = io.StringIO()
+    interrupt = _InterruptSeen()
     # the test ids are relative to the checkout: run from there whatever the caller's folder (from
     # elsewhere pytest found no file, and every mutant was reported reached by no test)
     # ResourceWarning: pytest's own numbered temporary folders leave a scandir iterator to the
@@ -85,9 +96,9 @@ def _pytest(args: list[str], plugins=()) -> tuple[int, str]:
             contextlib.redirect_stderr(buffer), warnings.catch_warnings():
         warnings.simplefilter("ignore", ResourceWarning)
         code = pytest.main(["-q", "-p", "no:cacheprovider", "--no-header", "-W",
-                            "ignore::ResourceWarning", *args], plugins=list(plugins))
-    if code == pytest.ExitCode.INTERRUPTED:  # Ctrl-C or SIGTERM reached pytest: the run ends here,
-        raise KeyboardInterrupt("pytest was interrupted")  # never a mutant counted killed by it
+                            "ignore::ResourceWarning", *args], plugins=[*plugins, interrupt])
+    if code == pytest.ExitCode.INTERRUPTED and interrupt.seen:  # Ctrl-C or SIGTERM reached pytest:
+        raise KeyboardInterrupt("pytest was interrupted")  # the run ends, no mutant killed by it
     lines = [ln for ln in buffer.getvalue().splitlines() if ln.startswith(("FAILED", "ERROR"))]
     note = (lines[0] if lines else f"pytest exit {code}")[:200]
     if code not in (pytest.ExitCode.OK, pytest.ExitCode.TESTS_FAILED):  # usage, internal, none run

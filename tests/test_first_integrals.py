@@ -9,8 +9,7 @@ import sympy as sp
 from chaplygin_nd.symbolic import fi_basis, fi_field, fi_known, fi_new, fi_reconstruct
 from chaplygin_nd.symbolic import first_integrals as fi
 from chaplygin_nd.symbolic.fi_cli import main
-
-from tests.cli_helpers import exit_code, one_error_line
+from cli_helpers import exit_code, one_error_line
 
 A, B = sp.Rational(-1, 3), sp.Rational(3, 2)
 
