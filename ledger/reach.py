@@ -63,6 +63,7 @@ NOT_DERIVATIONS = {
     "points": "seeded exact points and the ledger seed (inputs of checks, not formulas)",
     "exact": "the exact zero-test engines (decide identities, build no formula)",
     "flint_engine": "the second exact engine (FLINT): decides zero tests, builds no formula",
+    "sympy_fraction": "the SymPy engine's reading of a residual into Q(x) (part of the engine)",
     "flint_model": "the second engine's own evaluation of the definitions at exact points",
     "flint_matrix": "the second engine's matrix type: printed formulas evaluated in fmpq",
     "counterexample": "renders a counterexample of the engine (text and LaTeX), derives nothing",

@@ -187,7 +187,10 @@ def _velocity_residuals(n, values=None):
     momentum = dM - commutator(L_gamma(Om, gamma, J, bb), Om)
     velocity = printed.motion_velocity_nd_residual(
         Om, Omd, gamma, lambda X: inertia_operator(X, J), bb)
-    return (momentum - velocity).expand(), J
+    # not expanded here: the exact engines read the residual as polynomials (symbolic/exact.py);
+    # SymPy's expand of the symbolic n = 3..6 residual was 60 % of the row (issue 25), and at a
+    # point the entries are already numbers
+    return momentum - velocity, J
 
 
 @claim("eq:motion-velocitynD", uses=("eq:motion-general", "eq:M-O", "eq:Inertia"))

@@ -51,6 +51,7 @@ from chaplygin_nd.symbolic.flint_engine import (
     to_fmpq,
     use_engine,
 )
+from chaplygin_nd.symbolic.sympy_fraction import reduced_fraction
 from sympy.polys.fields import field as fraction_field
 from sympy.polys.orderings import lex
 from sympy.polys.rings import PolyElement
@@ -198,7 +199,7 @@ def numerator_polynomial(expr: sp.Expr, gens: Sequence[sp.Symbol],
     rational function of ``gens`` with rational coefficients."""
     K, *_ = fraction_field(list(gens), sp.QQ, lex)
     try:
-        f = K.from_expr(sp.sympify(expr))
+        f = reduced_fraction(K, expr)   # = K.from_expr(expr), one cancellation instead of one per node
     except Exception as err:  # CoercionFailed / GeneratorsError: not a rational function
         raise ValueError(f"not a rational function over Q of {list(gens)}: {err}") from err
     num, den = f.numer, f.denom
