@@ -312,7 +312,8 @@ def evaluate(fn, code, key: str, tests: tuple[str, ...], record: dict) -> dict:
 
     if not tests:
         record.update(outcome="survived", row="tests",
-                      reason="no test calls this function (in this process)"
+                      reason="no test calls this function (in this process; tests marked slow are "
+                             "not run per mutant)"
                       + ("" if key.startswith("runtime.") else " and no ledger row reaches it"))
         return record
     note = kill(fn, code, key, tests)
