@@ -24,6 +24,13 @@ thread ends (the kernel's "parent" is the thread): every pool here is made by th
 :func:`pool` is the project's :class:`~concurrent.futures.ProcessPoolExecutor` (:class:`Pool`: its
 workers are all started, with Ctrl-C held, before it is used); :func:`popen_kwargs` gives a
 :mod:`subprocess` child the same guarantee.
+
+The parent waits for its futures with :func:`as_completed`, which wakes every
+:data:`POLL_SECONDS`: the kernel gives a process's SIGINT or SIGTERM to any thread that does not
+block it (a pool's queue feeder, heyoka's TBB workers), and Python runs the handler only in the
+main thread, at its next bytecode; a main thread asleep in ``concurrent.futures.as_completed``
+then slept on until a task finished (seen: ``chaplygin mutate-derivations`` ignored a Ctrl-C for
+minutes).
 """
 
 from __future__ import annotations
@@ -37,9 +44,10 @@ import sys
 import threading
 import time
 from collections.abc import Callable
-from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 
 __all__ = ["die_with_parent", "worker_start", "held_signals", "Pool", "pool", "popen_kwargs",
+           "as_completed",
            "alive"]
 
 #: ``<linux/prctl.h>``: the signal a process gets when its parent dies.
@@ -121,11 +129,16 @@ def _release_fork_server() -> None:
 
 def worker_start(owner: int, ready=None, then: Callable[..., object] | None = None,
                  *args) -> None:
-    """The initializer of every pool worker: ignore Ctrl-C (the parent's), :func:`die_with_parent`
+    """The initializer of every pool worker: ignore Ctrl-C (the parent's), die of SIGTERM (the
+    parent's :meth:`Pool.stop`), :func:`die_with_parent`
     ``owner``, let go of the signals the parent held while it started the pool (inherited as
     blocked; a SIGTERM the parent sent in the meantime ends the worker here), tell the parent
     (``ready``), then run the pool's own initializer ``then(*args)``."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # drops a Ctrl-C held since the fork
+    # the parent's SIGTERM ends a worker (Pool.stop): a forked worker inherited the handler of
+    # held_signals (which only notes the signal), so a worker of a fork pool outlived stop() and
+    # the parent's Ctrl-C waited for its task to end
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
     if os.getpid() != owner:
         _release_fork_server()
     die_with_parent(owner)
@@ -220,6 +233,20 @@ def pool(workers: int, context=None, initializer: Callable[..., object] | None =
     """A :class:`Pool` of ``workers`` processes (start method ``context``, a :mod:`multiprocessing`
     context; default the platform's) running ``initializer(*initargs)`` after their start."""
     return Pool(workers, context, initializer, initargs)
+
+
+#: How often a parent waiting for its workers looks at the signals it received (s).
+POLL_SECONDS = 0.2
+
+
+def as_completed(futures, poll: float = POLL_SECONDS):
+    """The ``futures`` as they finish (like ``concurrent.futures.as_completed``), waking every
+    ``poll`` seconds so that a Ctrl-C or SIGTERM taken by another thread reaches the main thread
+    (module docstring)."""
+    pending: set[Future] = set(futures)
+    while pending:
+        done, pending = wait(pending, timeout=poll, return_when=FIRST_COMPLETED)
+        yield from done
 
 
 def popen_kwargs() -> dict:

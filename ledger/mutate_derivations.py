@@ -531,13 +531,11 @@ def _run(tasks: list[Task], jobs: int, records: list[dict], runs, args, run, t0,
     (:func:`groups`); ``records`` grows as groups finish and is written to ``--out`` every 30 s
     (``"complete": false``), so an interrupted run keeps what it decided and ``--resume`` goes on
     from there. A progress line (mutants decided, the time left at the rate so far) every 30 s."""
-    from concurrent.futures import as_completed
-
     mine: list[dict] = []
     last = time.perf_counter()
     with processes.pool(jobs, mp.get_context("fork"), _init_worker) as pool:
         futures = [pool.submit(evaluate_group, g) for g in groups(tasks)]
-        for fut in as_completed(futures):
+        for fut in processes.as_completed(futures):
             for rec in fut.result():
                 records.append(rec)
                 mine.append(rec)

@@ -8,7 +8,6 @@ import signal
 import time
 import traceback
 from collections.abc import Callable, Sequence
-from concurrent.futures import as_completed
 from dataclasses import dataclass, replace
 
 from chaplygin_nd.ledger.catalog import Row, all_rows, discover
@@ -210,7 +209,7 @@ def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFA
             futures = {pool.submit(_run_one, claim_id, seed, fresh): claim_id
                        for claim_id in longest_first(todo, stored_seconds())}
             extra = pool.submit(also) if also is not None else None
-            for future in as_completed(futures):
+            for future in processes.as_completed(futures):
                 claim_id = futures[future]
                 decided[claim_id] = result_of(claim_id, future.result())
                 on_result(decided[claim_id])

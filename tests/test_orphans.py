@@ -141,3 +141,37 @@ def test_every_pool_is_made_through_the_processes_module():
                     and "popen_kwargs" not in text:
                 offenders.append(f"{path.relative_to(ROOT)}: a subprocess without popen_kwargs")
     assert not offenders, offenders
+
+
+THREAD_SIGNAL_SCRIPT = textwrap.dedent("""
+    import multiprocessing as mp, os, signal, sys, threading, time
+    from pathlib import Path
+    from chaplygin_nd import processes
+
+    def work(i):
+        Path(sys.argv[1], f"worker-{os.getpid()}").write_text("busy")
+        time.sleep(600)
+
+    if __name__ == "__main__":
+        with processes.pool(1, mp.get_context("fork")) as pool:
+            futures = [pool.submit(work, 0)]
+            def interrupt():   # the Ctrl-C lands in another thread, as the kernel may choose
+                while not any(Path(sys.argv[1]).iterdir()):
+                    time.sleep(0.05)
+                signal.pthread_kill(threading.get_ident(), signal.SIGINT)
+            threading.Thread(target=interrupt, daemon=True).start()
+            for f in processes.as_completed(futures):
+                f.result()
+""")
+
+
+def test_a_ctrl_c_taken_by_another_thread_ends_the_wait_for_the_workers(tmp_path):
+    """The kernel gives a process's SIGINT to any thread not blocking it (a queue feeder, heyoka's
+    TBB threads); Python handles it in the main thread only. processes.as_completed wakes to take
+    it: the parent raises KeyboardInterrupt while its worker still sleeps (the standard library's
+    as_completed slept on until the task ended: 600 s here), and the worker goes with the pool."""
+    proc = subprocess.run([sys.executable, "-c", THREAD_SIGNAL_SCRIPT, str(tmp_path)],
+                          capture_output=True, text=True, timeout=300, cwd=ROOT)
+    assert proc.returncode != 0 and "KeyboardInterrupt" in proc.stderr, proc.stderr[-2000:]
+    workers = {int(p.name.split("-")[1]) for p in tmp_path.iterdir()}
+    assert len(workers) == 1 and not none_alive(workers)

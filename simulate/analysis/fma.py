@@ -252,12 +252,11 @@ def run_map(spec: MapSpec, workers: int | None = None, scheduler: str | None = N
             on_orbits(len(c[1]))
     else:
         import multiprocessing as mp
-        from concurrent.futures import as_completed
 
         with processes.pool(min(workers or os.cpu_count() or 1, len(chunks)),
                             mp.get_context("spawn")) as pool:
             futures = {pool.submit(_task, c): len(c[1]) for c in chunks}
-            for done in as_completed(futures):
+            for done in processes.as_completed(futures):
                 on_orbits(futures[done])
             parts = [f.result() for f in futures]
     return np.concatenate(parts).reshape(spec.size, spec.size)
