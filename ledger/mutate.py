@@ -706,6 +706,10 @@ def main(argv: list[str] | None = None) -> int:
         return fail(theirs)
     if args.out is None and not is_checkout():
         return fail("chaplygin mutate: give --out FILE (an installed package is never written into)")
+    partial = [o for o, given in (("--function", args.function), ("--sample", args.sample)) if given]
+    if args.out is None and partial:  # the checked-in record is a whole run
+        return fail(f"chaplygin mutate: with {' '.join(partial)} give --out FILE: a partial run "
+                    "would replace the record of the full run, mutation.json")
     if args.out is not None and (args.out.exists() or args.out.is_symlink()) and (
             args.out.is_symlink() or isinstance(compared_outcomes(args.out), str)):
         return fail(f"--out {args.out}: exists and is not a mutation.json this program wrote; give "

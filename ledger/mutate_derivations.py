@@ -367,12 +367,13 @@ def _plural(count: int, noun: str) -> str:
 
 def main(argv: list[str] | None = None) -> int:
     parser = OneLineParser(prog="chaplygin mutate-derivations",
-                           description=__doc__.splitlines()[0])
+                           description=__doc__.splitlines()[0].replace("``", ""))
     parser.add_argument("--target", choices=("derivations", "runtime"), action="append",
                         help="what to mutate (default: both)")
     parser.add_argument("--sample", type=int, default=None,
                         help="draw this many mutants per target (seeded); default: all")
-    parser.add_argument("--seed", type=int, default=SEED)
+    parser.add_argument("--seed", type=int, default=SEED,
+                        help=f"the seed of --sample's draw (default {SEED})")
     parser.add_argument("--function", action="append", default=[],
                         help="only these functions (e.g. reduced.horizontal_blocks; --list lists them)")
     parser.add_argument("--list", action="store_true",
@@ -385,7 +386,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--again", default="survived,error", type=lambda v: tuple(v.split(",")),
                         help="with --rerun: the outcomes run again (default survived,error; add "
                              "equivalent after adding a test that may tell such mutants apart)")
-    parser.add_argument("--jobs", "-j", type=int, default=2)
+    parser.add_argument("--jobs", "-j", type=int, default=2, help="worker processes (default 2)")
     parser.add_argument("--out", type=path_argument, default=None,
                         help="where to write (default mutation-derivations.json in the checkout)")
     args = parser.parse_args(argv)
@@ -404,6 +405,11 @@ def main(argv: list[str] | None = None) -> int:
             return fail(earlier.replace("--compare", "--rerun", 1))
     if args.out is None and not is_checkout():
         return fail(f"{parser.prog}: give --out FILE (an installed package is never written into)")
+    partial = [o for o, given in (("--function", args.function), ("--sample", args.sample),
+                                  ("--target", args.target), ("--rerun", args.rerun)) if given]
+    if args.out is None and partial and not args.resume:  # the checked-in record is a whole run
+        return fail(f"{parser.prog}: with {' '.join(partial)} give --out FILE: a partial run would "
+                    f"replace the record of the full run, {OUT_PATH.name}")
     if args.out is not None and (args.out.exists() or args.out.is_symlink()) and (
             args.out.is_symlink() or isinstance(mu.compared_outcomes(args.out), str)):
         return fail(f"--out {args.out}: exists and is not a mutation JSON this program wrote; give "

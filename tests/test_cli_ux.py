@@ -249,3 +249,23 @@ def test_dir_of_the_package_is_clean():
     assert [n for n in names if n.startswith("_") and not n.endswith("__")] == [], names
     assert set(chaplygin_nd.__all__) <= set(names)
     assert chaplygin_nd.energy is api.energy and callable(chaplygin_nd.simulate)
+
+
+@pytest.mark.parametrize("module, argv", [
+    ("mutate_derivations", ["--target", "derivations", "--function", "fi_field.mod"]),
+    ("mutate_derivations", ["--sample", "5"]),
+    ("mutate", ["--function", "section4.K"]),
+])
+def test_a_partial_mutation_run_never_replaces_the_full_record(module, argv, capsys):
+    """Round-23 trial: `chaplygin mutate-derivations --function X` in the checkout replaced the
+    checked-in record of the full run (856 mutants) by its 7. A partial run needs --out."""
+    import importlib
+
+    from chaplygin_nd.ledger.catalog import ROOT
+
+    record = ROOT / ("mutation.json" if module == "mutate" else "mutation-derivations.json")
+    before = record.read_bytes() if record.exists() else None
+    tool = importlib.import_module(f"chaplygin_nd.ledger.{module}")
+    assert tool.main(argv) == 2
+    assert "give --out FILE: a partial run would replace" in one_error_line(capsys)
+    assert (record.read_bytes() if record.exists() else None) == before

@@ -262,6 +262,13 @@ def run_map(spec: MapSpec, workers: int | None = None, scheduler: str | None = N
     return np.concatenate(parts).reshape(spec.size, spec.size)
 
 
+def _ignore_ctrl_c() -> None:
+    """In a Dask worker process (its event loop runs in the main thread): ignore SIGINT."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
 def _on_dask(chunks, scheduler: str, workers: int | None, on_orbits):
     from chaplygin_nd.simulate.integrators.stops import RunStopped
 
@@ -278,9 +285,16 @@ def _on_dask(chunks, scheduler: str, workers: int | None, on_orbits):
         return client.gather(futures)
 
     if scheduler == "local":
+        import logging
+
         with LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
-                          processes=True, dashboard_address=None) as cluster, Client(cluster) as client:
+                          processes=True, dashboard_address=None,
+                          silence_logs=logging.CRITICAL) as cluster, Client(cluster) as client:
             client.run(processes.die_with_parent, os.getpid())  # its workers are ours: see processes
+            # and Ctrl-C is the parent's (processes): a Ctrl-C to the process group made each
+            # worker print a KeyboardInterrupt traceback; the cluster's own log lines (a worker
+            # restarted, a task lost on close) are not the user's either
+            client.run(_ignore_ctrl_c)
             return gather(client)
     try:
         client = Client(scheduler, timeout="20s")
