@@ -415,7 +415,7 @@ def _equivalence(fn, mutant_code, claim_id: str, budget: float, key: str = "",
     of ``fn``; (all equal, number of calls compared, the kind of equality: "exact", or a declared
     invariance of the claim: "scale", "sign of <argument>"; whether the mutant's source line
     ``line`` — the mutated one — ran at least once)."""
-    from chaplygin_nd.ledger.mutate_replay import LineWatch
+    from chaplygin_nd.ledger.mutate_replay import LineWatch, calls_through
 
     original = fn.__code__
     orig_fn = FunctionType(original, fn.__globals__, fn.__name__, fn.__defaults__)
@@ -426,7 +426,6 @@ def _equivalence(fn, mutant_code, claim_id: str, budget: float, key: str = "",
         ["positive scale"] if key in POSITIVE_SCALE_INVARIANT else []) + (
         ["sign"] if key in ARGUMENT_SIGN_INVARIANT else [])
     state: dict[str, Any] = {"calls": 0, "ok": dict.fromkeys(kinds, True)}
-    hook_name = "__mutate_compare_hook__"
     watch = LineWatch(mutant_code, line)
 
     def hook(*args, **kwargs):
@@ -455,16 +454,8 @@ def _equivalence(fn, mutant_code, claim_id: str, budget: float, key: str = "",
             state["ok"][kind] = same
         return want
 
-    src = f"def {fn.__name__}(*args, **kwargs):\n    return {hook_name}(*args, **kwargs)\n"
-    ns: dict = {}
-    exec(compile(src, "<mutate compare>", "exec"), ns)  # noqa: S102 - fixed template
-    fn.__globals__[hook_name] = hook
-    fn.__code__ = ns[fn.__name__].__code__
-    try:
+    with calls_through(fn, hook):
         run_row(claim_id, budget)
-    finally:
-        fn.__code__ = original
-        fn.__globals__.pop(hook_name, None)
     kind = next((k for k in kinds if state["ok"][k]), "")
     return bool(kind) and state["calls"] > 0, state["calls"], kind, watch.ran
 

@@ -28,6 +28,7 @@ notes whether the mutated line ran: equal values on a branch no call takes prove
 
 from __future__ import annotations
 
+import contextlib
 import copy
 import dis
 import sys
@@ -170,6 +171,25 @@ def _clone(fn: FunctionType, code: CodeType) -> FunctionType:
     return out
 
 
+@contextlib.contextmanager
+def calls_through(fn: FunctionType, hook):
+    """Within the block every call of ``fn`` — from anywhere: its code object itself is replaced
+    by a two-line trampoline — goes to ``hook(*args, **kwargs)``; ``fn``'s code is restored on
+    exit. The one mechanism of the mutation tools' recorders and comparers."""
+    name = "__mutate_hook__"
+    src = f"def {fn.__name__}(*args, **kwargs):\n    return {name}(*args, **kwargs)\n"
+    ns: dict = {}
+    exec(compile(src, "<mutate hook>", "exec"), ns)  # noqa: S102 - fixed template
+    original = fn.__code__
+    fn.__globals__[name] = hook
+    fn.__code__ = ns[fn.__name__].__code__
+    try:
+        yield
+    finally:
+        fn.__code__ = original
+        fn.__globals__.pop(name, None)
+
+
 def record(fn: FunctionType, run) -> Recording:
     """Run ``run()`` (one ledger row, unmutated) with every call of ``fn`` recorded; then replay
     the original on the records (the dynamic guard). ``fn``'s code is restored on return."""
@@ -182,7 +202,6 @@ def record(fn: FunctionType, run) -> Recording:
         return rec
     original = fn.__code__
     orig = _clone(fn, original)
-    hook_name = "__mutate_replay_hook__"
     names = mutable_globals(fn)
 
     def hook(*args, **kwargs):
@@ -211,17 +230,11 @@ def record(fn: FunctionType, run) -> Recording:
             rec.problem, rec.calls = f"more than {MAX_CALLS} calls", []
         return value
 
-    src = f"def {fn.__name__}(*args, **kwargs):\n    return {hook_name}(*args, **kwargs)\n"
-    ns: dict = {}
-    exec(compile(src, "<mutate record>", "exec"), ns)  # noqa: S102 - fixed template
-    fn.__globals__[hook_name] = hook
-    fn.__code__ = ns[fn.__name__].__code__
     try:
-        clear_caches()
-        run()
+        with calls_through(fn, hook):
+            clear_caches()
+            run()
     finally:
-        fn.__code__ = original
-        fn.__globals__.pop(hook_name, None)
         clear_caches()
     if not rec.problem and not rec.calls:
         rec.problem = "not called"

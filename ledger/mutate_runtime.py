@@ -273,19 +273,10 @@ def equivalence(fn, mutant_code, tests: list[str], fresh: bool, same=_bitwise_eq
             sys.settrace(saved)
         return want
 
-    name = "__mutate_runtime_hook__"
-    src = f"def {fn.__name__}(*args, **kwargs):\n    return {name}(*args, **kwargs)\n"
-    ns: dict = {}
-    exec(compile(src, "<runtime compare>", "exec"), ns)  # noqa: S102 - fixed template
-    original = fn.__code__
-    fn.__globals__[name] = hook
-    fn.__code__ = ns[fn.__name__].__code__
-    try:
-        with _cache_root(fresh):
-            _pytest(tests)
-    finally:
-        fn.__code__ = original
-        fn.__globals__.pop(name, None)
+    from chaplygin_nd.ledger.mutate_replay import calls_through
+
+    with calls_through(fn, hook), _cache_root(fresh):
+        _pytest(tests)
     return bool(state["same"]) and state["calls"] > 0, state["calls"], bool(state["ran"])
 
 
