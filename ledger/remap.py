@@ -5,7 +5,9 @@ emitted derivation is reached by no row."""
 
 from __future__ import annotations
 
+import os
 import sys
+import tempfile
 
 from chaplygin_nd.ledger.reach import (
     MAP_PATH,
@@ -19,12 +21,26 @@ from chaplygin_nd.ledger.reach import (
 )
 from chaplygin_nd.ledger.runner import run, select
 
+from chaplygin_nd import cache
+
 
 def compute(jobs: int | None = 2
             ) -> tuple[dict[str, list[str]], dict[str, float], dict[str, list[str]]]:
     """Run every registered ledger row: (row -> printed functions it reached, row -> seconds,
-    row -> derivations it reached)."""
-    results = run(select(), jobs=jobs, fresh=True)
+    row -> derivations it reached). The rows run with an empty cache (a new temporary
+    ``$CHAPLYGIN_ND_CACHE``, removed after): the seconds order the rows of a cold ``verify --jobs``
+    (:func:`ledger.runner.longest_first`), and with the user's warm cache the evidence rows took
+    0.2-0.8 s instead of 20-40 s, so a cold run started its longest rows last."""
+    with tempfile.TemporaryDirectory(prefix="chaplygin-remap-") as cold:
+        before = os.environ.get(cache.ENV)
+        os.environ[cache.ENV] = cold   # read by the pool's workers, started in run()
+        try:
+            results = run(select(), jobs=jobs, fresh=True)
+        finally:
+            if before is None:
+                os.environ.pop(cache.ENV, None)
+            else:
+                os.environ[cache.ENV] = before
     bad = [r.row.id for r in results if r.error]
     if bad:
         raise RuntimeError(f"rows raised while mapping reach: {', '.join(bad)}")

@@ -25,11 +25,17 @@ from __future__ import annotations
 import numpy as np
 from chaplygin_nd.simulate.analysis import draws
 from chaplygin_nd.simulate.analysis.control import CHAOTIC_J
-from chaplygin_nd.simulate.analysis.drawn_evidence import Setting, measure, merge_longer, subset
+from chaplygin_nd.simulate.analysis.drawn_evidence import (
+    Setting,
+    measure,
+    merge_longer,
+    start,
+    subset,
+)
 from chaplygin_nd.simulate.dynamics import so
 
 __all__ = ["LEVEL_SETS", "SHIFTS", "RERUN", "LONGER", "reduced_row", "full4_row", "vertical_row",
-           "control4_row", "run_with_rerun", "SETTINGS", "open_row", "open_setting",
+           "control4_row", "start_control4", "run_with_rerun", "SETTINGS", "open_row", "open_setting",
            "OPEN_COUNTS"]
 
 LEVEL_SETS = 50
@@ -127,6 +133,16 @@ def control4_row(seed: int) -> dict:
     ens = draws.draw("control4", "generic", 4, CONTROL4_COUNT, seed)
     return {"results": measure(SETTINGS["control4"], ens, _full_state(ens), seed), "rerun": [],
             "rerun_index": []}
+
+
+def start_control4(seed: int) -> bool:
+    """Compute and cache the control of :func:`control4_row` now unless it is cached or another
+    process is computing it (:func:`simulate.analysis.drawn_evidence.start`). The three rows that
+    share the control call it first: under ``verify --jobs 2`` the first of them computes it
+    while the other does its own orbits, instead of both ending on the control and one core
+    waiting for the other. True iff computed here."""
+    ens = draws.draw("control4", "generic", 4, CONTROL4_COUNT, seed)
+    return start(SETTINGS["control4"], ens, _full_state(ens), seed)
 
 
 #: Orbits per open-problem row (axisymmetric, general-J control): n = 5 is row S6:open-reduced-n5
