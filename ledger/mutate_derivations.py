@@ -136,6 +136,22 @@ ARGUED: dict[tuple[str, str], str] = {
     ("fi_reconstruct.real_columns", "const: line 80 col 54: 1 -> 2"):
         "the power of i is read only as a truth value (_real_matrix: i_p if ipow else 1; "
         "to_expression: u[0] if not ipow else -u[1]), so 2 acts as 1",
+    ("fi_new.varies_in_M", "const: line 227 col 69: 0 -> 1"):
+        "draws the witness point from another labelled stream of the same seed: the statement "
+        "proved (dP/d eps != 0 at one exact rational point, so the integral is not constant) is "
+        "the same, any such point being a witness; the row's 'is not constant' parts still require "
+        "the exact slope there to be non-zero",
+    ("fi_new.varies_in_M", "sign: line 231 col 24: M + eps * N -> M - eps * N"):
+        "the slope along -N is minus the slope along N, so it is non-zero exactly when the "
+        "original is: the same proof that the integral is not constant, with the witness negated",
+    ("sixth_integral.Delta_ring", "factor: line 67 col 11: (2 + a) * (2 + b) -> (2 + b) * (2 + a)"):
+        "the same element of the polynomial ring (PolyElement ==, exact coefficients): the replay "
+        "compares dicts in their iteration order, and only the order in which the terms are "
+        "stored differs; every use is exact ring arithmetic, which does not depend on it",
+    ("reduced5_invariants.relations", "const: line 344 col 36: 1 -> 2"):
+        "doubles every relation: 2r vanishes wherever r does and the doubled coefficient vectors "
+        "are still a basis of the same exact null space, which is what relations() returns (its "
+        "docstring); a basis has no preferred scale, and the row tests what the relations span",
 }
 
 
