@@ -222,6 +222,21 @@ def _pfaffian_vector(M):
                                              [j for j in range(5) if j != i])]) for i in range(5)])
 
 
+def test_pfaffian_vector_signs_follow_the_definition():
+    """sixth_integral.pfaffian_vector: w_i = (-1)^i Pf(M without row and column i), 0-based. For M =
+    E_pq + E_rs on the four indices other than i (p < q < r < s), the 4x4 Pfaffian of M without i is
+    M_pq M_rs = 1 and every other minor keeps a zero row, so w = (-1)^i e_i. The integral of
+    S6:sixth-integral-n5 is quadratic in w, so no row sees the sign; this test does."""
+    from chaplygin_nd.symbolic import sixth_integral as si
+
+    for i in range(5):
+        p, q, r, s = (j for j in range(5) if j != i)
+        M = [[0] * 5 for _ in range(5)]
+        for u, v in ((p, q), (r, s)):
+            M[u][v], M[v][u] = 1, -1
+        assert si.pfaffian_vector(M) == [(-1) ** i if j == i else 0 for j in range(5)]
+
+
 def test_sixth_integral_constant_along_drawn_orbits():
     """Row S6:sixth-integral-n5 numerically: F = <w, B(2+B)w>/Delta, computed on P from its definition
     (w the signed 4x4 Pfaffians, B = a E5 E5^T + b gamma gamma^T), stays constant along 4 drawn n = 5
