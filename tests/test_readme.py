@@ -37,3 +37,16 @@ def test_the_install_line_says_what_a_wheel_without_the_extra_fast_leaves_open(m
     install = text[text.index("Installed from a wheel"):text.index("## What `make verify` prints")]
     assert command.replace("pip install ", "") in install and "`open`" in install, install
     assert reason.split(":")[0] in install  # "not measured here"
+
+
+def test_the_sample_of_make_verify_is_in_the_order_verify_prints():
+    """``verify`` prints the rows as they finish (not in ledger order: the README says so), then
+    the generated/ check, then the totals (ledger/__main__.py); the sample shows that order."""
+    text = README.read_text(encoding="utf-8")
+    sample = text[text.index("## What `make verify` prints"):].split("```")[1].splitlines()
+    source = (ROOT / "ledger" / "__main__.py").read_text(encoding="utf-8")
+    assert source.index('say("generated/ is up to date') < source.index("say(report.summary(")
+    generated = next(i for i, ln in enumerate(sample) if ln.startswith("generated/ is up to date"))
+    totals = next(i for i, ln in enumerate(sample) if re.match(r"\d+ rows: ", ln))
+    assert sample[1] == "seed 20261121" and sample[2].startswith("id ") and generated < totals
+    assert "the rows print as they finish" in " ".join(text.split())
