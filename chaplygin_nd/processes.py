@@ -239,13 +239,16 @@ def pool(workers: int, context=None, initializer: Callable[..., object] | None =
 POLL_SECONDS = 0.2
 
 
-def as_completed(futures, poll: float = POLL_SECONDS):
+def as_completed(futures, poll: float = POLL_SECONDS, on_wake=None):
     """The ``futures`` as they finish (like ``concurrent.futures.as_completed``), waking every
     ``poll`` seconds so that a Ctrl-C or SIGTERM taken by another thread reaches the main thread
-    (module docstring)."""
+    (module docstring); ``on_wake()``, if given, is called at each wake (e.g. a progress line
+    while a long task runs)."""
     pending: set[Future] = set(futures)
     while pending:
         done, pending = wait(pending, timeout=poll, return_when=FIRST_COMPLETED)
+        if on_wake is not None:
+            on_wake()
         yield from done
 
 

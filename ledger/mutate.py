@@ -55,6 +55,7 @@ from typing import Any
 
 import sympy as sp
 from chaplygin_nd.ledger.catalog import ROOT, is_checkout
+from chaplygin_nd.ledger.phase import Phase
 from chaplygin_nd.ledger.reach import load as load_reach
 from chaplygin_nd.ledger.reach import (
     printed_functions,
@@ -556,11 +557,16 @@ def _init_worker():
     discover()
 
 
-def baseline(ids=None, jobs: int = 2):
-    """Run rows unmutated (all, or ``ids``): {row: (signature, seconds, printed functions)}."""
+def baseline(ids=None, jobs: int = 2, phase=None):
+    """Run rows unmutated (all, or ``ids``): {row: (signature, seconds, printed functions)};
+    ``phase`` (:class:`ledger.phase.Phase`) counts the rows as they are decided."""
     from chaplygin_nd.ledger.runner import run, select
 
-    results = run(select(ids or ()), jobs=jobs)
+    rows = select(ids or ())
+    if phase is not None:
+        phase.total = len(rows)
+    results = run(rows, jobs=jobs, on_result=(lambda r: phase.add()) if phase is not None
+                  else (lambda r: None), on_wake=phase.tick if phase is not None else None)
     bad = [r.row.id for r in results if r.error]
     if bad:
         raise RuntimeError(f"rows raise without any mutant: {', '.join(bad)}")
@@ -601,6 +607,11 @@ def run_mutants(tasks, jobs: int = 2, on_record=lambda r: None) -> list[dict]:
             out.append(rec)
             on_record(rec)
         return out
+
+
+def plural(count: int, noun: str) -> str:
+    """``1 job``, ``2 jobs``."""
+    return f"{count} {noun}{'' if count == 1 else 's'}"
 
 
 def select_all(per_function: int = PER_FUNCTION) -> list[Mutant]:
@@ -719,8 +730,10 @@ def main(argv: list[str] | None = None) -> int:
     from chaplygin_nd.ledger.catalog import discover
 
     discover()
+    listing = Phase(f"listing the mutants of {len(printed_functions())} printed functions")
     sample_rows = None
-    if args.sample:  # a seeded sample among mutants whose rows (saved reach map) are cheap
+    if args.sample:
+        listing.start()  # a seeded sample among mutants whose rows (saved reach map) are cheap
         saved_rows, saved_seconds = load_reach()
         by_function = rows_by_function(saved_rows)
         cheap = [m for m in select_all(args.per_function)
@@ -728,15 +741,20 @@ def main(argv: list[str] | None = None) -> int:
                  and sum(saved_seconds.get(r, 99.0) for r in by_function[m.function]) < SAMPLE_ROW_SECONDS]
         chosen = random.Random(20261123).sample(cheap, min(args.sample, len(cheap)))
         sample_rows = sorted({r for m in chosen for r in by_function[m.function]})
-    base = baseline(sample_rows, jobs=args.jobs)
+    base = baseline(sample_rows, jobs=args.jobs, phase=Phase(
+        f"baseline: running the {'rows of the sample' if sample_rows else 'ledger rows'} unmutated "
+        f"({plural(args.jobs, 'job')}; it finds which rows reach each printed function)",
+        what="rows done").start())
     reach = {row: info[2] for row, info in base.items()}
     missing = unreached(reach) if not args.sample else []
     if not args.function and args.engines == "both" and not args.sample and is_checkout():
         save_reach(reach, {row: info[1] for row, info in base.items()})
-    selection = [m for m in select_all(args.per_function)
-                 if not args.function or m.function in args.function]
     if args.sample:
         selection = chosen
+    else:
+        listing.start()
+        selection = [m for m in select_all(args.per_function)
+                     if not args.function or m.function in args.function]
     tasks = plan(base, selection)
     print(f"baseline: {len(base)} rows in {time.perf_counter() - start:.0f} s; "
           f"{len(tasks)} mutants to run", flush=True)

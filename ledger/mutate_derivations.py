@@ -34,7 +34,9 @@ next). Mutants run in ``--jobs`` forked workers, cheapest first; ``--out`` is re
 (``"complete": false``) so an interrupted run keeps what it decided, and ``--resume`` goes on from
 there. ``--sample N`` draws ``N`` mutants per target with a fixed seed. Writes
 ``mutation-derivations.json`` (or ``--out``) atomically; each target's summary line gives its wall
-and CPU seconds; exit 1 on a survivor or an error.
+and CPU seconds; exit 1 on a survivor or an error. Before the first mutant each phase (listing
+the mutants, the unmutated rows, the instrumented tests) prints what it does, and the long ones
+their progress every 30 s (:mod:`ledger.phase`).
 """
 
 from __future__ import annotations
@@ -55,6 +57,7 @@ from chaplygin_nd.ledger.catalog import ROOT, is_checkout
 from chaplygin_nd.ledger.mutate_replay import Recording, mutated_line, replay
 from chaplygin_nd.ledger.mutate_replay import record as record_calls
 from chaplygin_nd.ledger.mutate_runtime import runtime_functions, runtime_tests  # noqa: F401 - API
+from chaplygin_nd.ledger.phase import Phase, line
 from chaplygin_nd.ledger.reach import (
     clear_caches,
     derivation_functions,
@@ -333,7 +336,10 @@ def plan(target: str, selection: list[mu.Mutant], jobs: int, tests_for=()) -> li
     reaches or one in ``tests_for`` (the survivors re-run), the tests that reach it
     (:func:`mutate_runtime.test_map` over the test files that name it)."""
     if target == "runtime":
-        reach = mr.test_map() if selection else {}
+        reach = mr.test_map(phase=Phase(
+            "planning: running the runtime's tests unmutated, to find the tests that reach each of "
+            "its functions",
+            what="tests done").start()) if selection else {}
         return [Task(target, m, tuple(t for t, _ in reach.get(m.function, ()))) for m in selection]
     derived, emitted = load_derived()
     _, seconds = load()
@@ -346,10 +352,17 @@ def plan(target: str, selection: list[mu.Mutant], jobs: int, tests_for=()) -> li
         chosen[m.function] = sorted(by_function.get(m.function, []),
                                     key=lambda r: (seconds.get(r, 99), r))
     needed = sorted({r for rows in chosen.values() for r in rows})
-    base = mu.baseline(needed, jobs=jobs) if needed else {}
+    base = mu.baseline(needed, jobs=jobs, phase=Phase(
+        f"planning: running the {len(needed)} rows that reach the mutants, unmutated "
+        f"({mu.plural(jobs, 'job')})",
+        what="rows done").start()) if needed else {}
     every = functions(target)
     tested = {f: every[f] for f in chosen if not chosen[f] or f in tests_for}
-    reach = mr.test_map(tested, mr.mentioning(tested)) if tested else {}
+    files = mr.mentioning(tested) if tested else ()
+    reach = mr.test_map(tested, files, phase=Phase(
+        f"planning: running {len(files)} test files unmutated, to find the tests that reach the "
+        f"{len(tested)} functions no row reaches{' or re-run' if tests_for else ''}",
+        what="tests done").start()) if tested else {}
     return [Task(target, m, tuple((r, base[r][0], base[r][1]) for r in chosen[m.function]),
                  frozenset(emitted), tuple(t for t, _ in reach.get(m.function, ())))
             for m in selection]
@@ -368,17 +381,13 @@ def summary(records: list[dict], target: str, seconds: float | None = None, cpu:
     count = {k: sum(r["outcome"] == k for r in records)
              for k in ("killed", "equivalent", "survived", "error")}
     functions = len({(r["target"], r["function"]) for r in records})
-    line = (f"{target}: {_plural(len(records), 'mutant')} of {_plural(functions, 'function')}: "
+    line = (f"{target}: {mu.plural(len(records), 'mutant')} of {mu.plural(functions, 'function')}: "
             f"{count['killed']} killed, {count['equivalent']} equivalent, "
-            f"{count['survived']} survived, {_plural(count['error'], 'error')}")
+            f"{count['survived']} survived, {mu.plural(count['error'], 'error')}")
     if seconds is None:
         return line
     ran = len(records) if ran is None else ran
     return f"{line}; this run: {ran} mutants in {seconds:.0f} s wall, {cpu:.0f} s CPU"
-
-
-def _plural(count: int, noun: str) -> str:
-    return f"{count} {noun}{'' if count == 1 else 's'}"
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -448,6 +457,7 @@ def main(argv: list[str] | None = None) -> int:
         records = [r for r in records if r["target"] not in targets or r["outcome"] not in args.again]
     done = {(r["target"], r["function"], r["mutation"]) for r in records}
     for target in targets:
+        Phase(f"{target}: listing the mutants of {len(functions(target))} functions").start()
         selection = [m for m in sample(target, None if args.function else args.sample, args.seed)
                      if not args.function or m.function in args.function]
         if args.rerun:
@@ -573,10 +583,9 @@ def _run(tasks: list[Task], jobs: int, records: list[dict], runs, args, run, t0,
 
 
 def progress_line(done: int, total: int, seconds: float) -> str:
-    """``N of M mutants decided, S s so far, about T min left`` (at the rate so far)."""
-    left = seconds / done * (total - done) if done else float("nan")
-    eta = f"about {left / 60:.0f} min left" if done else "no estimate yet"
-    return f"  ... {done} of {total} mutants decided in {seconds:.0f} s, {eta}"
+    """``N of M mutants decided in S s, about T min left`` (at the rate so far;
+    :func:`ledger.phase.line`, as the planning phases before it)."""
+    return line(done, total, seconds, "mutants decided")
 
 
 if __name__ == "__main__":

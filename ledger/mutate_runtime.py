@@ -139,9 +139,10 @@ def _cache_root(fresh: bool):
                 os.environ[ENV] = saved
 
 
-def _watch(functions: dict[str, FunctionType], reached: dict):
+def _watch(functions: dict[str, FunctionType], reached: dict, phase=None):
     """A pytest plugin recording into ``reached`` ``{test id: (seconds, functions called)}`` for
-    each test (setup, call and teardown), every test with empty caches."""
+    each test (setup, call and teardown), every test with empty caches; ``phase``
+    (:class:`ledger.phase.Phase`) gets the number of tests collected and counts them as they end."""
     import pytest
     from chaplygin_nd.ledger.reach import Recorder
     from chaplygin_nd.runtime import jit_cache
@@ -156,6 +157,16 @@ def _watch(functions: dict[str, FunctionType], reached: dict):
             jit_cache.forget_memory()
             reached[item.nodeid] = (time.perf_counter() - start, tuple(sorted(rec.calls)))
             del outcome
+
+        @pytest.hookimpl
+        def pytest_collection_finish(self, session):
+            if phase is not None:
+                phase.total = len(session.items)
+
+        @pytest.hookimpl
+        def pytest_runtest_logfinish(self, nodeid, location):  # noqa: ARG002 - pytest's signature
+            if phase is not None:
+                phase.add()
 
         @pytest.hookimpl
         def pytest_runtest_logreport(self, report):
@@ -173,15 +184,16 @@ def _empty_caches() -> None:
 
 
 def test_map(functions: dict[str, FunctionType] | None = None,
-             files: tuple[str, ...] | None = None) -> dict[str, list[tuple[str, float]]]:
+             files: tuple[str, ...] | None = None, phase=None) -> dict[str, list[tuple[str, float]]]:
     """``{function: [(test id, seconds), ...]}`` (fastest first): the tests of ``files`` (default
     :func:`runtime_tests`) that call each of ``functions`` (default: the runtime's), recorded in
     one unmutated run. A test that fails unmutated reaches nothing (it could not tell a mutant
     apart); tests marked ``slow`` are left out (too long to run once per mutant: a function only
-    they reach is reported as reached by no test)."""
+    they reach is reported as reached by no test). ``phase`` (:class:`ledger.phase.Phase`) counts
+    the tests as they end."""
     functions = runtime_functions() if functions is None else functions
     reached: dict[str, tuple[float, tuple[str, ...]]] = {}
-    watch, failed = _watch(functions, reached)
+    watch, failed = _watch(functions, reached, phase)
     _pytest(["-m", "not slow and not site", *(runtime_tests() if files is None else files)],
             plugins=[watch])
     out: dict[str, list[tuple[str, float]]] = {key: [] for key in functions}

@@ -168,7 +168,8 @@ def longest_first(ids: Sequence[str], seconds: dict[str, float]) -> list[str]:
 def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFAULT_SEED,
         on_result: Callable[[Result], None] = lambda r: None, fresh: bool = False,
         also: Callable[[], object] | None = None,
-        on_also: Callable[[object], None] = lambda value: None) -> list[Result]:
+        on_also: Callable[[object], None] = lambda value: None,
+        on_wake: Callable[[], None] | None = None) -> list[Result]:
     """Decide ``rows``; registered ones run in ``jobs`` processes (started longest first,
     :func:`longest_first`), the rest are ``open``. ``on_result`` is called for each row as it is
     decided (in one process: in ledger order; in several: as the rows finish); the results are
@@ -177,7 +178,8 @@ def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFA
     arguments (``verify --check-generated``: the regeneration of generated/) run after the rows
     were handed out, by the first worker free (so the last rows and it share the cores), or
     after the rows in one process; its value goes to ``on_also`` (an exception it raises is
-    raised here)."""
+    raised here). ``on_wake``: called while waiting for the workers, every few seconds
+    (:func:`chaplygin_nd.processes.as_completed`)."""
     discover()
     specs = registry()
     todo = list(dict.fromkeys(r.id for r in rows if r.id in specs))
@@ -209,7 +211,7 @@ def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFA
             futures = {pool.submit(_run_one, claim_id, seed, fresh): claim_id
                        for claim_id in longest_first(todo, stored_seconds())}
             extra = pool.submit(also) if also is not None else None
-            for future in processes.as_completed(futures):
+            for future in processes.as_completed(futures, on_wake=on_wake):
                 claim_id = futures[future]
                 decided[claim_id] = result_of(claim_id, future.result())
                 on_result(decided[claim_id])

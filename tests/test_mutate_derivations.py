@@ -8,6 +8,8 @@ form changed) killed by S5:H-linear.
 
 from __future__ import annotations
 
+import re
+
 import pytest
 from chaplygin_nd.ledger import mutate
 from chaplygin_nd.ledger import mutate_derivations as md
@@ -87,3 +89,53 @@ def test_a_runtime_mutant_runs_only_the_tests_given_and_is_killed_by_a_failing_o
     assert fn.__code__ is not code
     untested = mr.evaluate(fn, code, key, (), {})
     assert untested["outcome"] == "survived" and "no test calls" in untested["reason"]
+
+
+def test_a_phase_prints_its_line_then_progress_at_most_every_30_s(monkeypatch):
+    """Nothing is silent before "N mutants to run": a phase prints what it does when it starts,
+    and a long one its progress (done of total, at most one line per 30 s of the clock)."""
+    import io
+    import itertools
+
+    from chaplygin_nd.ledger import phase as phase_module
+
+    clock = itertools.count(0.0, 4.0)  # 4 s a reading
+    monkeypatch.setattr(phase_module.time, "perf_counter", lambda: next(clock))
+    out = io.StringIO()
+    p = phase_module.Phase("planning: running the 3 rows", what="rows done", stream=out).start()
+    p.total = 40
+    for _ in range(40):
+        p.add()
+    lines = out.getvalue().splitlines()
+    assert lines[0] == "planning: running the 3 rows ..."
+    done = [int(x) for x in re.findall(r"\.\.\. (\d+) of 40 rows done in", out.getvalue())]
+    assert len(lines) == 1 + len(done) and 4 <= len(done) <= 6, lines  # 160 s of clock
+    assert done == sorted(done) and "min left" in lines[-1]
+    waiting = phase_module.Phase("one long row", total=2, what="rows done", stream=out)
+    out.truncate(0)
+    for _ in range(20):  # no row ends for 80 s of the clock: the waiting loop's wakes still report
+        waiting.tick()
+    assert 2 <= out.getvalue().count("... 0 of 2 rows done in") <= 3, out.getvalue()
+
+
+def test_planning_says_what_it_runs_and_counts_rows_and_tests(capsys):
+    """The two long phases of the planning, counted: the unmutated rows (the runner's results)
+    and the instrumented test run (pytest's collected tests, each as it ends)."""
+    from chaplygin_nd.ledger import mutate_runtime as mr
+    from chaplygin_nd.ledger.phase import Phase
+
+    discover()
+    key = "reduced.horizontal_frequency_squared"
+    m = next(iter(mutate.all_mutants(key, md.functions("derivations")[key])))[0]
+    tasks = md.plan("derivations", [m], jobs=1)
+    out = capsys.readouterr().out
+    assert re.search(r"^planning: running the (\d+) rows that reach the mutants, unmutated", out,
+                     re.M), out
+    assert [r for r, _, _ in tasks[0].rows][:1] == ["S5:H-linear"]
+    phase = Phase("tests", every=0.0, what="tests done").start()
+    fn = md.functions("runtime")["runtime.axisym.vec"]
+    reach = mr.test_map({"runtime.axisym.vec": fn}, ("tests/test_runtime_batches.py",),
+                        phase=phase)
+    assert phase.total and phase.done == phase.total >= len(reach["runtime.axisym.vec"]) > 0
+    out = capsys.readouterr().out
+    assert f"... {phase.total} of {phase.total} tests done" in out, out

@@ -1,6 +1,7 @@
 """Progress that can be trusted (issue 25): the progress line of a long run is monotone (an
 integrator's probe, a rejected step or the next pass of an ensemble never makes it go back),
-shows an ETA, and a frequency map counts its orbits done out of the total."""
+shows an ETA, and a frequency map counts its orbits done out of the total. On a terminal it is
+rewritten in place; in a log file or CI it is whole lines, at most one every 30 s."""
 
 from __future__ import annotations
 
@@ -23,18 +24,47 @@ def ticking(monkeypatch):
         monkeypatch.setattr(module.time, "perf_counter", lambda: next(clock))
 
 
+class Terminal(io.StringIO):
+    """A stream that says it is a terminal."""
+
+    def isatty(self) -> bool:
+        return True
+
+
 def _shown(text: str) -> list[float]:
     return [float(x) for x in re.findall(r"\(\s*([0-9.]+)%", text)]
 
 
 def test_the_progress_line_never_goes_back(ticking):
-    stream = io.StringIO()
+    stream = Terminal()
     bar = run_module.Progress(1.0, "full dop853", after=0.0, stream=stream)
     for t in (0.01, 0.081, 0.008, 0.02, 0.89, 0.243, 0.5, 0.95, 1.0):  # issue 25's jumps
         bar(t)
     shown = _shown(stream.getvalue())
     assert shown == sorted(shown) and shown[-1] == 100.0, shown
     assert "ETA" in stream.getvalue()
+
+
+@pytest.mark.parametrize("bar", ["time", "tally"])
+def test_off_a_terminal_progress_is_whole_lines_at_most_every_30_s(ticking, bar):
+    """A log file gets no carriage return: a whole line when the run has lasted ``after``, then
+    at most one per 30 s of the (ticking, 1.5 s a reading) clock, and the last state at the end."""
+    stream = io.StringIO()
+    if bar == "time":
+        line = run_module.Progress(100.0, "full dop853", after=0.0, stream=stream)
+        report = line
+    else:
+        line = Tally(100, "frequency map: orbits", after=0.0, stream=stream)
+        report = line.add
+    for _ in range(100):
+        report(1.0)
+    line.done()
+    text = stream.getvalue()
+    assert "\r" not in text and text.endswith("\n")
+    seconds = [int(x) for x in re.findall(r"%, (\d+) s, ETA", text)]
+    assert len(seconds) == len(text.splitlines()) >= 3, text
+    assert all(b - a >= 30 for a, b in zip(seconds, seconds[1:-1])), seconds
+    assert _shown(text)[-1] == (1.0 if bar == "time" else 100.0), text
 
 
 def test_eta_and_the_tally_of_pieces(ticking):

@@ -40,13 +40,15 @@ from chaplygin_nd.console import (
 __all__ = ["main", "summary", "heading"]
 
 
-def heading(scene, p) -> str:
+def heading(scene, p, report: bool = False) -> str:
     """The summary's first lines, the scene and the plan (model and why), which ``chaplygin
-    simulate`` prints before the run."""
+    simulate`` prints before the run; with ``report`` (summary.txt) also the scene's remarks
+    (``body:`` lines, e.g. that no ball of matter has its (a, b): see ``spec._body``)."""
     return "\n".join([f"scene   {scene.title}  (n = {scene.n}, a = {scene.a:g}, b = {scene.b:g}, "
                       f"{scene.count} initial condition{'s' if scene.count > 1 else ''}, "
                       f"t in [{scene.t[0]:g}, {scene.t[-1]:g}], {len(scene.t)} samples)",
-                      p.describe()])
+                      p.describe(),
+                      *([f"  body: {r}" for r in scene.remarks] if report else [])])
 
 
 def summary(scene, p, traj, arrays, seconds, check=None, out=None, *, with_heading=True) -> str:
@@ -138,7 +140,7 @@ def main(argv: list[str] | None = None) -> int:
                                       else ({}, []))
             rest = "\n".join([summary(scene, p, traj, arrays, time.perf_counter() - start, check,
                                        out, with_heading=False), *extra_lines])
-            text = heading(scene, p) + "\n" + rest  # summary.txt: the whole summary
+            text = heading(scene, p, report=True) + "\n" + rest  # summary.txt: the whole summary
             try:
                 write(folder, arrays, text, plots=plots, extra=extra)
             except OSError as exc:

@@ -50,7 +50,7 @@ class Trajectory:
 
 
 class Progress(Line):
-    """Progress on stderr for runs longer than ``after`` seconds (at most one line a second), with
+    """Progress on stderr for runs longer than ``after`` seconds (as :class:`Line` writes it), with
     an ETA; it also stops a run whose time became nan and, through ``projection``
     (:class:`simulate.scene.budget.Projection`), one projected to cost too much. The line is
     monotone: it shows the furthest time reported, so an integrator's probe or rejected step

@@ -7,7 +7,7 @@ r"""Scenes: TOML files that name a sphere, an initial condition, times, outputs 
     a = 0.5               # eq:axisymm, J = Id + a E_n E_n^T, a >= -1 (the paper states
                           # -1 <= a <= 1; a > 1, a prolate body, runs with a note)
     b = 1.0               # eq:M-O, b = m r^2 > 0 (a ball exists iff b >= n + a; otherwise
-                          # the plan notes that (a, b) is not realisable and runs anyway)
+                          # summary.txt says that no ball has (a, b); the paper's system runs)
     radius = 1.0          # r, only used by the contact path (optional, default 1)
 
     # or, instead of a, b and radius, a physical ball (S4:physical-ball):
@@ -127,7 +127,8 @@ class Scene:
     raw: dict = field(default_factory=dict, repr=False)
     name: str = "scene"
     ball: Ball | None = None
-    notes: tuple[str, ...] = ()
+    notes: tuple[str, ...] = ()  # caveats the plan prints (e.g. a outside the paper's range)
+    remarks: tuple[str, ...] = ()  # facts for the report file only (no ball has these a, b)
     figures: bool = True  # outputs.figures = false: no PNG figures (as --no-plots)
 
     @property
@@ -259,7 +260,7 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene | Fr
     n = _number(raw, "n", fail, integer=True, required=True)
     if n < 3:
         fail("n", f"n = {n} is below 3", "use n >= 3 (the sphere S^{n-1} rolls on R^{n-1})")
-    a, b, radius, ball, notes = _body(raw, n, fail)
+    a, b, radius, ball, notes, remarks = _body(raw, n, fail)
 
     init = raw.get("initial", {})
     _unknown(init, _INITIAL, "initial.", fail)
@@ -411,13 +412,22 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene | Fr
                  family=family, claimed=explicit and family != "explicit", seed=seed, M0=M0,
                  gamma0=gamma0, Omega0=Omega0, t=t, outputs=tuple(dict.fromkeys(want)),
                  target=target, method=method, dps=dps, step=step, tolerance=tol,
-                 source=source, raw=raw, ball=ball, notes=tuple(notes), figures=figures)
+                 source=source, raw=raw, ball=ball, notes=tuple(notes), remarks=tuple(remarks),
+                 figures=figures)
 
 
 def _body(raw, n, fail):
-    """(a, b, radius, ball, notes) from either ``a, b[, radius]`` or a ``[ball]`` table
-    (S4:physical-ball); realisability as in :mod:`simulate.dynamics.ball`."""
+    """(a, b, radius, ball, notes, remarks) from either ``a, b[, radius]`` or a ``[ball]`` table
+    (S4:physical-ball); realisability as in :mod:`simulate.dynamics.ball`.
+
+    An ``(a, b)`` with ``b < n + a`` is the paper's system (eq:M-O holds for every ``b > 0``, and
+    no claim needs more) but no ball of matter: ``tr J > m r^2`` puts the mass, on average, beyond
+    the contact radius. That is a remark for the report file (summary.txt), not a caveat printed
+    with the plan: the run is exactly what the scene asked for, most built-in scenes take such
+    values from the paper's abstract setting, and a scene that means a physical ball gives a
+    ``[ball]`` table, which refuses an impossible one with an error."""
     notes: list[str] = []
+    remarks: list[str] = []
     if "ball" not in raw:
         a = _number(raw, "a", fail, required=True)
         if not a >= -1.0:
@@ -435,9 +445,10 @@ def _body(raw, n, fail):
                          "for every a > -2 (eq:Delta), so L_gamma is invertible (P:Measure)")
         bad = parameter_violations(n, a, b)
         if bad:
-            notes.append("(a, b) is not realisable as a ball: " + "; ".join(bad)
-                         + "; the paper treats (a, b) abstractly, so it runs")
-        return a, b, radius, None, notes
+            remarks.append("no ball of matter has these (a, b): " + "; ".join(bad)
+                           + "; the run is the paper's system, which holds for any b > 0 "
+                           "(a physical ball is given as a [ball] table)")
+        return a, b, radius, None, notes, remarks
     for key in ("a", "b", "radius"):
         if key in raw:
             fail(key, f"{key} is given together with [ball]",
@@ -471,7 +482,7 @@ def _body(raw, n, fail):
     if a > 1.0:
         notes.append(f"a = {a:g} is outside the paper's stated range a in [-1, 1] (eq:axisymm): "
                      "a prolate body, physical (S4:physical-ball)")
-    return a, b, radius, ball, notes
+    return a, b, radius, ball, notes, remarks
 
 
 def _unknown(table, allowed, prefix, fail):
