@@ -53,7 +53,7 @@ __all__ = ["die_with_parent", "worker_start", "held_signals", "Pool", "pool", "p
 #: ``<linux/prctl.h>``: the signal a process gets when its parent dies.
 PR_SET_PDEATHSIG = 1
 #: How often the fallback watcher (not Linux) looks at the owner, in seconds.
-POLL_SECONDS = 1.0
+WATCH_SECONDS = 1.0
 
 _armed: set[int] = set()
 
@@ -92,7 +92,7 @@ def _watch(owner: int) -> None:
     import time
 
     while alive(owner):
-        time.sleep(POLL_SECONDS)
+        time.sleep(WATCH_SECONDS)
     os._exit(1)
 
 
