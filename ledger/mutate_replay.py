@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import contextlib
 import copy
+import dataclasses
 import dis
 import sys
 from dataclasses import dataclass, field
@@ -128,7 +129,9 @@ def _snapshot(value: Any) -> Any:
 def identical(x, y) -> bool:
     """Whether a row could tell ``x`` from ``y``: same type and structure (SymPy's structural
     ``==``, not mathematical equality: ``x*(x+1)`` and ``x**2 + x`` differ in what a row prints),
-    floats and arrays bit for bit, containers element by element in their iteration order."""
+    floats and arrays bit for bit, containers element by element in their iteration order,
+    dataclasses field by field over the fields they compare (``field(compare=False)``, e.g. the
+    seconds a computation took, is no part of the value)."""
     import numpy as np
     import sympy as sp
 
@@ -150,6 +153,9 @@ def identical(x, y) -> bool:
         return x.shape == y.shape and all(identical(u, v) for u, v in zip(x, y))
     if isinstance(x, np.random.Generator):  # its state is what a later draw depends on
         return identical(x.bit_generator.state, y.bit_generator.state)
+    if dataclasses.is_dataclass(x):  # field by field, the fields it compares (its own ``==``
+        return all(identical(getattr(x, f.name), getattr(y, f.name))  # cannot compare arrays;
+                   for f in dataclasses.fields(x) if f.compare)      # compare=False: a time taken)
     if type(x).__eq__ is object.__eq__ and hasattr(x, "__dict__"):  # no equality of its own:
         return identical(vars(x), vars(y))                          # field by field
     try:

@@ -81,7 +81,7 @@ class DegreeResult:
     products: int
     settled: bool               # found == known: no integral beyond the known algebra
     recovered: bool | None
-    seconds: float
+    seconds: float = field(compare=False)  # a time taken: no part of the result's value
     blocks: list[BlockResult] = field(default_factory=list)
 
     def as_dict(self) -> dict:
