@@ -136,6 +136,21 @@ ARGUED: dict[tuple[str, str], str] = {
     ("fi_reconstruct.real_columns", "const: line 80 col 54: 1 -> 2"):
         "the power of i is read only as a truth value (_real_matrix: i_p if ipow else 1; "
         "to_expression: u[0] if not ipow else -u[1]), so 2 acts as 1",
+    **{("fi_field.sample", mutation):
+       "another seeded draw of the same points: the mutant changes how many candidates a round "
+       "draws (line 232) or draws t and M from 1..p-1 instead of 0..p-1 (lines 233, 238); it "
+       "still returns `count` points of P mod p with gamma on the sphere, D, 1 + |t|^2 and the "
+       "pivots non-zero, and the field there (its contract; fi_field's docstring). The search "
+       "concludes nothing from which points: nullity_p >= dim V and rank_p(known) <= dim K hold at "
+       "every admissible choice (first_integrals' docstring), so when the ends meet the result is "
+       "the same exact statement for any draw"
+       for mutation in ("const: line 232 col 16: 64 -> 65",
+                        "sign: line 232 col 20: int(1.2 * (count - have)) + 16 -> "
+                        "int(1.2 * (count - have)) - 16",
+                        "const: line 232 col 48: 16 -> 17",
+                        "factor: line 232 col 24: 1.2 * (count - have) -> 1.2",
+                        "factor: line 232 col 24: 1.2 * (count - have) -> count - have",
+                        "const: line 233 col 25: 0 -> 1", "const: line 238 col 41: 0 -> 1")},
 }
 
 
