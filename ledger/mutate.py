@@ -210,8 +210,8 @@ def _apply(fn_node: ast.FunctionDef, target, replacement) -> ast.FunctionDef:
     twins: dict[int, ast.AST] = {}
     tree = copy.deepcopy(fn_node, memo=twins)
     twin = twins[id(target)]
-    new = copy.deepcopy(replacement)
-    mutated = _Replace(twin, new).visit(tree)
+    new = ast.copy_location(copy.deepcopy(replacement), twin)  # the mutated code sits where the
+    mutated = _Replace(twin, new).visit(tree)                   # target did (LineWatch looks there)
     ast.fix_missing_locations(mutated)
     return mutated
 
@@ -543,9 +543,9 @@ def evaluate(task: tuple[Mutant, list[tuple[str, tuple, float]]]) -> dict:
                 why = note or _difference(base, got)
                 record.update(outcome="killed", row=claim_id, reason=why)
                 return record
-        from chaplygin_nd.ledger.mutate_replay import mutated_line
+        from chaplygin_nd.ledger.mutate_replay import mutated_position
 
-        return settle(record, fn, code, rows, tried, mutant.function, mutated_line(mutant.description))
+        return settle(record, fn, code, rows, tried, mutant.function, mutated_position(mutant.description))
     except Exception:  # noqa: BLE001
         record.update(outcome="error", reason=traceback.format_exc(limit=3))
         return record

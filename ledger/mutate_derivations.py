@@ -52,7 +52,7 @@ from types import FunctionType
 from chaplygin_nd.ledger import mutate as mu
 from chaplygin_nd.ledger import mutate_runtime as mr
 from chaplygin_nd.ledger.catalog import ROOT, is_checkout
-from chaplygin_nd.ledger.mutate_replay import Recording, mutated_line, replay
+from chaplygin_nd.ledger.mutate_replay import Recording, mutated_position, replay
 from chaplygin_nd.ledger.mutate_replay import record as record_calls
 from chaplygin_nd.ledger.mutate_runtime import runtime_functions, runtime_tests  # noqa: F401 - API
 from chaplygin_nd.ledger.reach import (
@@ -276,7 +276,7 @@ def _decide_by_rows(task: Task, fn, code, record: dict) -> dict:
     back to running it and comparing values on the cheapest such row (:func:`ledger.mutate.settle`)."""
     m = task.mutant
     original = fn.__code__
-    line = mutated_line(m.description)
+    line = mutated_position(m.description)
     checks = [(row, base, seconds) for row, base, seconds in task.rows]
     if m.function in task.emitted:
         checks.append((GENERATED_CHECK, None, 0.0))

@@ -135,3 +135,23 @@ def test_an_equivalence_check_cut_short_is_not_equal(monkeypatch):
                                                    base=("holds", None, ()))
     assert (equal, calls, ran) == (False, 1, True)
     assert fn.__code__ is original
+
+
+def test_the_watch_sees_which_branch_of_a_one_line_conditional_ran():
+    """A mutant inside the branch of a one-line conditional that no call takes has not run,
+    although its line did (search_degree's ``... if prods else np.zeros(...)``: such a mutant
+    was once called equivalent): the watch looks at the mutated expression's line and column."""
+    from chaplygin_nd.ledger.mutate_replay import LineWatch, mutated_position
+
+    ns: dict = {}
+    exec(compile("def f(x):\n    return x + 1 if x else 7\n", "<watch test>", "exec"), ns)
+    code = ns["f"].__code__
+    col = "    return x + 1 if x else 7".index("7")
+    assert mutated_position(f"const: line 2 col {col}: 7 -> 8") == (2, col)
+    for arg, ran in ((1, False), (0, True)):
+        with (watch := LineWatch(code, (2, col))):
+            ns["f"](arg)
+        assert watch.ran is ran
+    with (whole_line := LineWatch(code, 2)):
+        ns["f"](1)
+    assert whole_line.ran
