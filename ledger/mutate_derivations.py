@@ -151,6 +151,22 @@ ARGUED: dict[tuple[str, str], str] = {
                         "factor: line 232 col 24: 1.2 * (count - have) -> 1.2",
                         "factor: line 232 col 24: 1.2 * (count - have) -> count - have",
                         "const: line 233 col 25: 0 -> 1", "const: line 238 col 41: 0 -> 1")},
+    ("fi_new.varies_in_M", "const: line 227 col 69: 0 -> 1"):
+        "another seeded exact point (stream 1 of the same seed and label instead of 0): the part "
+        "needs one point where the exact slope dP/d eps is non-zero, a witness wherever it lies; "
+        "the part's verdict is the same, its text names the other point",
+    ("fi_new.varies_in_M", "sign: line 231 col 24: M + eps * N -> M - eps * N"):
+        "the derivative along -N: d/d eps P(M - eps N)|_0 = -d/d eps P(M + eps N)|_0, non-zero "
+        "exactly when the original is; the part's verdict is the same, its text shows -slope",
+    ("reduced5_invariants.relations", "const: line 344 col 36: 1 -> 2"):
+        "every relation doubled (each monomial starts from INV_RING(2)): 2r spans the same null "
+        "space as r (the docstring's 'a basis of the exact null space') and 2r = 0 is the same "
+        "relation; its users test vanishing (relation_part), count them, compare them with A_+-R1 "
+        "(relations_on_P: all doubled alike) and take the zero set R1 = R2 = 0",
+    ("sixth_integral.Delta_ring", "factor: line 67 col 11: (2 + a) * (2 + b) -> (2 + b) * (2 + a)"):
+        "the same element of the commutative ring RING (== holds); only the insertion order of "
+        "the terms in the PolyElement dict differs, which the replay's comparison reads and the "
+        "rows do not (ring arithmetic, evaluation at a point, as_expr())",
 }
 
 

@@ -2,7 +2,8 @@
 survivors of ``chaplygin mutate-derivations`` (round 24) that the row's rank and span checks cannot
 see — a generator's sign or scale, the names and the torus branch of the coordinates, boxes and
 code paths the row's cheap boxes never take (no known product, gamma-degree 0, D^2, a block
-decided by its rank alone, several chunks, no margin of rows). Every expected value comes from the
+decided by its rank alone, several chunks, no margin of rows) — and the sign of
+sixth_integral.pfaffian_vector (S6:sixth-integral-n5). Every expected value comes from the
 definition, computed here over QQ, or from a count the definition fixes; none from the output."""
 
 from __future__ import annotations
@@ -235,3 +236,22 @@ def test_as_many_conditions_as_unknowns_settle_a_control_box(monkeypatch):
     monkeypatch.setattr(fi, "MARGIN", 0)
     r = fi.search_degree(fi_field.axisymmetric(4, A, B), 2, 4, 1)
     assert (r.found, r.known, r.settled) == (4, 4, True)
+
+
+# ---- sixth_integral.pfaffian_vector (S6:sixth-integral-n5): its sign convention ---------------
+
+def test_sixth_integral_pfaffian_vector_is_the_documented_one():
+    """w_i = (-1)^i Pf(M without row and column i) (0-based), pinned where the Pfaffian is known in
+    closed form: for M = E_12 + E_34 (the standard symplectic form on the first four coordinates)
+    Pf = 1, so w = (0, 0, 0, 0, 1); and at an integer point it is fi_new.pfaffian_vector (the
+    vector of F, another implementation of the same definition) with M w = 0. The row's N_F is
+    quadratic in w and cannot see its sign."""
+    from chaplygin_nd.symbolic import sixth_integral
+
+    M = sp.zeros(5, 5)
+    M[0, 1], M[1, 0], M[2, 3], M[3, 2] = 1, -1, 1, -1
+    assert sixth_integral.pfaffian_vector(M.tolist()) == [0, 0, 0, 0, 1]
+    M, _g, _z = _point(5, 3)
+    w = sixth_integral.pfaffian_vector(M.tolist())
+    assert sp.Matrix(w) == fi_new.pfaffian_vector(M) and M * sp.Matrix(w) == sp.zeros(5, 1)
+    assert any(w)
