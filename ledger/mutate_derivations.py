@@ -151,6 +151,11 @@ ARGUED: dict[tuple[str, str], str] = {
                         "factor: line 232 col 24: 1.2 * (count - have) -> 1.2",
                         "factor: line 232 col 24: 1.2 * (count - have) -> count - have",
                         "const: line 233 col 25: 0 -> 1", "const: line 238 col 41: 0 -> 1")},
+    ("first_integrals.search_degree", "const: line 219 col 95: 0 -> 1"):
+        "a box without known products gets K with one zero column instead of none, and reads it "
+        "nowhere: known is 0 by the same 'if prods' (line 220) and the recovery check builds "
+        "[F, K] only when there are products (line 224); tests/test_first_integrals.py's box "
+        "(5, (3, 5, 1)) runs it and gives the same result",
     ("fi_new.varies_in_M", "const: line 227 col 69: 0 -> 1"):
         "another seeded exact point (stream 1 of the same seed and label instead of 0): the part "
         "needs one point where the exact slope dP/d eps is non-zero, a witness wherever it lies; "
