@@ -255,3 +255,16 @@ def test_sixth_integral_pfaffian_vector_is_the_documented_one():
     w = sixth_integral.pfaffian_vector(M.tolist())
     assert sp.Matrix(w) == fi_new.pfaffian_vector(M) and M * sp.Matrix(w) == sp.zeros(5, 1)
     assert any(w)
+
+
+def test_prove_symbolic_proves_the_integral_at_the_parameters_given():
+    """prove_symbolic(n, a, b): numeric a, b given are the ones the integral is built and proved
+    with (symbolic a, b only by default); F (n = 3) is an integral there."""
+    seen = []
+
+    def spy(M, gamma, a, b):
+        seen.append((a, b))
+        return fi_new.new_integral(M, gamma, a, b)
+
+    assert fi_new.prove_symbolic(3, A, B, builder=spy).ok
+    assert seen == [(A, B)]
