@@ -211,8 +211,8 @@ def _apply(fn_node: ast.FunctionDef, target, replacement) -> ast.FunctionDef:
     twins: dict[int, ast.AST] = {}
     tree = copy.deepcopy(fn_node, memo=twins)
     twin = twins[id(target)]
-    new = copy.deepcopy(replacement)
-    mutated = _Replace(twin, new).visit(tree)
+    new = ast.copy_location(copy.deepcopy(replacement), twin)  # the mutated code sits where the
+    mutated = _Replace(twin, new).visit(tree)                   # target did (LineWatch looks there)
     ast.fix_missing_locations(mutated)
     return mutated
 
@@ -370,7 +370,19 @@ def run_row(claim_id: str, budget: float | None = None, base: tuple | None = Non
 
 
 def _same(x, y) -> bool:
-    """Exact equality of two values a printed function may return."""
+    """Exact equality of two values a printed function (or a derivation) may return: SymPy values
+    mathematically, arrays bit for bit, dataclasses field by field (the fields they compare: a
+    ``field(compare=False)``, e.g. a time taken, is not part of the value); never raises."""
+    import dataclasses
+
+    import numpy as np
+    from chaplygin_nd.ledger.mutate_replay import identical
+
+    if dataclasses.is_dataclass(x) and not isinstance(x, type):
+        return type(x) is type(y) and all(_same(getattr(x, f.name), getattr(y, f.name))
+                                           for f in dataclasses.fields(x) if f.compare)
+    if isinstance(x, (np.ndarray, np.generic)) or isinstance(y, (np.ndarray, np.generic)):
+        return identical(x, y)
     if isinstance(x, dict) and isinstance(y, dict):
         return x.keys() == y.keys() and all(_same(x[k], y[k]) for k in x)
     if isinstance(x, (tuple, list)) and isinstance(y, (tuple, list)):
@@ -382,7 +394,10 @@ def _same(x, y) -> bool:
     if isinstance(x, (int, sp.Basic)) and isinstance(y, (int, sp.Basic)):
         d = sp.sympify(x) - sp.sympify(y)
         return d == 0 or sp.expand(sp.together(d)) == 0
-    return x == y
+    try:
+        return bool(x == y)
+    except Exception:  # noqa: BLE001 - no equality that gives one truth value: compare as a row sees it
+        return identical(x, y)
 
 
 def _flat(value) -> list:
@@ -411,11 +426,13 @@ def _proportional(want, got, positive: bool = False) -> bool:
 
 
 def _equivalence(fn, mutant_code, claim_id: str, budget: float, key: str = "",
-                 line: int | None = None) -> tuple[bool, int, str, bool]:
+                 line: int | None = None, base: tuple | None = None) -> tuple[bool, int, str, bool]:
     """Run ``claim_id`` with a wrapper computing both the original and the mutant at every call
     of ``fn``; (all equal, number of calls compared, the kind of equality: "exact", or a declared
     invariance of the claim: "scale", "sign of <argument>"; whether the mutant's source line
-    ``line`` — the mutated one — ran at least once)."""
+    ``line`` — the mutated one — ran at least once). Equal only if the row, which sees the
+    original's values, ran to its end as unmutated (its signature ``base``, or no error and no
+    timeout): a comparison that raised, or a row cut short, compared only some of the calls."""
     from chaplygin_nd.ledger.mutate_replay import LineWatch, calls_through
 
     original = fn.__code__
@@ -441,24 +458,29 @@ def _equivalence(fn, mutant_code, claim_id: str, budget: float, key: str = "",
         for kind in kinds:
             if not state["ok"][kind]:
                 continue
-            if kind == "exact":
-                same = _same(want, got)
-            elif kind == "scale":
-                same = _proportional(want, got)
-            elif kind == "positive scale":
-                same = _proportional(want, got, positive=True)
-            else:
-                bound = inspect.signature(orig_fn).bind(*args, **kwargs)
-                name = ARGUMENT_SIGN_INVARIANT[key][0]
-                bound.arguments[name] = -bound.arguments[name]
-                same = _same(orig_fn(*bound.args, **bound.kwargs), got)
+            try:
+                if kind == "exact":
+                    same = _same(want, got)
+                elif kind == "scale":
+                    same = _proportional(want, got)
+                elif kind == "positive scale":
+                    same = _proportional(want, got, positive=True)
+                else:
+                    bound = inspect.signature(orig_fn).bind(*args, **kwargs)
+                    name = ARGUMENT_SIGN_INVARIANT[key][0]
+                    bound.arguments[name] = -bound.arguments[name]
+                    same = _same(orig_fn(*bound.args, **bound.kwargs), got)
+                same = bool(same)
+            except Exception:  # noqa: BLE001 - values that cannot be compared are not equal
+                same = False
             state["ok"][kind] = same
         return want
 
     with calls_through(fn, hook):
-        run_row(claim_id, budget)
+        got, _note = run_row(claim_id, budget)
+    whole = got == base if base is not None else got[0] not in ("error", "timeout")
     kind = next((k for k in kinds if state["ok"][k]), "")
-    return bool(kind) and state["calls"] > 0, state["calls"], kind, watch.ran
+    return whole and bool(kind) and state["calls"] > 0, state["calls"], kind, watch.ran
 
 
 def settle(record: dict, fn, code, rows, tried: list[str], key: str = "",
@@ -468,10 +490,10 @@ def settle(record: dict, fn, code, rows, tried: list[str], key: str = "",
     the mutated source ``line`` executed there (or ``ran`` says it did elsewhere: equal values
     on a branch no row takes prove nothing), else ``survived``; fills and returns ``record``
     (also used by ``mutate_derivations``)."""
-    claim_id, _base, seconds = rows[0]
+    claim_id, base, seconds = rows[0]
     equal, calls, kind, line_ran = _equivalence(fn, code, claim_id,
                                                 max(MIN_BUDGET, BUDGET_FACTOR * seconds), key,
-                                                line)
+                                                line, base)
     if equal and not (ran or line_ran):
         record.update(outcome="survived", row=", ".join(tried), reason=(
             f"equal values at all {calls} calls of row {claim_id}, but the mutated line never "
@@ -522,9 +544,9 @@ def evaluate(task: tuple[Mutant, list[tuple[str, tuple, float]]]) -> dict:
                 why = note or _difference(base, got)
                 record.update(outcome="killed", row=claim_id, reason=why)
                 return record
-        from chaplygin_nd.ledger.mutate_replay import mutated_line
+        from chaplygin_nd.ledger.mutate_replay import mutated_position
 
-        return settle(record, fn, code, rows, tried, mutant.function, mutated_line(mutant.description))
+        return settle(record, fn, code, rows, tried, mutant.function, mutated_position(mutant.description))
     except Exception:  # noqa: BLE001
         record.update(outcome="error", reason=traceback.format_exc(limit=3))
         return record

@@ -54,7 +54,7 @@ from types import FunctionType
 from chaplygin_nd.ledger import mutate as mu
 from chaplygin_nd.ledger import mutate_runtime as mr
 from chaplygin_nd.ledger.catalog import ROOT, is_checkout
-from chaplygin_nd.ledger.mutate_replay import Recording, mutated_line, replay
+from chaplygin_nd.ledger.mutate_replay import Recording, mutated_position, replay
 from chaplygin_nd.ledger.mutate_replay import record as record_calls
 from chaplygin_nd.ledger.mutate_runtime import runtime_functions, runtime_tests  # noqa: F401 - API
 from chaplygin_nd.ledger.phase import Phase, line
@@ -139,22 +139,42 @@ ARGUED: dict[tuple[str, str], str] = {
     ("fi_reconstruct.real_columns", "const: line 80 col 54: 1 -> 2"):
         "the power of i is read only as a truth value (_real_matrix: i_p if ipow else 1; "
         "to_expression: u[0] if not ipow else -u[1]), so 2 acts as 1",
+    **{("fi_field.sample", mutation):
+       "another seeded draw of the same points: the mutant changes how many candidates a round "
+       "draws (line 232) or draws t and M from 1..p-1 instead of 0..p-1 (lines 233, 238); it "
+       "still returns `count` points of P mod p with gamma on the sphere, D, 1 + |t|^2 and the "
+       "pivots non-zero, and the field there (its contract; fi_field's docstring). The search "
+       "concludes nothing from which points: nullity_p >= dim V and rank_p(known) <= dim K hold at "
+       "every admissible choice (first_integrals' docstring), so when the ends meet the result is "
+       "the same exact statement for any draw"
+       for mutation in ("const: line 232 col 16: 64 -> 65",
+                        "sign: line 232 col 20: int(1.2 * (count - have)) + 16 -> "
+                        "int(1.2 * (count - have)) - 16",
+                        "const: line 232 col 48: 16 -> 17",
+                        "factor: line 232 col 24: 1.2 * (count - have) -> 1.2",
+                        "factor: line 232 col 24: 1.2 * (count - have) -> count - have",
+                        "const: line 233 col 25: 0 -> 1", "const: line 238 col 41: 0 -> 1")},
+    ("first_integrals.search_degree", "const: line 219 col 95: 0 -> 1"):
+        "a box without known products gets K with one zero column instead of none, and reads it "
+        "nowhere: known is 0 by the same 'if prods' (line 220) and the recovery check builds "
+        "[F, K] only when there are products (line 224); tests/test_first_integrals.py's box "
+        "(5, (3, 5, 1)) runs it and gives the same result",
     ("fi_new.varies_in_M", "const: line 227 col 69: 0 -> 1"):
-        "draws the witness point from another labelled stream of the same seed: the statement "
-        "proved (dP/d eps != 0 at one exact rational point, so the integral is not constant) is "
-        "the same, any such point being a witness; the row's 'is not constant' parts still require "
-        "the exact slope there to be non-zero",
+        "another seeded exact point (stream 1 of the same seed and label instead of 0): the part "
+        "needs one point where the exact slope dP/d eps is non-zero, a witness wherever it lies; "
+        "the part's verdict is the same, its text names the other point",
     ("fi_new.varies_in_M", "sign: line 231 col 24: M + eps * N -> M - eps * N"):
-        "the slope along -N is minus the slope along N, so it is non-zero exactly when the "
-        "original is: the same proof that the integral is not constant, with the witness negated",
-    ("sixth_integral.Delta_ring", "factor: line 67 col 11: (2 + a) * (2 + b) -> (2 + b) * (2 + a)"):
-        "the same element of the polynomial ring (PolyElement ==, exact coefficients): the replay "
-        "compares dicts in their iteration order, and only the order in which the terms are "
-        "stored differs; every use is exact ring arithmetic, which does not depend on it",
+        "the derivative along -N: d/d eps P(M - eps N)|_0 = -d/d eps P(M + eps N)|_0, non-zero "
+        "exactly when the original is; the part's verdict is the same, its text shows -slope",
     ("reduced5_invariants.relations", "const: line 344 col 36: 1 -> 2"):
-        "doubles every relation: 2r vanishes wherever r does and the doubled coefficient vectors "
-        "are still a basis of the same exact null space, which is what relations() returns (its "
-        "docstring); a basis has no preferred scale, and the row tests what the relations span",
+        "every relation doubled (each monomial starts from INV_RING(2)): 2r spans the same null "
+        "space as r (the docstring's 'a basis of the exact null space') and 2r = 0 is the same "
+        "relation; its users test vanishing (relation_part), count them, compare them with A_+-R1 "
+        "(relations_on_P: all doubled alike) and take the zero set R1 = R2 = 0",
+    ("sixth_integral.Delta_ring", "factor: line 67 col 11: (2 + a) * (2 + b) -> (2 + b) * (2 + a)"):
+        "the same element of the commutative ring RING (== holds); only the insertion order of "
+        "the terms in the PolyElement dict differs, which the replay's comparison reads and the "
+        "rows do not (ring arithmetic, evaluation at a point, as_expr())",
 }
 
 
@@ -280,7 +300,7 @@ def _decide_by_rows(task: Task, fn, code, record: dict) -> dict:
     back to running it and comparing values on the cheapest such row (:func:`ledger.mutate.settle`)."""
     m = task.mutant
     original = fn.__code__
-    line = mutated_line(m.description)
+    line = mutated_position(m.description)
     checks = [(row, base, seconds) for row, base, seconds in task.rows]
     if m.function in task.emitted:
         checks.append((GENERATED_CHECK, None, 0.0))

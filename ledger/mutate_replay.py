@@ -22,14 +22,16 @@ The argument needs ``f`` to be a function of its arguments alone. Two guards, bo
 
 A recording is abandoned (``None``) past :data:`MAX_CALLS` calls or when an argument or value
 cannot be copied. Values are compared as a row would see them (:func:`identical`: same type and structure, floats and
-arrays bit for bit). While replaying, a line tracer on the mutant's own code
-notes whether the mutated line ran: equal values on a branch no call takes prove nothing.
+arrays bit for bit). While replaying, a tracer on the mutant's own code notes whether the mutated
+expression ran (:class:`LineWatch`: its line and column): equal values on a branch no call takes
+prove nothing.
 """
 
 from __future__ import annotations
 
 import contextlib
 import copy
+import dataclasses
 import dis
 import sys
 from dataclasses import dataclass, field
@@ -128,7 +130,9 @@ def _snapshot(value: Any) -> Any:
 def identical(x, y) -> bool:
     """Whether a row could tell ``x`` from ``y``: same type and structure (SymPy's structural
     ``==``, not mathematical equality: ``x*(x+1)`` and ``x**2 + x`` differ in what a row prints),
-    floats and arrays bit for bit, containers element by element in their iteration order."""
+    floats and arrays bit for bit, containers element by element in their iteration order,
+    dataclasses field by field over the fields they compare (``field(compare=False)``, e.g. the
+    seconds a computation took, is no part of the value)."""
     import numpy as np
     import sympy as sp
 
@@ -150,6 +154,9 @@ def identical(x, y) -> bool:
         return x.shape == y.shape and all(identical(u, v) for u, v in zip(x, y))
     if isinstance(x, np.random.Generator):  # its state is what a later draw depends on
         return identical(x.bit_generator.state, y.bit_generator.state)
+    if dataclasses.is_dataclass(x):  # field by field, the fields it compares (its own ``==``
+        return all(identical(getattr(x, f.name), getattr(y, f.name))  # cannot compare arrays;
+                   for f in dataclasses.fields(x) if f.compare)      # compare=False: a time taken)
     if type(x).__eq__ is object.__eq__ and hasattr(x, "__dict__"):  # no equality of its own:
         return identical(vars(x), vars(y))                          # field by field
     try:
@@ -249,21 +256,37 @@ def record(fn: FunctionType, run) -> Recording:
 
 
 class LineWatch:
-    """Notes whether source line ``line`` of ``code`` (a mutant: the mutated line) runs while
-    watching (``with watch:``; nested code objects too). ``line`` None: counted as run."""
+    """Notes whether the mutated code of ``code`` (a mutant) runs while watching (``with
+    watch:``; nested code objects too). ``where``: ``(line, col)`` of the mutated expression
+    (:func:`mutated_position`) — an instruction the compiler placed there must run (a branch of a
+    one-line conditional that no call takes does not count); when the compiler placed none there
+    (e.g. a constant folded into its parent), or ``where`` is a line number: any instruction of
+    that line. ``None``: counted as run."""
 
-    def __init__(self, code: CodeType, line: int | None):
+    def __init__(self, code: CodeType, where):
+        line, col = where if isinstance(where, tuple) else (where, None)
         self.line, self.ran = line, line is None
         self._codes = set(_code_objects(code))
         self._saved: list = []  # a stack: the watched code may call itself through the watch
+        self._at: dict[CodeType, set[int]] | None = None
+        if col is not None:
+            at = {c: {2 * i for i, pos in enumerate(c.co_positions())
+                      if pos[0] == line and pos[2] == col} for c in self._codes}
+            self._at = at if any(at.values()) else None
 
     def _local(self, frame, event, arg):
-        if event == "line" and frame.f_lineno == self.line:
+        if self._at is None:
+            if event == "line" and frame.f_lineno == self.line:
+                self.ran = True
+        elif event == "opcode" and frame.f_lasti in self._at.get(frame.f_code, ()):
             self.ran = True
         return None if self.ran else self._local
 
     def _watch(self, frame, event, arg):
-        return self._local if frame.f_code in self._codes and not self.ran else None
+        if frame.f_code not in self._codes or self.ran:
+            return None
+        frame.f_trace_opcodes = self._at is not None
+        return self._local
 
     def __enter__(self) -> LineWatch:
         self._saved.append(sys.gettrace())
@@ -282,12 +305,20 @@ def mutated_line(description: str) -> int | None:
     return int(found.group(1)) if found else None
 
 
-def replay(fn: FunctionType, code: CodeType, rec: Recording, line: int | None = None,
-           ) -> tuple[bool, bool]:
+def mutated_position(description: str) -> tuple[int, int] | int | None:
+    """``(line, col)`` of the mutated expression a description names (``"line 80 col 24: ..."``),
+    its line alone when it names no column."""
+    import re
+
+    found = re.search(r"\bline (\d+) col (\d+)\b", description)
+    return (int(found.group(1)), int(found.group(2))) if found else mutated_line(description)
+
+
+def replay(fn: FunctionType, code: CodeType, rec: Recording, line=None) -> tuple[bool, bool]:
     """Call ``code`` (a mutant of ``fn``, installed as ``fn`` so recursive calls take it too) on
     every recorded call, caches emptied first: (every value and every argument afterwards equal
-    to the recording, whether source line ``line`` of the mutant ran). Stops at the first
-    difference."""
+    to the recording, whether the mutated code at ``line`` — a line, or ``(line, col)``:
+    :class:`LineWatch` — ran). Stops at the first difference."""
     from chaplygin_nd.ledger.reach import clear_caches
 
     mutant = _clone(fn, code)

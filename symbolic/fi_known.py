@@ -3,9 +3,9 @@ r"""The known first integrals, for the exact first-integral search (row S6:first
 Generators (each an integral of eq:motion-general for every diagonal $\mathbb{J}$ unless said):
 
 * the non-constant coefficients of $p(\lambda, \sigma) = \det(M + \sigma\gamma\gamma^T - \lambda)$
-  (eq:pol-first-integrals): $p = p_0(\lambda) + \sigma p_1(\lambda)$ ($\gamma\gamma^T$ has rank one);
-  the $\lambda^k$ coefficient of $p_0$ has $M$-degree $n-k$ ($\gamma$-degree 0) and vanishes for
-  $n-k$ odd, that of $p_1$ has $M$-degree $n-1-k$ ($\gamma$-degree 2) and vanishes for $n-1-k$ odd;
+  (eq:pol-first-integrals), computed as those of $\det(\lambda - M - \sigma\gamma\gamma^T) = (-1)^n p$
+  ($p = p_0 + \sigma p_1$: $\gamma\gamma^T$ has rank one); the $\lambda^k$ coefficient of $p_0$ has
+  $M$-degree $n-k$ ($\gamma$-degree 0), that of $p_1$ $n-1-k$ ($\gamma$-degree 2); zero if that is odd;
 * their square roots that are polynomials: $\mathrm{Pf}(M)$ for even $n$ ($\det M = \mathrm{Pf}(M)^2$),
   $\langle v, \gamma\rangle$ for odd $n$ with $v_i = (-1)^{i+1}\mathrm{Pf}(M_{\hat\imath\hat\imath})$
   ($\mathrm{adj}(M) = vv^T$, so $\gamma^T\mathrm{adj}(M)\gamma = \langle v, \gamma\rangle^2$): a continuous

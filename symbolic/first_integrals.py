@@ -56,6 +56,7 @@ __all__ = ["BlockResult", "DegreeResult", "search_degree", "search", "MARGIN", "
 MARGIN = 24
 #: blocks up to this size also get an explicit F_p kernel and the recovery check
 RECOVERY_MAX = 1200
+CHUNK_ENTRIES = 4_000_000  #: entries of one chunk of the conditions (memory only: same matrix)
 
 
 @dataclass
@@ -81,7 +82,7 @@ class DegreeResult:
     products: int
     settled: bool               # found == known: no integral beyond the known algebra
     recovered: bool | None
-    seconds: float
+    seconds: float = field(compare=False)  # a time taken: no part of the result's value
     blocks: list[BlockResult] = field(default_factory=list)
 
     def as_dict(self) -> dict:
@@ -89,8 +90,7 @@ class DegreeResult:
 
 
 def _coordinate_values(co: fi_basis.Coordinates, z: np.ndarray, p: int, i_p: int) -> np.ndarray:
-    C = (co.re + i_p * co.im) % p
-    return (z % p) @ C.T % p
+    return (z % p) @ ((co.re + i_p * co.im) % p).T % p
 
 
 def _sqrt_minus_one(p: int) -> int:
@@ -196,7 +196,7 @@ def search_degree(model: Model, d: int, d_gamma: int, k: int = 0, *, prime_index
         raise ArithmeticError("too few admissible points")
     ratio = cd * fi_field.inv_mod(cv, p) % p
     blocks_A: dict[int, list] = {b.character: [] for b in B.blocks}
-    chunk = max(1, 4_000_000 // max(1, B.size))
+    chunk = max(1, CHUNK_ENTRIES // max(1, B.size))
     for r0 in range(0, rows, chunk):
         mv = _monomial_values(B.exponents, cv[r0:r0 + chunk], p)
         lin = (ratio[r0:r0 + chunk] @ B.exponents.T - k * dlog[r0:r0 + chunk, None]) % p

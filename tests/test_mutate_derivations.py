@@ -139,3 +139,71 @@ def test_planning_says_what_it_runs_and_counts_rows_and_tests(capsys):
     assert phase.total and phase.done == phase.total >= len(reach["runtime.axisym.vec"]) > 0
     out = capsys.readouterr().out
     assert f"... {phase.total} of {phase.total} tests done" in out, out
+
+
+def test_values_holding_arrays_are_compared_field_by_field_and_never_raise():
+    """The comparers of the mutation tools on a derivation's dataclass of arrays
+    (fi_basis.Coordinates): the dataclass's own ``==`` raises on arrays, which once aborted the
+    row that compared, and the few calls compared before were reported "equivalent". Field by
+    field, arrays bit for bit; a ``field(compare=False)`` (a time taken) is no part of the value."""
+    import dataclasses
+
+    import numpy as np
+    from chaplygin_nd.ledger.mutate_replay import identical
+    from chaplygin_nd.symbolic import fi_basis
+
+    one, same = fi_basis.coordinates(5, 2), fi_basis.coordinates(5, 2)
+    other = dataclasses.replace(one, re=2 * one.re)
+    for compare in (identical, mutate._same):
+        assert compare(one, same) is True
+        assert compare(one, other) is False
+        assert compare({"a": np.arange(3)}, {"a": np.arange(3)}) is True
+        assert compare({"a": np.arange(3)}, {"a": np.arange(3) + 1}) is False
+
+    @dataclasses.dataclass
+    class Timed:
+        value: int
+        seconds: float = dataclasses.field(compare=False)
+
+    for compare in (identical, mutate._same):
+        assert compare(Timed(1, 0.5), Timed(1, 2.5)) and not compare(Timed(1, 0.5), Timed(2, 0.5))
+
+
+def test_an_equivalence_check_cut_short_is_not_equal(monkeypatch):
+    """``_equivalence`` runs the row with a comparer at every call; when the row does not run to
+    its end as unmutated (here: it raises after one call), the calls compared are not all the
+    row's calls, so the mutant is not equivalent."""
+    from chaplygin_nd.symbolic import fi_field
+
+    fn = fi_field.mod
+    original = fn.__code__
+
+    def row_that_dies(claim_id, budget=None, base=None):
+        fi_field.mod(1, 5)
+        return ("error",), "raised"
+
+    monkeypatch.setattr(mutate, "run_row", row_that_dies)
+    equal, calls, _kind, ran = mutate._equivalence(fn, original, "S6:first-integrals", 10,
+                                                   base=("holds", None, ()))
+    assert (equal, calls, ran) == (False, 1, True)
+    assert fn.__code__ is original
+
+
+def test_the_watch_sees_which_branch_of_a_one_line_conditional_ran():
+    """A mutant inside the branch of a one-line conditional that no call takes has not run,
+    although its line did (search_degree's ``... if prods else np.zeros(...)``: such a mutant
+    was once called equivalent): the watch looks at the mutated expression's line and column."""
+    from chaplygin_nd.ledger.mutate_replay import LineWatch, mutated_position
+
+    ns: dict = {}
+    exec(compile("def f(x):\n    return x + 1 if x else 7\n", "<watch test>", "exec"), ns)
+    code = ns["f"].__code__
+    col = "    return x + 1 if x else 7".index("7")
+    assert mutated_position(f"const: line 2 col {col}: 7 -> 8") == (2, col)
+    for arg, ran in ((1, False), (0, True)):
+        with (watch := LineWatch(code, (2, col))):
+            ns["f"](arg)
+        assert watch.ran is ran
+    with (whole_line := LineWatch(code, 2)):
+        ns["f"](1)
+    assert whole_line.ran
