@@ -132,7 +132,7 @@ def s5_ej_tori() -> Verdict:
     _same_prediction(expected, er.SETTINGS["reduced"])
     if reason := dc.without_heyoka():
         return Verdict.open(reason)
-    er.start_control4(ledger_seed())  # the shared control first, unless another row has it
+    er.start_shared("control4", ledger_seed())  # the shared control first, unless another row has it
     out = er.reduced_row(ledger_seed())
     tested, agree, worst = _rotation_agreement(out)
     return _verdict(
@@ -158,7 +158,8 @@ def s5_reconstruction() -> Verdict:
     _same_prediction(bound, er.SETTINGS["full4"])
     if reason := dc.without_heyoka():
         return Verdict.open(reason)
-    er.start_control4(ledger_seed())  # the shared control first, unless another row has it
+    for shared in ("control4", "full4"):  # each shared ensemble now, unless another row has it
+        er.start_shared(shared, ledger_seed())
     out = er.full4_row(ledger_seed())
     res = out["results"]
     inv = {}
@@ -191,7 +192,7 @@ def th_re_tori_frequencies() -> Verdict:
         _same_prediction(int(printed4.vertical_torus_dimension(n)), er.vertical_setting(n))
     if reason := dc.without_heyoka():
         return Verdict.open(reason)
-    er.start_control4(ledger_seed())  # the shared control first, unless another row has it
+    er.start_shared("control4", ledger_seed())  # the shared control first, unless another row has it
     out = er.vertical_row(ledger_seed())
     results, rerun, per_n, zeta, slow = [], [], [], [], 0
     for n, o in out.items():

@@ -167,6 +167,7 @@ def open_problem_verdict(n: int) -> Verdict:
     derived = (exact["orbit_rank"] == (group, group) and exact["integral_rank"] == (n, n)
                and exact["invariant"])
     reduced_bound, full_bound = level, level + (n - 1) // 2     # + rank SO(n-1)
+    er.start_shared("full4", ledger_seed())  # the shared n = 4 control first, unless another row has it
     out = er.open_row(n, ledger_seed())
     res, rerun, ctl5 = out["symmetric"]["results"], out["symmetric"]["rerun"], out["control"]
     ctl4 = er.full4_row(ledger_seed())["results"]

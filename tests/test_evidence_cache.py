@@ -355,45 +355,39 @@ def test_a_damaged_drawn_entry_is_one_warning_and_is_replaced(cache, monkeypatch
     assert calls == [1] and [r.to_dict() for r in third] == [r.to_dict() for r in first]
 
 
-def _counting():
-    """A compute function that counts its calls, and its counter."""
-    calls = []
 
-    def compute():
-        calls.append(1)
-        return [1, 2, 3]
-    return compute, calls
-
-
-CODEC = {"encode": list, "decode": list}
-
-
-def test_start_json_computes_a_missing_entry_once_and_cached_json_then_reads_it(cache):
-    compute, calls = _counting()
-    assert rc.start_json("evidence", "shared", {"k": 1}, compute, **CODEC) is True
-    assert rc.start_json("evidence", "shared", {"k": 1}, compute, **CODEC) is False  # stored
-    assert rc.cached_json("evidence", "shared", {"k": 1}, compute, **CODEC) == ([1, 2, 3], True)
-    assert len(calls) == 1
-
-
-def test_start_json_does_not_wait_for_an_entry_another_process_computes(cache):
+def test_a_lock_taken_without_waiting_is_refused_while_another_holds_it(cache):
     # flock locks belong to an open file: a lock held through another open() of the lock file
     # is, for this call, exactly what another process holding it is
-    compute, calls = _counting()
-    path = rc.private_folder("evidence") / f"shared-{rc.settings_key({'k': 2})}.json"
+    path = rc.private_folder("evidence") / "entry.json"
     with rc.locked(path) as held:
         assert held
-        assert rc.start_json("evidence", "shared", {"k": 2}, compute, **CODEC) is False
-    assert calls == []          # not computed, not waited for
-    assert rc.cached_json("evidence", "shared", {"k": 2}, compute, **CODEC) == ([1, 2, 3], False)
-    assert len(calls) == 1      # the row that needs it computes it
+        with rc.locked(path, wait=False) as second:
+            assert second is False
+    with rc.locked(path, wait=False) as again:
+        assert again is True
 
 
-def test_start_json_without_a_usable_cache_computes_nothing(tmp_path, monkeypatch):
+def test_a_shared_ensemble_is_computed_by_the_first_row_only(cache, monkeypatch):
+    from chaplygin_nd.simulate.analysis import evidence_rows as er
+
+    calls = []
+    monkeypatch.setitem(er.SHARED, "control4", lambda seed: calls.append(seed))
+    lock = rc.private_folder("evidence") / "shared-control4-7"
+    with rc.locked(lock):                      # another row is computing it: do not wait
+        assert er.start_shared("control4", 7) is False
+    assert calls == []
+    assert er.start_shared("control4", 7) is True and calls == [7]
+
+
+def test_a_shared_ensemble_is_not_started_without_a_usable_cache(tmp_path, monkeypatch):
+    from chaplygin_nd.simulate.analysis import evidence_rows as er
+
     target = tmp_path / "a-file"
     target.write_text("")
     monkeypatch.setenv(rc.project_cache.ENV, str(target))   # a file: the cache is unusable
-    compute, calls = _counting()
+    calls = []
+    monkeypatch.setitem(er.SHARED, "full4", lambda seed: calls.append(seed))
     with pytest.warns(rc.ResultCacheWarning):
-        assert rc.start_json("evidence", "shared", {"k": 3}, compute, **CODEC) is False
-    assert calls == []          # a value it could not keep would be computed twice
+        assert er.start_shared("full4", 7) is False
+    assert calls == []          # computed here and again by the row: twice the cost

@@ -44,7 +44,7 @@ from chaplygin_nd.simulate.analysis.draws import Ensemble
 from chaplygin_nd.simulate.analysis.frequencies import REGULAR
 from chaplygin_nd.simulate.dynamics import so
 
-__all__ = ["Setting", "OrbitResult", "measure", "start", "classify", "summary", "schedule", "BATCH"]
+__all__ = ["Setting", "OrbitResult", "measure", "classify", "summary", "schedule", "BATCH"]
 
 #: orbits per compiled step of heyoka's batch mode (one compiled integrator per system). 8, not
 #: heyoka's recommended SIMD width 4: measured per orbit (CPU, n = 5 / 7 tangent systems, one
@@ -310,26 +310,14 @@ def measure(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int,
     MEGNO over the horizon ladder, Lyapunov estimate, the drift of the integrals, NAFF count,
     diffusion, class. Cached (:func:`simulate.analysis.result_cache.cached_json`; a damaged entry
     is recomputed, one warning line)."""
-    out, _ = rc.cached_json(*_entry(s, ens, y0, seed), **_CODEC, use_cache=use_cache)
+    out, _ = rc.cached_json(
+        "evidence", f"drawn-{s.name}", settings(s, ens, y0, seed),
+        lambda: _measure(s, ens, y0, seed),
+        encode=lambda res: [r.to_dict() for r in res], decode=_decode,
+        use_cache=use_cache, heyoka=True)
     if len(out) != len(y0):
         raise RuntimeError(f"{s.name}: {len(out)} results for {len(y0)} orbits")
     return out
-
-
-def start(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int) -> bool:
-    """Compute and cache :func:`measure`'s result now unless it is cached, being computed by
-    another process, or there is no cache (:func:`simulate.analysis.result_cache.start_json`: never
-    waits, never computes what it could not keep); True iff computed here."""
-    return rc.start_json(*_entry(s, ens, y0, seed), **_CODEC)
-
-
-_CODEC = {"encode": lambda res: [r.to_dict() for r in res], "decode": _decode, "heyoka": True}
-
-
-def _entry(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int) -> tuple:
-    """``(kind, name, settings, compute)`` of the cache entry of :func:`measure`."""
-    return ("evidence", f"drawn-{s.name}", settings(s, ens, y0, seed),
-            lambda: _measure(s, ens, y0, seed))
 
 
 def _limited(spec: naff.Spectrum, limit: int) -> naff.Spectrum:

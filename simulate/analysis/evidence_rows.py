@@ -25,17 +25,11 @@ from __future__ import annotations
 import numpy as np
 from chaplygin_nd.simulate.analysis import draws
 from chaplygin_nd.simulate.analysis.control import CHAOTIC_J
-from chaplygin_nd.simulate.analysis.drawn_evidence import (
-    Setting,
-    measure,
-    merge_longer,
-    start,
-    subset,
-)
+from chaplygin_nd.simulate.analysis.drawn_evidence import Setting, measure, merge_longer, subset
 from chaplygin_nd.simulate.dynamics import so
 
 __all__ = ["LEVEL_SETS", "SHIFTS", "RERUN", "LONGER", "reduced_row", "full4_row", "vertical_row",
-           "control4_row", "start_control4", "run_with_rerun", "SETTINGS", "open_row", "open_setting",
+           "control4_row", "start_shared", "run_with_rerun", "SETTINGS", "open_row", "open_setting",
            "OPEN_COUNTS"]
 
 LEVEL_SETS = 50
@@ -133,16 +127,6 @@ def control4_row(seed: int) -> dict:
     ens = draws.draw("control4", "generic", 4, CONTROL4_COUNT, seed)
     return {"results": measure(SETTINGS["control4"], ens, _full_state(ens), seed), "rerun": [],
             "rerun_index": []}
-
-
-def start_control4(seed: int) -> bool:
-    """Compute and cache the control of :func:`control4_row` now unless it is cached or another
-    process is computing it (:func:`simulate.analysis.drawn_evidence.start`). The three rows that
-    share the control call it first: under ``verify --jobs 2`` the first of them computes it
-    while the other does its own orbits, instead of both ending on the control and one core
-    waiting for the other. True iff computed here."""
-    ens = draws.draw("control4", "generic", 4, CONTROL4_COUNT, seed)
-    return start(SETTINGS["control4"], ens, _full_state(ens), seed)
 
 
 #: Orbits per open-problem row (axisymmetric, general-J control): n = 5 is row S6:open-reduced-n5
@@ -247,3 +231,28 @@ def zeta_check(ens, results, T: float, K: int = 2) -> list[dict]:
                     "error": float(error) if resolved else float("nan"),
                     "agrees": bool(resolved and r.count == len(lam) and error <= ZETA_MATCH)})
     return out
+
+
+#: The ensembles several evidence rows share: the n = 4 control of S5:EJ-tori, S5:reconstruction
+#: and Th:Re-tori:frequencies, and the P ensemble of S5:reconstruction, which is also the n = 4
+#: control of S6:open-reduced-n5 and -n6.
+SHARED = {"control4": control4_row, "full4": full4_row}
+
+
+def start_shared(name: str, seed: int) -> bool:
+    """Compute the shared ensemble ``name`` of :data:`SHARED` now, into the cache, unless another
+    process is computing it or there is no usable cache (a value it could not keep would be
+    computed twice); never waits. A row that needs a shared ensemble calls this first: under
+    ``verify --jobs`` the first such row computes it while the others do their own orbits, where
+    before every row ended on it and all but one waited for that one, their cores idle (seen:
+    S6:open-reduced-n5 and -n6, started together, both 66 s). True iff computed here."""
+    from chaplygin_nd.simulate.analysis import result_cache as rc
+
+    folder = rc.private_folder("evidence")
+    if folder is None:
+        return False
+    with rc.locked(folder / f"shared-{name}-{seed}", wait=False) as held:
+        if not held:
+            return False
+        SHARED[name](seed)   # fills the cache entries (those already there are only read)
+        return True

@@ -46,7 +46,7 @@ from chaplygin_nd import writing
 
 __all__ = ["ResultCacheWarning", "private_folder", "code_manifest", "code_unchanged",
            "environment", "write_atomic", "warn_once", "locked", "read_entry", "settings_key",
-           "damaged", "cached_json", "start_json"]
+           "damaged", "cached_json"]
 
 PROJECT = "chaplygin_nd"
 _WARNED: set[str] = set()
@@ -206,7 +206,7 @@ def locked(path: Path, wait: bool = True) -> Iterator[bool]:
     try:
         try:
             fcntl.flock(fh, fcntl.LOCK_EX if wait else fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except BlockingIOError:  # only without waiting: another process computes the entry
+        except BlockingIOError:  # only without waiting: another process holds it
             yield False
             return
         except OSError:
@@ -274,30 +274,8 @@ def cached_json(kind: str, name: str, settings, compute, *, encode, decode,
     folder = private_folder(kind) if use_cache else None
     if folder is None:
         return compute(), False
-    return _entry(folder / f"{name}-{settings_key(settings, heyoka)}.json", compute, encode, decode)
-
-
-def start_json(kind: str, name: str, settings, compute, *, encode, decode,
-               heyoka: bool = False) -> bool:
-    """Compute and store the entry of :func:`cached_json` now, unless it is stored already,
-    another process is computing it, or there is no usable cache folder; never waits, and never
-    computes a value it could not keep. True iff this call computed it. For a result several
-    rows share (the n = 4 control of the evidence rows): the first row to start computes it,
-    and a row that finds it being computed does its own work first instead of idling."""
-    folder = private_folder(kind)
-    if folder is None:
-        return False
-    value = _entry(folder / f"{name}-{settings_key(settings, heyoka)}.json", compute, encode,
-                   decode, wait=False)
-    return value is not _MISS and value[1] is False
-
-
-def _entry(path: Path, compute, encode, decode, wait: bool = True):
-    """The lookup-or-compute of :func:`cached_json` on the entry ``path``; ``_MISS`` when
-    ``wait`` is False and another process holds the entry's lock."""
-    with locked(path, wait) as held:
-        if not held:
-            return _MISS
+    path = folder / f"{name}-{settings_key(settings, heyoka)}.json"
+    with locked(path):
         found = _read_json(path, decode)
         if found is not _MISS:
             return found, True
