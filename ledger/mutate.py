@@ -426,7 +426,8 @@ def _proportional(want, got, positive: bool = False) -> bool:
 
 
 def _equivalence(fn, mutant_code, claim_id: str, budget: float, key: str = "",
-                 line: int | None = None, base: tuple | None = None) -> tuple[bool, int, str, bool]:
+                 line: tuple[int, int] | int | None = None, base: tuple | None = None
+                 ) -> tuple[bool, int, str, bool]:
     """Run ``claim_id`` with a wrapper computing both the original and the mutant at every call
     of ``fn``; (all equal, number of calls compared, the kind of equality: "exact", or a declared
     invariance of the claim: "scale", "sign of <argument>"; whether the mutant's source line
@@ -484,7 +485,7 @@ def _equivalence(fn, mutant_code, claim_id: str, budget: float, key: str = "",
 
 
 def settle(record: dict, fn, code, rows, tried: list[str], key: str = "",
-           line: int | None = None, ran: bool = False) -> dict:
+           line: tuple[int, int] | int | None = None, ran: bool = False) -> dict:
     """A mutant that changed no row: ``equivalent`` only if its value equals the original's (or
     differs by an invariance registered for ``key``) at every call the cheapest row makes and
     the mutated source ``line`` executed there (or ``ran`` says it did elsewhere: equal values
