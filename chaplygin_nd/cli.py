@@ -152,7 +152,15 @@ def entry() -> None:
     from chaplygin_nd.signals import take_signals
 
     take_signals()  # first, before any heavy import: an interrupt is one line from here on
-    status = main(program=True)
+    try:
+        status = main(program=True)
+    except BrokenPipeError:
+        # the reader of stdout went away (`chaplygin --help | head -1`): what it did not read is
+        # not wanted, and there is no one to tell; the shell's status of a SIGPIPE death, 128 + 13.
+        # stdout goes to /dev/null so that the interpreter's flush at exit does not raise again.
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        sys.exit(141)
     if status in (130, 143):
         for stream in (sys.stdout, sys.stderr):
             try:

@@ -110,3 +110,18 @@ def test_a_damaged_cache_entry_is_a_miss_with_one_warning(tmp_path, damage):
         found = result_cache.read_entry(entry, lambda text: [OrbitResult(**d)
                                                              for d in __import__("json").loads(text)])
     assert found is None
+
+
+def test_a_reader_that_stops_reading_is_not_a_traceback():
+    """`chaplygin --help | head -1`: the pipe's reader is gone before the program writes (its end
+    is closed here before the interpreter has even started), so every write fails with EPIPE. The
+    program says nothing and exits 141, as a process killed by SIGPIPE does in the shell."""
+    import subprocess
+    import sys
+
+    with subprocess.Popen([sys.executable, "-m", "chaplygin_nd", "--help"],
+                          stdout=subprocess.PIPE, stderr=subprocess.PIPE) as proc:
+        proc.stdout.close()             # no reader from here on
+        err = proc.stderr.read().decode()
+        status = proc.wait(timeout=120)
+    assert status == 141 and err == ""
