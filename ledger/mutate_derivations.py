@@ -410,6 +410,23 @@ def summary(records: list[dict], target: str, seconds: float | None = None, cpu:
     return f"{line}; this run: {ran} mutants in {seconds:.0f} s wall, {cpu:.0f} s CPU"
 
 
+def _current(records: list[dict]) -> list[dict]:
+    """The records kept from an earlier run (``--resume``, ``--rerun``) whose mutant the code still
+    has; the others (a line moved, the code changed) are dropped with one line, and the mutants
+    the code has now in their place are run as not yet decided. A record of a mutant that no
+    longer exists would otherwise stand in the table for code that is not there."""
+    if not records:
+        return records
+    current = {(t, m.function, f"{m.operator}: {m.description}")
+               for t in sorted({r["target"] for r in records}) for m in sample(t, None)}
+    kept = [r for r in records if (r["target"], r["function"], r["mutation"]) in current]
+    if len(kept) < len(records):
+        gone = sorted({r["function"] for r in records if r not in kept})
+        print(f"dropped {mu.plural(len(records) - len(kept), 'record')} of mutants the code no "
+              f"longer has ({', '.join(gone)}): their functions changed since that run", flush=True)
+    return kept
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = OneLineParser(prog="chaplygin mutate-derivations",
                            description=__doc__.splitlines()[0].replace("``", ""))
@@ -475,6 +492,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.rerun:  # keep what the earlier run decided, except what is run again
         records, runs = _read(args.rerun)
         records = [r for r in records if r["target"] not in targets or r["outcome"] not in args.again]
+    records = _current(records)
     done = {(r["target"], r["function"], r["mutation"]) for r in records}
     for target in targets:
         Phase(f"{target}: listing the mutants of {len(functions(target))} functions").start()

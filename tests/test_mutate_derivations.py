@@ -207,3 +207,17 @@ def test_the_watch_sees_which_branch_of_a_one_line_conditional_ran():
     with (whole_line := LineWatch(code, 2)):
         ns["f"](1)
     assert whole_line.ran
+
+
+def test_kept_records_of_mutants_the_code_no_longer_has_are_dropped(monkeypatch, capsys):
+    """--resume / --rerun keep an earlier run's records only for mutants the code still has: a
+    record whose line moved (here: a line the function does not have) is dropped, with one line,
+    and its function's mutants as they are now run as undecided."""
+    key = "reduced.horizontal_frequency_squared"
+    mutants = [m for m, _ in mutate.all_mutants(key, md.functions("derivations")[key])]
+    monkeypatch.setattr(md, "sample", lambda target, size, seed=md.SEED: mutants)
+    real = {"target": "derivations", "function": key, "outcome": "killed",
+            "mutation": f"{mutants[0].operator}: {mutants[0].description}"}
+    moved = dict(real, mutation="const: line 9999 col 1: 1 -> 2")
+    assert md._current([real, moved]) == [real]
+    assert f"dropped 1 record of mutants the code no longer has ({key})" in capsys.readouterr().out
