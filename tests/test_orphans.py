@@ -153,6 +153,10 @@ THREAD_SIGNAL_SCRIPT = textwrap.dedent("""
         time.sleep(600)
 
     if __name__ == "__main__":
+        # Python's Ctrl-C handling, whatever this process inherited: a job a script starts with
+        # `&` (or nohup) inherits SIGINT ignored, Python then keeps it ignored, and the SIGINT
+        # below would be lost (the test then hung for its whole timeout)
+        signal.signal(signal.SIGINT, signal.default_int_handler)
         with processes.pool(1, mp.get_context("fork")) as pool:
             futures = [pool.submit(work, 0)]
             def interrupt():   # the Ctrl-C lands in another thread, as the kernel may choose
