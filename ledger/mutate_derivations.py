@@ -41,6 +41,7 @@ their progress every 30 s (:mod:`ledger.phase`).
 
 from __future__ import annotations
 
+import math
 import multiprocessing as mp
 import os
 import random
@@ -185,10 +186,12 @@ def _argued(record: dict) -> dict:
     return record
 
 
-def sample(target: str, size: int | None, seed: int = SEED) -> list[mu.Mutant]:
-    """Every mutant of every function of ``target`` (source order), or ``size`` of them drawn with
-    ``seed``."""
-    every = [m for key, fn in functions(target).items() for m, _ in mu.all_mutants(key, fn)]
+def sample(target: str, size: int | None, seed: int = SEED,
+           only: frozenset[str] | None = None) -> list[mu.Mutant]:
+    """Every mutant of every function of ``target`` (source order; of the functions named in
+    ``only`` if given), or ``size`` of them drawn with ``seed``."""
+    every = [m for key, fn in functions(target).items() if only is None or key in only
+             for m, _ in mu.all_mutants(key, fn)]
     if size is None or size >= len(every):
         return every
     return sorted(random.Random(f"{seed}:{target}").sample(every, size),
@@ -495,9 +498,11 @@ def main(argv: list[str] | None = None) -> int:
     records = _current(records)
     done = {(r["target"], r["function"], r["mutation"]) for r in records}
     for target in targets:
-        Phase(f"{target}: listing the mutants of {len(functions(target))} functions").start()
-        selection = [m for m in sample(target, None if args.function else args.sample, args.seed)
-                     if not args.function or m.function in args.function]
+        named = frozenset(args.function) & set(functions(target)) if args.function else None
+        Phase(f"{target}: listing the mutants of "
+              f"{mu.plural(len(functions(target)) if named is None else len(named), 'function')}"
+              ).start()
+        selection = sample(target, None if args.function else args.sample, args.seed, only=named)
         if args.rerun:
             again = {(r["function"], r["mutation"]) for r in _read(args.rerun)[0]
                      if r["outcome"] in args.again and r["target"] == target}
@@ -575,14 +580,18 @@ def _write(records, runs, args) -> None:
 GROUP = 40
 
 
-def groups(tasks: list[Task]) -> list[list[Task]]:
-    """``tasks`` grouped by function (in chunks of at most :data:`GROUP`), the most expensive group
-    first (cheapest check times mutants: the long groups start early and the two workers end
-    together)."""
+def groups(tasks: list[Task], jobs: int = 1) -> list[list[Task]]:
+    """``tasks`` grouped by function, the most expensive group first (cheapest check times
+    mutants: the long groups start early and the workers end together). A group is decided in one
+    worker and reported when it ends; its calls are recorded once. Chunks of at most
+    :data:`GROUP`, and of at most a quarter of each worker's share: a run of one function's 21
+    mutants was one group, so one core worked, nothing was reported for 6 minutes and a Ctrl-C kept
+    nothing (round-24 trial)."""
+    size = max(1, min(GROUP, math.ceil(len(tasks) / (4 * max(1, jobs)))))
     by: dict[tuple[str, str], list[Task]] = {}
     for t in tasks:
         by.setdefault((t.target, t.mutant.function), []).append(t)
-    out = [ts[i:i + GROUP] for ts in by.values() for i in range(0, len(ts), GROUP)]
+    out = [ts[i:i + size] for ts in by.values() for i in range(0, len(ts), size)]
     return sorted(out, key=lambda g: -sum(max(_cost(t), 0.1) for t in g))
 
 
@@ -604,7 +613,7 @@ def _run(tasks: list[Task], jobs: int, records: list[dict], runs, args, run, t0,
     mine: list[dict] = []
     last = time.perf_counter()
     with processes.pool(jobs, mp.get_context("fork"), _init_worker) as pool:
-        futures = [pool.submit(evaluate_group, g) for g in groups(tasks)]
+        futures = [pool.submit(evaluate_group, g) for g in groups(tasks, jobs)]
         for fut in processes.as_completed(futures):
             for rec in fut.result():
                 records.append(rec)
