@@ -221,3 +221,19 @@ def test_kept_records_of_mutants_the_code_no_longer_has_are_dropped(monkeypatch,
     moved = dict(real, mutation="const: line 9999 col 1: 1 -> 2")
     assert md._current([real, moved]) == [real]
     assert f"dropped 1 record of mutants the code no longer has ({key})" in capsys.readouterr().out
+
+
+def test_one_functions_mutants_are_split_so_every_worker_has_work_and_progress_comes_early():
+    """Round-24 trial: a run of one function's 21 mutants was one group, so one core worked and
+    nothing was reported (or kept on Ctrl-C) until it ended. Groups are now at most a quarter of
+    each worker's share, and at most GROUP for a whole run."""
+    from types import SimpleNamespace as NS
+
+    def tasks(count, function="f"):
+        return [NS(target="derivations", mutant=NS(function=function), rows=(("r", None, 1.0),))
+                for _ in range(count)]
+
+    small = md.groups(tasks(21), jobs=2)
+    assert len(small) == 7 and max(map(len, small)) == 3 and sum(map(len, small)) == 21
+    whole = md.groups([t for f in "abcdefgh" for t in tasks(400, f)], jobs=2)
+    assert max(map(len, whole)) == md.GROUP and sum(map(len, whole)) == 3200
