@@ -65,10 +65,32 @@ def test_initial_conditions_lie_on_the_energy_level_set():
         assert np.allclose(g[:6, 3], x0)
 
 
+def _hold_port(port: int):
+    """A listening socket on `port` of every interface, or None when another program holds it
+    already (then the port is taken either way)."""
+    import socket
+
+    sock = socket.socket()
+    try:
+        sock.bind(("0.0.0.0", port))
+        sock.listen()
+    except OSError:
+        sock.close()
+        return None
+    return sock
+
+
 def test_a_local_dask_cluster_gives_the_map_of_one_process():
+    """Also with Dask's default HTTP port taken (by another cluster, a test beside this one on
+    the other xdist worker, any program): CI failed on that in round 24."""
     pytest.importorskip("distributed")
     here = fma.run_map(SMALL, workers=1)
-    cluster = fma.run_map(SMALL, workers=2, scheduler="local")
+    held = _hold_port(8787)
+    try:
+        cluster = fma.run_map(SMALL, workers=2, scheduler="local")
+    finally:
+        if held is not None:
+            held.close()
     assert here.shape == (6, 6) and np.all(np.isfinite(here))
     assert np.array_equal(here, cluster)
 

@@ -287,8 +287,13 @@ def _on_dask(chunks, scheduler: str, workers: int | None, on_orbits):
     if scheduler == "local":
         import logging
 
+        # no dashboard, and the scheduler's HTTP server (it starts one even without a
+        # dashboard, on port 8787 by default) on a free port of this host only: a port taken by
+        # another cluster or program made Dask warn and, under warnings as errors, fail (CI, r24)
         with LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
-                          processes=True, dashboard_address=None,
+                          processes=True, host="127.0.0.1", dashboard_address=None,
+                          scheduler_kwargs={"dashboard": False,
+                                            "dashboard_address": "127.0.0.1:0"},
                           silence_logs=logging.CRITICAL) as cluster, Client(cluster) as client:
             client.run(processes.die_with_parent, os.getpid())  # its workers are ours: see processes
             # and Ctrl-C is the parent's (processes): a Ctrl-C to the process group made each
