@@ -56,13 +56,14 @@ from typing import Any
 import sympy as sp
 from chaplygin_nd.ledger.catalog import ROOT, is_checkout
 from chaplygin_nd.ledger.phase import Phase
-from chaplygin_nd.ledger.reach import load as load_reach
 from chaplygin_nd.ledger.reach import (
+    kept_seconds,
     printed_functions,
     rows_by_function,
     unreached,
     write_json_atomic,
 )
+from chaplygin_nd.ledger.reach import load as load_reach
 from chaplygin_nd.ledger.reach import save as save_reach
 from chaplygin_nd.symbolic.flint_engine import ENGINES_ENV, active_engines, engine_label
 
@@ -771,7 +772,7 @@ def main(argv: list[str] | None = None) -> int:
     reach = {row: info[2] for row, info in base.items()}
     missing = unreached(reach) if not args.sample else []
     if not args.function and args.engines == "both" and not args.sample and is_checkout():
-        save_reach(reach, {row: info[1] for row, info in base.items()})
+        save_reach(reach, kept_seconds({row: info[1] for row, info in base.items()}))
     if args.sample:
         selection = chosen
     else:

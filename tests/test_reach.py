@@ -91,3 +91,12 @@ def test_every_emitted_derivation_is_reached_by_a_ledger_row():
     assert emitted == stored_emitted, "refresh the map: python -m chaplygin_nd.ledger.remap"
     missing = reach.unreached_emitted(derived, emitted)
     assert missing == [], f"emitted derivations reached by no row: {missing}"
+
+
+def test_a_warm_run_keeps_the_stored_cold_seconds(tmp_path):
+    """make mutate maps reach with a warm cache; it writes back the stored (cold) seconds of the
+    rows the map has, and its own only for a row the map lacks."""
+    path = tmp_path / "reach.json"
+    reach.save({"A": [], "B": []}, {"A": 90.0, "B": 2.0}, path=path, derived_by_row={}, emitted=[])
+    assert reach.kept_seconds({"A": 0.3, "B": 2.5, "C": 4.0}, path) == {"A": 90.0, "B": 2.0, "C": 4.0}
+    assert reach.kept_seconds({"A": 0.3}, tmp_path / "none.json") == {"A": 0.3}
