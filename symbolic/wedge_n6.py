@@ -43,10 +43,15 @@ def _parity(p) -> int:
     return s
 
 
-def h2_residual():
+def h2_residual(at: tuple[sp.Rational, sp.Rational] | None = None):
     r"""$D'\,D\dot N_H - N_H\,D\dot D'$ (module docstring) as a sparse polynomial over $\mathbb{Q}$ in
-    :data:`GENS`; zero modulo $\lVert\gamma\rVert^2 = 1$ iff $H_2$ is conserved ($n = 6$, symbolic $a, b$)."""
+    :data:`GENS`; zero modulo $\lVert\gamma\rVert^2 = 1$ iff $H_2$ is conserved ($n = 6$, symbolic $a, b$).
+    ``at``: rational $(a, b)$ with $2 + a + b \ne 0$ to put in before the ring arithmetic (the same
+    identity on one point of the parameter plane, in seconds; $a, b$ then do not occur)."""
     R, *G = ring(list(GENS), QQ)
+
+    def put(expr):   # a SymPy coefficient as a ring element, at the given (a, b) if any
+        return R(expr.subs({a: at[0], b: at[1]}, simultaneous=True) if at else expr)
     X = G[2]
     M = [[R(0)] * N for _ in range(N)]
     for k, (i, j) in enumerate(_PAIRS):
@@ -65,7 +70,7 @@ def h2_residual():
         return [[sum((cs[k] * T[k][i][j] for k in range(6)), R(0)) for j in range(N)] for i in range(N)]
 
     coeffs = [sp.expand(c) for c in _numerator_coefficients()]
-    DO = apply(M, [R(c) for c in coeffs])
+    DO = apply(M, [put(c) for c in coeffs])
     Mdot = {(i, j): sum((M[i][t] * DO[t][j] - DO[i][t] * M[t][j] for t in range(N)), R(0))
             for i, j in _PAIRS}
     gdot = [-sum((DO[i][t] * gam[t] for t in range(N)), R(0)) for i in range(N)]
@@ -85,7 +90,7 @@ def h2_residual():
     def scaled(expr):   # expr(a', b', x) * c^deg, a polynomial in a, b, x
         e_ = expr.subs({a: ap, b: bp}, simultaneous=True)
         e_ = e_.subs({ap: -2 * a / (2 + a + b), bp: -2 * b / (2 + a + b)}, simultaneous=True)
-        return R(sp.cancel(sp.expand(e_ * (2 + a + b) ** deg)))
+        return put(sp.cancel(sp.expand(e_ * (2 + a + b) ** deg)))
     *cp, Dp = [scaled(c) for c in exprs]
     Y = apply(V, cp)
     NH = sum((V[i][j] * Y[i][j] for i, j in _PAIRS), R(0))
