@@ -600,32 +600,77 @@ def _cost(task: Task) -> float:
     return task.rows[0][2] if task.rows and task.target == "derivations" else 0.0
 
 
+#: In a worker: where each record goes as soon as it is decided (a queue made by the parent
+#: before it forks its workers), so that the parent counts and keeps a group's mutants before
+#: the group ends. A group of the costliest function took 16 min and more, and a run printed no
+#: progress and kept nothing until one ended (round 24).
+_DECIDED = None
+
+#: How often a run writes ``--out`` and prints its progress line (s).
+WRITE_SECONDS = 30
+
+
 def evaluate_group(tasks: list[Task]) -> list[dict]:
-    """Decide the mutants of one group in this worker, in order."""
-    return [evaluate(t) for t in tasks]
+    """Decide the mutants of one group in this worker, in order; each record is also sent to the
+    parent as soon as it is decided (:data:`_DECIDED`)."""
+    out = []
+    for t in tasks:
+        out.append(evaluate(t))
+        if _DECIDED is not None:
+            _DECIDED.put(out[-1])
+    return out
 
 
 def _run(tasks: list[Task], jobs: int, records: list[dict], runs, args, run, t0, c0) -> list[dict]:
     """Evaluate ``tasks`` in ``jobs`` forked workers, a group of one function's mutants at a time
-    (:func:`groups`); ``records`` grows as groups finish and is written to ``--out`` every 30 s
-    (``"complete": false``), so an interrupted run keeps what it decided and ``--resume`` goes on
-    from there. A progress line (mutants decided, the time left at the rate so far) every 30 s."""
+    (:func:`groups`). ``records`` grows as mutants are decided (each worker sends each record when
+    it is decided, :data:`_DECIDED`) and is written to ``--out`` every :data:`WRITE_SECONDS`
+    (``"complete": false``) and on an interrupt, so an interrupted run keeps what it decided and
+    ``--resume`` goes on from there. A progress line (mutants decided, the time left at the rate
+    so far) at each write."""
+    global _DECIDED
     mine: list[dict] = []
+    seen: set[tuple] = set()
     last = time.perf_counter()
-    with processes.pool(jobs, mp.get_context("fork"), _init_worker) as pool:
-        futures = [pool.submit(evaluate_group, g) for g in groups(tasks, jobs)]
-        for fut in processes.as_completed(futures):
-            for rec in fut.result():
-                records.append(rec)
-                mine.append(rec)
-                if rec["outcome"] != "killed":
-                    print(f"  {rec['outcome']:<10} {rec['function']:<40} {rec['mutation']}  "
-                          f"[{rec['row']}] {rec['reason'][:160]}", flush=True)
-            if time.perf_counter() - last > 30:
-                _progress(run, len(mine), len(tasks), t0, c0)
-                _write(records, runs, args)
-                last = time.perf_counter()
-                print(progress_line(len(mine), len(tasks), last - t0), flush=True)
+    context = mp.get_context("fork")
+
+    def take(rec: dict) -> None:  # a record, once (from the queue, or from its group's result)
+        key = (rec["target"], rec["function"], rec["index"])
+        if key in seen:
+            return
+        seen.add(key)
+        records.append(rec)
+        mine.append(rec)
+        if rec["outcome"] != "killed":
+            print(f"  {rec['outcome']:<10} {rec['function']:<40} {rec['mutation']}  "
+                  f"[{rec['row']}] {rec['reason'][:160]}", flush=True)
+
+    def keep() -> None:
+        _progress(run, len(mine), len(tasks), t0, c0)
+        _write(records, runs, args)
+
+    def on_wake() -> None:
+        nonlocal last
+        while not _DECIDED.empty():
+            take(_DECIDED.get())
+        if time.perf_counter() - last > WRITE_SECONDS:
+            keep()
+            last = time.perf_counter()
+            print(progress_line(len(mine), len(tasks), last - t0), flush=True)
+
+    _DECIDED = context.SimpleQueue()  # before the pool forks its workers: they inherit it
+    try:
+        with processes.pool(jobs, context, _init_worker) as pool:
+            futures = [pool.submit(evaluate_group, g) for g in groups(tasks, jobs)]
+            for fut in processes.as_completed(futures, on_wake=on_wake):
+                for rec in fut.result():
+                    take(rec)
+    except BaseException:  # an interrupt: keep what was decided (written whole or not at all)
+        keep()
+        raise
+    finally:
+        _DECIDED.close()
+        _DECIDED = None
     return mine
 
 

@@ -9,6 +9,7 @@ form changed) killed by S5:H-linear.
 from __future__ import annotations
 
 import re
+import time
 
 import pytest
 from chaplygin_nd.ledger import mutate
@@ -237,3 +238,39 @@ def test_one_functions_mutants_are_split_so_every_worker_has_work_and_progress_c
     assert len(small) == 7 and max(map(len, small)) == 3 and sum(map(len, small)) == 21
     whole = md.groups([t for f in "abcdefgh" for t in tasks(400, f)], jobs=2)
     assert max(map(len, whole)) == md.GROUP and sum(map(len, whole)) == 3200
+
+
+def test_a_group_s_mutants_are_kept_as_they_are_decided_not_when_the_group_ends(tmp_path,
+                                                                               monkeypatch):
+    """Round 24: a group was reported (and kept in --out) only when it ended, and the costliest
+    groups took more than 16 min. Here the second mutant of a one-group run waits until the
+    parent has written the first into --out: it is decided only if the parent kept the first
+    while the group was still running (a bounded wait, then the record says it was not)."""
+    import json
+    from types import SimpleNamespace as NS
+
+    out = tmp_path / "run.json"
+
+    def evaluate(task):
+        record = {"target": "derivations", "function": "f", "index": task.mutant.index,
+                  "mutation": f"m{task.mutant.index}", "row": None, "outcome": "killed",
+                  "reason": ""}
+        if task.mutant.index == 1:
+            deadline = time.monotonic() + 120
+            while not (out.is_file() and json.loads(out.read_text())["mutants"]):
+                if time.monotonic() > deadline:
+                    return dict(record, outcome="error", reason="the first was not kept")
+                time.sleep(0.05)
+        return record
+
+    monkeypatch.setattr(md, "evaluate", evaluate)
+    monkeypatch.setattr(md, "WRITE_SECONDS", 0.0)
+    monkeypatch.setattr(md, "_init_worker", lambda: None)
+    tasks = [NS(target="derivations", mutant=NS(function="f", index=i), rows=()) for i in range(8)]
+    first = md.groups(tasks, 1)[0]
+    assert [t.mutant.index for t in first] == [0, 1]   # 0 and 1 are decided in one task
+    args = NS(out=out, seed=0, sample=None)
+    records, runs, run = [], [], {}
+    mine = md._run(tasks, 1, records, runs, args, run, time.perf_counter(), 0.0)
+    assert [r["outcome"] for r in mine] == ["killed"] * 8
+    assert [r["index"] for r in records] == list(range(8))   # each once
