@@ -153,6 +153,21 @@ def test_missing_file_is_a_scene_error(tmp_path):
     with pytest.raises(SceneError) as info:
         load(tmp_path / "nowhere.toml")
     assert info.value.field == "file"
+    assert str(info.value).startswith(f"{tmp_path / 'nowhere.toml'}: cannot read it")
+
+
+def test_a_misspelt_built_in_scene_gets_the_closest_name():
+    """Round-24 trial: ``chaplygin simulate stedy4d`` listed the scenes but did not say which one
+    was meant, and said ``file:`` as if it were a field of the scene."""
+    from chaplygin_nd.simulate.scene.spec import find
+
+    with pytest.raises(SceneError) as info:
+        find("stedy4d")
+    assert str(info.value).startswith("stedy4d: no such scene file or built-in scene "
+                                      "(did you mean steady4d?). Fix: ")
+    with pytest.raises(SceneError) as info:
+        find("zzzz")
+    assert "did you mean" not in str(info.value)
 
 
 def test_dedent_helper_keeps_toml_valid():

@@ -55,6 +55,7 @@ mentioning is said on stderr. :func:`find` also accepts the name of a built-in s
 
 from __future__ import annotations
 
+import difflib
 import math
 import os
 import stat
@@ -93,11 +94,13 @@ _ACCURACY = {"target", "method", "dps", "step"}
 
 
 class SceneError(ValueError):
-    """A scene is invalid; the message names the field and the fix."""
+    """A scene is invalid; the message names the field (not for ``where = "file"``: the file as a
+    whole, which ``source`` names already) and the fix."""
 
     def __init__(self, source: str, where: str, problem: str, fix: str):
         self.field = where
-        super().__init__(f"{source}: {where}: {problem}. Fix: {fix}")
+        field = "" if where == "file" else f"{where}: "
+        super().__init__(f"{source}: {field}{problem}. Fix: {fix}")
 
 
 @dataclass
@@ -169,7 +172,9 @@ def find(arg: str, force: bool = False) -> Scene | FrequencyMapScene:
             scene.name = name
             return scene
     if not path.exists():
-        raise SceneError(arg, "file", "no such scene file or built-in scene",
+        close = difflib.get_close_matches(name, builtin_scenes(), n=1)
+        guess = f" (did you mean {close[0]}?)" if close and str(path) in (name, name + ".toml") else ""
+        raise SceneError(arg, "file", f"no such scene file or built-in scene{guess}",
                          "give the path of a scene file or one of the built-in scenes: "
                          + ", ".join(builtin_scenes()))
     return load(path, force=force)
