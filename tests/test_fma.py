@@ -151,3 +151,29 @@ def test_no_plots_writes_no_map_figure(tmp_path):
     assert main([str(path), "--out", str(out), "--workers", "1", "--no-plots"]) == 0
     names = sorted(p.name for p in out.iterdir() if not p.name.startswith("."))
     assert names == ["fma.npz", "summary.txt"]
+
+
+def test_without_heyoka_a_map_stops_before_its_plan_with_one_line(tmp_path, monkeypatch, capsys):
+    """Round-24 trial: without heyoka, fma4d printed its plan line, then the error."""
+    from chaplygin_nd.simulate.integrators import heyoka_taylor
+    from chaplygin_nd.simulate.scene.cli import main
+
+    monkeypatch.setattr(heyoka_taylor, "available", lambda: False)
+    out = tmp_path / "fma"
+    assert main(["fma4d", "--out", str(out), "--no-plots"]) == 2
+    got = capsys.readouterr()
+    assert "plan" not in got.out
+    assert got.err.strip().splitlines() == [
+        "error: frequency maps need heyoka: pip install 'chaplygin-nd[fast]'"]
+    assert not out.exists()
+
+
+def test_the_plan_says_how_many_processes_run_the_orbits():
+    """Round-24 trial: the plan said "all worker process(es)"."""
+    import os
+
+    cores = os.cpu_count() or 1
+    assert fma.where(None, None) == ("this process" if cores == 1 else f"{cores} worker processes")
+    assert fma.where(1, None) == "this process"
+    assert fma.where(2, "local") == "a local Dask cluster of 2 processes"
+    assert fma.where(None, "tcp://10.0.0.1:8786") == "Dask scheduler tcp://10.0.0.1:8786"

@@ -227,6 +227,29 @@ def _task(args):
     return diffusion_of_chunk(MapSpec(**spec_dict), y0)
 
 
+def require_heyoka() -> None:
+    """Stop the run (:class:`RunStopped`, one line) when heyoka, which every map needs, is not
+    installed: checked again by the scene before its plan line (round-24 trial: the plan was
+    printed, then the error)."""
+    from chaplygin_nd.simulate.integrators import heyoka_taylor
+    from chaplygin_nd.simulate.integrators.stops import RunStopped
+
+    if not heyoka_taylor.available():
+        raise RunStopped("frequency maps need heyoka: pip install 'chaplygin-nd[fast]'")
+
+
+def where(workers: int | None, scheduler: str | None) -> str:
+    """Where the orbits of a map run (:func:`run_map`), for the plan and the summary:
+    ``"Dask scheduler ADDRESS"``, ``"a local Dask cluster of N processes"`` or ``"N worker
+    processes"`` (``"this process"`` for one)."""
+    count = workers or os.cpu_count() or 1
+    if scheduler == "local":
+        return f"a local Dask cluster of {count} process{'es' if count > 1 else ''}"
+    if scheduler:
+        return f"Dask scheduler {scheduler}"
+    return "this process" if count == 1 else f"{count} worker processes"
+
+
 def run_map(spec: MapSpec, workers: int | None = None, scheduler: str | None = None,
             on_orbits=None) -> np.ndarray:
     r"""The frequency map of ``spec``: $D$ ``(size, size)`` (rows $\varphi$, columns $x_0$). Chunks
@@ -235,11 +258,7 @@ def run_map(spec: MapSpec, workers: int | None = None, scheduler: str | None = N
     single-threaded processes). ``on_orbits(k)`` is called as each chunk of ``k`` orbits is done
     (the progress line). Requires heyoka (extra ``fast``) and, for a cluster, Dask (extra
     ``cluster``)."""
-    from chaplygin_nd.simulate.integrators import heyoka_taylor
-    from chaplygin_nd.simulate.integrators.stops import RunStopped
-
-    if not heyoka_taylor.available():
-        raise RunStopped("frequency maps need heyoka: pip install 'chaplygin-nd[fast]'")
+    require_heyoka()
     on_orbits = on_orbits or (lambda k: None)
     y0, _, _ = initial_conditions(spec)
     chunks = [(asdict(spec), y0[s:s + spec.chunk]) for s in range(0, len(y0), spec.chunk)]

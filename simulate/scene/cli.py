@@ -164,6 +164,7 @@ def main(argv: list[str] | None = None) -> int:
 def _frequency_map(scene, folder, out, args, start, plots: bool) -> int:
     """Run a frequency-map scene into ``folder`` (claimed) and print its summary; without the two
     map figures when ``plots`` is false (``--no-plots``)."""
+    from chaplygin_nd.simulate.analysis import fma
     from chaplygin_nd.simulate.scene import frequency_map as fma_scene
 
     if args.workers is not None and args.workers < 1:
@@ -173,10 +174,10 @@ def _frequency_map(scene, folder, out, args, start, plots: bool) -> int:
         say(f"note    --workers {args.workers} is more than the {cores} cores of this machine: "
             f"running {cores} worker processes")
         args.workers = cores
-    where = f"Dask scheduler {args.scheduler}" if args.scheduler else \
-        f"{args.workers or 'all'} worker process(es)"
+    fma.require_heyoka()
     print(f"plan    frequency map: 2 x {scene.spec.size}^2 orbits of the full field "
-          f"(heyoka batch), T = {2 * scene.spec.samples * scene.spec.dt:g}; {where}", flush=True)
+          f"(heyoka batch), T = {2 * scene.spec.samples * scene.spec.dt:g}; "
+          f"{fma.where(args.workers, args.scheduler)}", flush=True)
     files, text = fma_scene.run(scene, workers=args.workers, scheduler=args.scheduler)
     text += f"\nwall    {time.perf_counter() - start:.1f} s in all\nwritten {out}"
     folder.write(files if plots else without_figures(files))

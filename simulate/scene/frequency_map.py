@@ -163,6 +163,7 @@ def run(scene: FrequencyMapScene, workers: int | None = None,
         scheduler: str | None = None) -> tuple[dict, str]:
     """Compute both maps; ``({file name: writer(path)}, summary text)``."""
     from chaplygin_nd.simulate.analysis.fma import initial_conditions
+    from chaplygin_nd.simulate.analysis.fma import where as fma_where
     from chaplygin_nd.simulate.scene.progress import Tally
 
     s = scene.spec
@@ -176,7 +177,7 @@ def run(scene: FrequencyMapScene, workers: int | None = None,
     finally:
         tally.done()
     end = time.perf_counter()
-    where = f"Dask scheduler {scheduler}" if scheduler else f"{workers or 'all'} worker process(es)"
+    where = fma_where(workers, scheduler)
     text = "\n".join([
         f"scene   {scene.title}  (n = 4, a = {s.a:g}, b = {s.b:g}, H = {s.h:g}, "
         f"{s.size} x {s.size} orbits per map, T = {2 * s.samples * s.dt:g}, dt = {s.dt:g})",
