@@ -153,12 +153,25 @@ def s6_open_reduced_n5() -> Verdict:
     return open_problem_verdict(N)
 
 
+def _prediction(n: int, exact: dict, dim_p: int, orbit: int, quotient: int, level: int,
+                reduced_bound: int, full_bound: int) -> str:
+    """The exact part of :func:`open_problem_verdict` in words: the orbit and integral ranks and
+    the frequency bounds they give if the reduced system were integrable."""
+    return (f"derived (exact, SymPy Matrix.rank and DomainMatrix.rank over QQ, at {exact['point']}): "
+            f"SO({n - 1})-orbits of dimension {orbit}, so dim P/SO({n - 1}) = {dim_p} - {orbit} = "
+            f"{quotient}; "
+            f"{exact['integrals']} invariant integrals ({', '.join(exact['coefficients'])} of "
+            f"p(lambda, sigma), and H) of rank {exact['integral_rank'][0]} on TP, so regular "
+            f"reduced level sets of dimension {level}; if the reduced system were integrable: "
+            f"at most {reduced_bound} reduced frequencies ({reduced_bound - 1} with "
+            f"{'a sixth integral, Euler-Jacobi' if n == 5 else 'one more integral'}), at most "
+            f"{full_bound} on P ({full_bound - 1})")
+
+
 def open_problem_verdict(n: int) -> Verdict:
     r"""The rule of the module docstring in dimension ``n`` (rows S6:open-reduced-n5, S6:open-reduced-n6):
     the exact count (:func:`reduced_dimension_check`), the drawn orbits of
     :func:`simulate.analysis.evidence_rows.open_row`, the $n = 4$ and general-$\mathbb{J}$ controls."""
-    if reason := dc.without_heyoka():
-        return Verdict.open(reason)
     exact = reduced_dimension_check(n)
     dim_p, group = algebra.so_dim(n) + n - 1, algebra.so_dim(n - 1)
     orbit = exact["orbit_rank"][0]
@@ -167,6 +180,11 @@ def open_problem_verdict(n: int) -> Verdict:
     derived = (exact["orbit_rank"] == (group, group) and exact["integral_rank"] == (n, n)
                and exact["invariant"])
     reduced_bound, full_bound = level, level + (n - 1) // 2     # + rank SO(n-1)
+    prediction = _prediction(n, exact, dim_p, orbit, quotient, level, reduced_bound, full_bound)
+    if reason := dc.without_heyoka():  # the exact part needs no heyoka: say what it gave
+        return Verdict.open(f"{reason}. Computed here: {prediction}"
+                            + ("" if derived else f" (NOT the expected ranks {group} and {n}, "
+                                                  "or an integral not invariant)"))
     er.start_shared("full4", ledger_seed())  # the shared n = 4 control first, unless another row has it
     out = er.open_row(n, ledger_seed())
     res, rerun, ctl5 = out["symmetric"]["results"], out["symmetric"]["rerun"], out["control"]
@@ -188,15 +206,6 @@ def open_problem_verdict(n: int) -> Verdict:
     inv_rerun: dict = {}
     for r in rerun:
         inv_rerun[r.invariant_count] = inv_rerun.get(r.invariant_count, 0) + 1
-    prediction = (f"derived (exact, SymPy Matrix.rank and DomainMatrix.rank over QQ, at {exact['point']}): "
-                  f"SO({n - 1})-orbits of dimension {orbit}, so dim P/SO({n - 1}) = {dim_p} - {orbit} = "
-                  f"{quotient}; "
-                  f"{exact['integrals']} invariant integrals ({', '.join(exact['coefficients'])} of "
-                  f"p(lambda, sigma), and H) of rank {exact['integral_rank'][0]} on TP, so regular "
-                  f"reduced level sets of dimension {level}; if the reduced system were integrable: "
-                  f"at most {reduced_bound} reduced frequencies ({reduced_bound - 1} with "
-                  f"{'a sixth integral, Euler-Jacobi' if n == 5 else 'one more integral'}), at most "
-                  f"{full_bound} on P ({full_bound - 1})")
     kept_ok = dc.fraction(res, dc.keeps) >= dc.KEPT_MIN
     measured = (f"{prediction}. Measured: " + dc.integrals_text(res) + "; " + dc.ladder_text(res)
                 + f"; SO({n - 1})-invariant observables resolved (D < 1e-5) on "
