@@ -39,6 +39,7 @@ sample of K mutants.
 from __future__ import annotations
 
 import ast
+import contextlib
 import inspect
 import multiprocessing as mp
 import os
@@ -294,12 +295,26 @@ def signature(verdict, error: str = "") -> tuple:
             tuple((p.name, p.verdict, p.counterexample) for p in verdict.parts))
 
 
-class _Timeout(Exception):
-    pass
+class BudgetExceeded(BaseException):
+    """A check under a mutant ran past its budget. Not an ``Exception``: a row's own ``except
+    Exception``, or a replay's (a raise is a value there), must not take it for a result."""
 
 
 def _alarm(signum, frame):
-    raise _Timeout()
+    raise BudgetExceeded()
+
+
+@contextlib.contextmanager
+def time_budget(seconds: float):
+    """Within the block, :class:`BudgetExceeded` is raised once ``seconds`` have passed (SIGALRM;
+    main thread only). The one time limit of the mutation tools: rows and replays."""
+    previous = signal.signal(signal.SIGALRM, _alarm)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
 
 
 class _PartChanged(BaseException):  # not an Exception: a row's own ``except Exception`` must
@@ -345,12 +360,9 @@ def run_row(claim_id: str, budget: float | None = None, base: tuple | None = Non
     from chaplygin_nd.ledger.registry import observing_parts, registry
 
     spec = registry()[claim_id]
-    if budget:
-        signal.signal(signal.SIGALRM, _alarm)
-        signal.setitimer(signal.ITIMER_REAL, budget)
     watch = observing_parts(_part_watch(base) if base is not None else (lambda part: None))
     try:
-        with watch:
+        with watch, (time_budget(budget) if budget else contextlib.nullcontext()):
             verdict = spec.run()
         missing = [p.name for p in watch.seen if p not in verdict.parts]
         if missing:
@@ -359,15 +371,12 @@ def run_row(claim_id: str, budget: float | None = None, base: tuple | None = Non
         return signature(verdict), ""
     except _PartChanged as stop:
         return ("part changed", stop.note), stop.note
-    except _Timeout:
+    except BudgetExceeded:
         return ("timeout",), f"ran past its budget of {budget:.0f} s"
     except PartContractError:
         raise
     except Exception as err:  # noqa: BLE001 - a raising proof is an observed change
         return ("error",), f"raised {type(err).__name__}: {str(err)[:120]}"
-    finally:
-        if budget:
-            signal.setitimer(signal.ITIMER_REAL, 0)
 
 
 def _same(x, y) -> bool:

@@ -257,7 +257,9 @@ def _recording(key: str, fn, check: str, base, seconds: float) -> Recording:
         def run():
             got, _note = mu.run_row(check, max(mu.MIN_BUDGET, mu.BUDGET_FACTOR * seconds))
             outcome["same"] = got == base
+    start = time.perf_counter()
     rec = record_calls(fn, run)
+    rec.seconds = time.perf_counter() - start
     if not rec.problem and not outcome.get("same"):
         rec.problem, rec.calls = "the recorded run did not reproduce the baseline", []
     _RECORDINGS[(key, check)] = rec
@@ -285,8 +287,14 @@ def _run_check(fn, code, original, check: str, base, seconds: float) -> tuple[bo
         if check == GENERATED_CHECK:
             from chaplygin_nd.symbolic.codegen import stale_report
 
+            budget = max(mu.MIN_BUDGET, mu.BUDGET_FACTOR * seconds)
+            try:
+                with mu.time_budget(budget):
+                    stale = stale_report()
+            except mu.BudgetExceeded:
+                return True, f"the regeneration of the kernels ran past its budget of {budget:.0f} s"
             return (True, "no row changed, but the regenerated kernels differ: make verify's "
-                          "stale check of generated/ fails") if stale_report() else (False, "")
+                          "stale check of generated/ fails") if stale else (False, "")
         got, note = mu.run_row(check, max(mu.MIN_BUDGET, mu.BUDGET_FACTOR * seconds), base)
         return got != base, note or (mu._difference(base, got) if got != base else "")
     finally:
@@ -317,14 +325,22 @@ def _decide_by_rows(task: Task, fn, code, record: dict) -> dict:
             unreplayed.append((check, base, seconds))
             record.setdefault("not replayed", {})[check] = rec.problem
         else:
-            same, line_ran = replay(fn, code, rec, line)
+            budget = max(mu.MIN_BUDGET, mu.BUDGET_FACTOR * max(seconds, rec.seconds))
+            try:  # a replay has the check's budget too: a mutant may never return (round 25:
+                with mu.time_budget(budget):  # a recursion that never ended held a worker)
+                    same, line_ran = replay(fn, code, rec, line)
+            except mu.BudgetExceeded:  # undecided by the replay: the check itself is run
+                record.setdefault("not replayed", {})[check] = f"replay past {budget:.0f} s"
+                unreplayed.append((check, base, seconds))
+                same = line_ran = False
             ran = ran or line_ran
             if same:
                 replayed.append(check)
                 calls += len(rec.calls)
                 continue
-            differing.append(check)
-        changed, why = _run_check(fn, code, original, check, base, seconds)
+            if check not in record.get("not replayed", {}):
+                differing.append(check)
+        changed, why = _run_check(fn, code, original, check, base, max(seconds, rec.seconds))
         if changed:
             record.update(outcome="killed", row=check, reason=why)
             return record

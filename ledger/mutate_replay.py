@@ -56,6 +56,7 @@ class Recording:
 
     calls: list = field(default_factory=list)
     problem: str = ""  # why it cannot be replayed ("" when it can)
+    seconds: float = 0.0  # the time of the recorded run
 
 
 @dataclass(frozen=True)

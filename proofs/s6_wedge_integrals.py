@@ -20,7 +20,7 @@ ledger uses for all-$n$ rows up to $n = 12$ (here to 9 for cost). (2) At a seede
 differentials on $TP$ of the $n$ known integrals and $H_2..H_{\lceil n/2\rceil-1}$ have rank
 $2n - 2 - \lfloor n/2\rfloor$ and vanish on the generators of $SO(n-1)$, $n = 5, \dots, 8$ (SymPy and
 FLINT ranks, exact zeros). For $n = 6$, $\dot H_2 = 0$ is also checked as an identity in symbolic $a, b$
-beside the ledger (:mod:`symbolic.wedge_n6`, ``tests/test_wedge_n6_slow.py``: FLINT reduction of the
+beside the ledger (:mod:`symbolic.wedge_n6`, ``tests/test_wedge_n6.py``: FLINT reduction of the
 164 220-term residual modulo $\lVert\gamma\rVert^2 = 1$, 40 s; SymPy's reduction agreed in a 600 s run).
 For $n = 5$ the symbolic proof is row S6:sixth-integral-n5 ($H_2$ and its $F$
 is $(\lVert w\rVert^2 + F)/(2+a+b)$; tests/test_reduced5.py).

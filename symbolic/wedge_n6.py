@@ -49,9 +49,10 @@ def h2_residual(at: tuple[sp.Rational, sp.Rational] | None = None):
     ``at``: rational $(a, b)$ with $2 + a + b \ne 0$ to put in before the ring arithmetic (the same
     identity on one point of the parameter plane, in seconds; $a, b$ then do not occur)."""
     R, *G = ring(list(GENS), QQ)
+    A, B = at if at else (a, b)   # the parameters: symbols, or the given rationals
 
-    def put(expr):   # a SymPy coefficient as a ring element, at the given (a, b) if any
-        return R(expr.subs({a: at[0], b: at[1]}, simultaneous=True) if at else expr)
+    def put(expr):   # a SymPy coefficient in a, b, x as a ring element, at (A, B)
+        return R(expr.subs({a: A, b: B}, simultaneous=True))
     X = G[2]
     M = [[R(0)] * N for _ in range(N)]
     for k, (i, j) in enumerate(_PAIRS):
@@ -87,10 +88,10 @@ def h2_residual(at: tuple[sp.Rational, sp.Rational] | None = None):
     exprs = coeffs + [sp.expand(inverse_denominator())]
     deg = max(sp.Poly(c, a, b).total_degree() for c in exprs)
 
-    def scaled(expr):   # expr(a', b', x) * c^deg, a polynomial in a, b, x
+    def scaled(expr):   # expr(a', b', x) * c^deg at (A, B), a polynomial in (a, b,) x
         e_ = expr.subs({a: ap, b: bp}, simultaneous=True)
-        e_ = e_.subs({ap: -2 * a / (2 + a + b), bp: -2 * b / (2 + a + b)}, simultaneous=True)
-        return put(sp.cancel(sp.expand(e_ * (2 + a + b) ** deg)))
+        e_ = e_.subs({ap: -2 * A / (2 + A + B), bp: -2 * B / (2 + A + B)}, simultaneous=True)
+        return R(sp.cancel(sp.expand(e_ * (2 + A + B) ** deg)))
     *cp, Dp = [scaled(c) for c in exprs]
     Y = apply(V, cp)
     NH = sum((V[i][j] * Y[i][j] for i, j in _PAIRS), R(0))

@@ -274,3 +274,42 @@ def test_a_group_s_mutants_are_kept_as_they_are_decided_not_when_the_group_ends(
     mine = md._run(tasks, 1, records, runs, args, run, time.perf_counter(), 0.0)
     assert [r["outcome"] for r in mine] == ["killed"] * 8
     assert [r["index"] for r in records] == list(range(8))   # each once
+
+
+def test_a_time_budget_is_not_taken_for_a_result_by_except_exception():
+    """A row or a replay catches ``Exception`` (a raise is a value there); the budget must pass
+    through it."""
+    with pytest.raises(mutate.BudgetExceeded), mutate.time_budget(0.05):
+        try:
+            while True:
+                pass
+        except Exception:  # noqa: BLE001 - what a row may do
+            pass
+
+
+def test_a_replay_that_never_returns_is_cut_at_the_budget_and_the_check_is_run(monkeypatch):
+    """Round 25: a mutant of reduced5_invariants.products recursed without end inside a replay,
+    which had no budget, and held a worker. The replay now has the check's budget; past it, the
+    check itself is run (with its own budget) and decides."""
+    from types import SimpleNamespace as NS
+
+    from chaplygin_nd.ledger.mutate_replay import Recording
+
+    def forever(*args, **kwargs):
+        while True:
+            pass
+
+    ran = []
+    monkeypatch.setattr(mutate, "MIN_BUDGET", 0.1)
+    monkeypatch.setattr(md, "_recording", lambda *a: Recording(calls=[((), {}, 1, (), {})]))
+    monkeypatch.setattr(md, "replay", forever)
+    monkeypatch.setattr(md, "_run_check",
+                        lambda fn, code, original, check, base, seconds: (ran.append(check) or True,
+                                                                          "ran past its budget"))
+    fn = md.functions("derivations")["reduced.horizontal_frequency_squared"]
+    m = mutate.all_mutants("reduced.horizontal_frequency_squared", fn)[0][0]
+    task = NS(mutant=m, rows=(("S5:H-linear", ("holds",), 0.01),), emitted=frozenset())
+    record = {}
+    md._decide_by_rows(task, fn, fn.__code__, record)
+    assert ran == ["S5:H-linear"]
+    assert record["outcome"] == "killed" and record["not replayed"] == {"S5:H-linear": "replay past 0 s"}
