@@ -386,7 +386,7 @@ def _same(x, y) -> bool:
     import dataclasses
 
     import numpy as np
-    from chaplygin_nd.ledger.mutate_replay import identical
+    from chaplygin_nd.ledger.mutate_replay import attributes, identical
 
     if dataclasses.is_dataclass(x) and not isinstance(x, type):
         return type(x) is type(y) and all(_same(getattr(x, f.name), getattr(y, f.name))
@@ -404,6 +404,10 @@ def _same(x, y) -> bool:
     if isinstance(x, (int, sp.Basic)) and isinstance(y, (int, sp.Basic)):
         d = sp.sympify(x) - sp.sympify(y)
         return d == 0 or sp.expand(sp.together(d)) == 0
+    if (own := attributes(x)) is not None:  # no equality of its own: attribute by attribute
+        other = attributes(y)
+        return (type(x) is type(y) and other is not None and own.keys() == other.keys()
+                and all(_same(own[k], other[k]) for k in own))
     try:
         return bool(x == y)
     except Exception:  # noqa: BLE001 - no equality that gives one truth value: compare as a row sees it

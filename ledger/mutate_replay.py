@@ -128,6 +128,25 @@ def _snapshot(value: Any) -> Any:
     return copy.deepcopy(value)
 
 
+def attributes(x) -> dict | None:
+    """The attributes of an object whose class has no equality of its own (``==`` would be
+    identity): its ``__dict__`` and its ``__slots__``, by name; None for any other object. A
+    small value class with ``__slots__`` (wedge_integrals' dual numbers) compared by identity made
+    every value differ (round 25)."""
+    if type(x).__eq__ is not object.__eq__:
+        return None
+    slots: list[str] = []
+    for cls in type(x).__mro__:
+        names = cls.__dict__.get("__slots__", ())
+        slots += [names] if isinstance(names, str) else [s for s in names
+                                                         if s not in ("__dict__", "__weakref__")]
+    if not slots and not hasattr(x, "__dict__"):
+        return None
+    out = {name: getattr(x, name) for name in slots if hasattr(x, name)}
+    out.update(getattr(x, "__dict__", {}))
+    return out
+
+
 def identical(x, y) -> bool:
     """Whether a row could tell ``x`` from ``y``: same type and structure (SymPy's structural
     ``==``, not mathematical equality: ``x*(x+1)`` and ``x**2 + x`` differ in what a row prints),
@@ -158,8 +177,8 @@ def identical(x, y) -> bool:
     if dataclasses.is_dataclass(x):  # field by field, the fields it compares (its own ``==``
         return all(identical(getattr(x, f.name), getattr(y, f.name))  # cannot compare arrays;
                    for f in dataclasses.fields(x) if f.compare)      # compare=False: a time taken)
-    if type(x).__eq__ is object.__eq__ and hasattr(x, "__dict__"):  # no equality of its own:
-        return identical(vars(x), vars(y))                          # field by field
+    if (own := attributes(x)) is not None:  # no equality of its own: attribute by attribute
+        return identical(own, attributes(y))
     try:
         return bool(x == y)  # SymPy: structural; FLINT, dataclasses, _Raised: exact
     except Exception:  # noqa: BLE001 - cannot be compared: treated as different

@@ -313,3 +313,16 @@ def test_a_replay_that_never_returns_is_cut_at_the_budget_and_the_check_is_run(m
     md._decide_by_rows(task, fn, fn.__code__, record)
     assert ran == ["S5:H-linear"]
     assert record["outcome"] == "killed" and record["not replayed"] == {"S5:H-linear": "replay past 0 s"}
+
+
+def test_values_of_a_slots_class_without_equality_are_compared_attribute_by_attribute():
+    """Round 25: wedge_integrals' dual numbers (``__slots__``, no ``__eq__``) were compared by
+    identity, so a mutant that only swapped the factors of a product (the same dual number)
+    "differed" at every call and survived."""
+    from chaplygin_nd.ledger.mutate_replay import identical
+    from chaplygin_nd.symbolic.wedge_integrals import _Dual
+
+    x, y = _Dual(2, 3), _Dual(5, 7)
+    assert identical(x * y, y * x) and mutate._same(x * y, y * x)
+    assert not identical(x * y, x * x) and not mutate._same(x * y, x * x)
+    assert not identical(_Dual(2, 3), _Dual(2, 4)) and not mutate._same(_Dual(2, 3), _Dual(2, 4))
