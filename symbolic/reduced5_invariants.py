@@ -160,8 +160,8 @@ def invariant_dimension(i: int, j: int, l: int) -> int:
 
 
 def products(deg: tuple[int, int, int], names=NAMES) -> list[tuple[int, ...]]:
-    """Exponent vectors (over ``names``) of the generator products of tridegree ``deg``, in a fixed
-    order (lexicographic, the later generators' exponents varying fastest). S6:reduced-n5."""
+    """Exponent vectors (over ``names``) of the generator products of tridegree ``deg``, each once, in
+    decreasing lexicographic order (the later generators' exponents vary fastest). S6:reduced-n5."""
     out = []
 
     def rec(k, cur, exps):
