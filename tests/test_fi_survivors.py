@@ -268,3 +268,22 @@ def test_prove_symbolic_proves_the_integral_at_the_parameters_given():
 
     assert fi_new.prove_symbolic(3, A, B, builder=spy).ok
     assert seen == [(A, B)]
+
+
+# ---- fi_known.generators: the degrees of the new integrals (round 25) --------------------------
+
+@pytest.mark.parametrize("n, name, integral", [(5, "F", fi_new.new_integral),
+                                               (6, "G", fi_new.new_integral_6)])
+def test_the_new_integrals_generators_have_their_numerators_degrees(n, name, integral):
+    """A generator's M-degree and gamma-degree are those of its numerator (the latter modulo the
+    sphere), computed here from the symbolic numerator. The n = 6 branch (G) is one S6:first-
+    integrals never takes: a mutant giving G gamma-degree 3 survived it."""
+    from chaplygin_nd.symbolic.algebra import skew_symbols, vector_symbols
+
+    model = fi_field.axisymmetric(n, A, B)
+    gen = next(g for g in fi_known.generators(model, include_new=True) if g.name == name)
+    M, gam = skew_symbols("m", n), vector_symbols("g", n)
+    num, _ = integral(M, gam, model.a, model.b)
+    assert gen.m_degree == sp.Poly(num, *sorted(M.free_symbols, key=str)).total_degree()
+    assert gen.g_degree == fi_known._sphere_degree(num, list(gam))
+    assert gen.d_power == 1

@@ -353,3 +353,20 @@ def test_generator_products_are_every_exponent_vector_once_in_the_documented_ord
              if tuple(sum(k * ri.TRIDEGREE[name][t] for k, name in zip(e, ri.NAMES))
                       for t in range(3)) == deg]
     assert ri.products(deg) == sorted(every, reverse=True)
+
+
+def test_generation_check_reports_the_counts_of_its_definition():
+    """reduced5_invariants.generation_check: ``products`` is the number of generator products of
+    the tridegree, ``rank`` the rank of their values (at most ``products``, at most the invariant
+    dimension, which it must equal for ``spans``). Round 25's mutation run: S6:reduced-n5 reads
+    only ``spans``, so a count of 1 and a rank of 1 for a tridegree without products survived it."""
+    from chaplygin_nd.symbolic import reduced5_invariants as ri
+
+    rows = ri.generation_check([(1, 0, 0), (3, 2, 0), (2, 2, 2)], seed=3)
+    assert [r["deg"] for r in rows] == [(1, 0, 0), (3, 2, 0), (2, 2, 2)]
+    for r in rows:
+        assert r["products"] == len(ri.products(r["deg"]))
+        assert r["dim"] == ri.invariant_dimension(*r["deg"])
+        assert 0 <= r["rank"] <= min(r["products"], r["dim"])
+        assert r["spans"] == (r["rank"] == r["dim"])
+    assert rows[0]["products"] == rows[0]["rank"] == 0 and rows[2]["products"] > 0
