@@ -28,9 +28,13 @@ LONG_ON_BASE = {"horizontal6d", "ensemble3d", "vertical5d", "spherical6d"}
 #: with heyoka the reference of these is the mpmath Taylor method on 64 members or in n = 5
 #: (2-6 minutes under load): in the bench
 LONG_ON_FAST = {"ensemble3d", "vertical5d"}
+#: with heyoka these take 20-50 s each with both cores busy (round 25, pytest --durations): in
+#: make test-slow (CI runs it), so that make test stays within its time
+SLOW_ON_FAST = {"generic4d", "prolate_ball3d", "explicit4d"}
 #: a frequency map is a grid of orbits, not one trajectory: tests/test_fma.py checks it
 MAPS = {name for name in builtin_scenes() if isinstance(find(name), FrequencyMapScene)}
-CASES = [pytest.param(name, install, marks=pytest.mark.slow if install == "base" else ())
+CASES = [pytest.param(name, install, marks=pytest.mark.slow
+                      if install == "base" or name in SLOW_ON_FAST else ())
          for name in sorted(set(builtin_scenes()) - LONGEST - MAPS)
          for install in ["base"] + (["fast"] if heyoka_taylor.available() else [])
          if name not in (LONG_ON_BASE if install == "base" else LONG_ON_FAST)]
