@@ -176,6 +176,16 @@ ARGUED: dict[tuple[str, str], str] = {
         "the same element of the commutative ring RING (== holds); only the insertion order of "
         "the terms in the PolyElement dict differs, which the replay's comparison reads and the "
         "rows do not (ring arithmetic, evaluation at a point, as_expr())",
+    **{("axisym_inverse.inverse_denominator", mutation):
+       "D times a non-zero constant (-1, 1/2, 3/2): _numerator_coefficients builds every D c_k "
+       "from inverse_denominator() itself, so numerator and denominator scale together; D is "
+       "only ever used with them (L(N) = D M in P:inversion, Omega = N / D, the cleared "
+       "identity D' DN' - N' DD' of wedge_n6, homogeneous in the scale), and a constant multiple "
+       "of a common denominator is one"
+       for mutation in ("sign: line 90 col 11: 2 * Delta(x_, a_, b_) * (2 + a_ + b_) -> "
+                        "-(2 * Delta(x_, a_, b_) * (2 + a_ + b_))",
+                        "factor: line 90 col 11: 2 * Delta(x_, a_, b_) -> Delta(x_, a_, b_)",
+                        "const: line 90 col 11: 2 -> 3")},
 }
 
 
