@@ -287,3 +287,29 @@ def test_the_new_integrals_generators_have_their_numerators_degrees(n, name, int
     assert gen.m_degree == sp.Poly(num, *sorted(M.free_symbols, key=str)).total_degree()
     assert gen.g_degree == fi_known._sphere_degree(num, list(gam))
     assert gen.d_power == 1
+
+
+# ---- fi_new.pfaffian and reduced5_invariants.K_matrix (round 25) -------------------------------
+
+@pytest.mark.parametrize("size", [0, 2, 3, 4, 6])
+def test_fi_new_pfaffian_is_the_definition(size):
+    """Against the permutation sum, its sign included (the rows use Pf through v v^T = adj M and
+    quadratic forms, blind to a sign: round 25's run), and 0 for an odd size (a branch no row
+    takes)."""
+    import definitions
+    from chaplygin_nd.symbolic import points
+
+    A = points.skew_matrix(points.generator(size, "tests/test_fi_survivors pfaffian"), size) \
+        if size else sp.zeros(0, 0)
+    assert fi_new.pfaffian(A) == (definitions.pfaffian(A) if size else 1)
+
+
+def test_k_matrix_is_the_upper_left_block_and_u_the_last_column():
+    """reduced5_invariants.K_matrix's docstring: K = (M_ij), i, j < 4, and u = (M_i5), i < 4. A
+    K with a fifth column or row survived the rows (they index it below 4; round 25)."""
+    from chaplygin_nd.symbolic import reduced5_invariants as ri
+
+    Mm = [[10 * i + j for j in range(5)] for i in range(5)]
+    K, u = ri.K_matrix(Mm)
+    assert K == [[10 * i + j for j in range(4)] for i in range(4)]
+    assert u == [10 * i + 4 for i in range(4)]

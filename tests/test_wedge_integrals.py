@@ -12,6 +12,7 @@ exactly by interpolation).
 
 from __future__ import annotations
 
+import definitions
 import pytest
 import sympy as sp
 from chaplygin_nd.symbolic import model, points
@@ -68,30 +69,15 @@ def test_value_is_the_energy_for_k_1():
     assert wi.value(M, gamma, a, b, 1) == pairing
 
 
-def _pfaffian_by_definition(A: sp.Matrix) -> sp.Expr:
-    """Pf(A) = 1/(2^m m!) sum over permutations s of sgn(s) prod_i A[s(2i), s(2i+1)], 2m = size."""
-    import itertools
-    from math import factorial
-
-    size = A.rows
-    total = sp.Integer(0)
-    for perm in itertools.permutations(range(size)):
-        sign = sp.combinatorics.Permutation(list(perm)).signature()
-        total += sign * sp.prod(A[perm[2 * i], perm[2 * i + 1]] for i in range(size // 2))
-    return total / (2 ** (size // 2) * factorial(size // 2))
-
-
 @pytest.mark.parametrize("size", [2, 4, 6])
 def test_pfaffian_is_the_definition(size):
     """wedge_integrals.pfaffian against the permutation sum, its sign included: H_k is quadratic
     in the wedge power, so S6:wedge-integrals cannot see a Pfaffian's sign (round 25's mutation
     run: every term's sign flipped survived the row). On a principal submatrix too."""
-    import sympy.combinatorics  # noqa: F401 - Permutation, for the definition
-
     rng = points.generator(size, "tests/test_wedge_integrals pfaffian")
     A = points.skew_matrix(rng, size + 1)
     rows = A.tolist()
-    assert wi.pfaffian(rows, tuple(range(size)), 0, 1) == _pfaffian_by_definition(A[:size, :size])
+    assert wi.pfaffian(rows, tuple(range(size)), 0, 1) == definitions.pfaffian(A[:size, :size])
     idx = tuple(range(1, size + 1))
-    assert wi.pfaffian(rows, idx, 0, 1) == _pfaffian_by_definition(A.extract(list(idx), list(idx)))
+    assert wi.pfaffian(rows, idx, 0, 1) == definitions.pfaffian(A.extract(list(idx), list(idx)))
     assert wi.pfaffian(rows, (), 0, 1) == 1
