@@ -313,3 +313,13 @@ def test_k_matrix_is_the_upper_left_block_and_u_the_last_column():
     K, u = ri.K_matrix(Mm)
     assert K == [[10 * i + j for j in range(4)] for i in range(4)]
     assert u == [10 * i + 4 for i in range(4)]
+
+
+def test_the_axisymmetric_model_carries_its_a_and_b():
+    """fi_field.axisymmetric: J = Id + a E_n E_n^T (eq:axisymm), the given b, kind and a. The
+    search's counts are the same for every generic (a, b), so S6:first-integrals did not see a and
+    b exchanged (round 25)."""
+    model = fi_field.axisymmetric(5, A, B)
+    assert model.J == (1, 1, 1, 1, 1 + A) and model.b == B and model.a == A
+    assert model.kind == "axisymmetric" and model.n == 5 and model.planes == 2
+    assert all(isinstance(v, sp.Rational) for v in (*model.J, model.a, model.b))
