@@ -189,6 +189,11 @@ ARGUED: dict[tuple[str, str], str] = {
     ("fi_new.pfaffian", "sign: line 33 col 15: sp.Integer(0) -> -sp.Integer(0)"):
         "-Integer(0) is Integer(0), SymPy's zero singleton (S.Zero): the same object is returned; "
         "the odd-size branch it sits in is run by tests/test_fi_survivors.py",
+    ("fi_reconstruct.to_expression", "factor: line 184 col 17: int(co.re[r, j]) * X[j] -> X[j]"):
+        "the real parts of the coordinate forms are 0 or 1 (fi_basis.coordinates: zeta_j = "
+        "E_2j-1 + i E_2j, its conjugate, e_k = E_k; tested against that definition in "
+        "tests/test_fi_survivors.py), and the zeros are skipped by the comprehension's 'if', so "
+        "int(re) * X_j is X_j wherever it is formed",
 }
 
 

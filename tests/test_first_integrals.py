@@ -244,3 +244,33 @@ def test_real_columns_are_a_real_basis_of_each_block(n, d, d_gamma):
         monomials = sorted({m for p in polys for m in p.as_dict()})
         matrix = sp.Matrix([[p.as_dict().get(m, 0) for m in monomials] for p in polys])
         assert matrix.rank() == len(cols), (n, blk.character)
+
+
+def test_to_expression_is_the_real_part_sum_of_its_definition_in_sympy():
+    """fi_reconstruct.to_expression (FLINT complex arithmetic) against the same sum written in
+    SymPy from the definitions: linear forms sum_j (re + i im)_rj x_j, monomials their products,
+    a column the signed sum of its monomials, a real column Re(i^ipow * column), the result
+    sum_j q_j (real column j). Round 25's run: a factor of 2 on every monomial and the linear
+    forms' coefficients dropped survived the tests that compare only spans and zero-ness."""
+    n = 4
+    B_ = fi_basis.basis(n, 2, 2, fi_field.axisymmetric(n, A, B).planes)
+    syms = sum(fi_reconstruct.real_symbols(n), [])
+    real = [sp.Symbol(s.name, real=True) for s in syms]
+    co = B_.coords
+    lin = [sum((int(co.re[r, j]) + sp.I * int(co.im[r, j])) * real[j] for j in range(len(real)))
+           for r in range(len(co.names))]
+    checked = 0
+    for blk in B_.blocks:
+        cols = fi_reconstruct.real_columns(B_, blk)
+        q = [sp.Rational(k + 2, 3) for k in range(len(cols))]
+
+        def column(c, blk=blk):
+            return sum(int(s) * sp.Mul(*[lin[r] ** int(e) for r, e in enumerate(B_.exponents[int(m)])])
+                       for m, s, cc in zip(blk.monomial, blk.sign, blk.column) if cc == c)
+
+        want = sum(qj * sum(coeff * sp.expand(sp.I ** ipow * column(c)).as_real_imag()[0]
+                            for c, coeff, ipow in combo) for qj, combo in zip(q, cols))
+        got = fi_reconstruct.to_expression(B_, blk, cols, q).xreplace(dict(zip(syms, real)))
+        assert sp.expand(got - want) == 0, blk.character
+        checked += 1
+    assert checked == len(B_.blocks) > 0
