@@ -73,3 +73,16 @@ def test_divergence_at_point_detects_a_wrong_density():
     transport = sum(g * l for g, l in zip(d["gamma_dot"], d["dlogdet"]))
     assert d["div"] - transport / 2 == 0          # (det L)^(-1/2): invariant
     assert d["div"] - transport != 0              # (det L)^(-1): not invariant here
+
+
+def test_measure_residual_is_div_of_rho_x_over_rho():
+    """symbolic.measure.measure_residual: div(rho X)/rho for rho = prod D_i^p_i, computed here by
+    differentiating rho X directly. Its rows test only whether it is zero, so a negated residual
+    survived them (round 25's mutation run)."""
+    from chaplygin_nd.symbolic.measure import measure_residual
+
+    x, y = sp.symbols("x y", positive=True)
+    field, rho = [x * y, x - y**2], x**3 * (1 + y) ** sp.Rational(-1, 2)
+    want = sum(sp.diff(rho * f, c) for f, c in zip(field, (x, y))) / rho
+    got = measure_residual(field, [x, y], [(x, 3), (1 + y, sp.Rational(-1, 2))])
+    assert sp.simplify(got - want) == 0 and sp.simplify(want) != 0
