@@ -51,6 +51,7 @@ import time
 import traceback
 from dataclasses import dataclass
 from types import FunctionType
+from typing import Any
 
 from chaplygin_nd.ledger import mutate as mu
 from chaplygin_nd.ledger import mutate_runtime as mr
@@ -638,7 +639,7 @@ def _cost(task: Task) -> float:
 #: before it forks its workers), so that the parent counts and keeps a group's mutants before
 #: the group ends. A group of the costliest function took 16 min and more, and a run printed no
 #: progress and kept nothing until one ended (round 24).
-_DECIDED = None
+_DECIDED: Any = None
 
 #: How often a run writes ``--out`` and prints its progress line (s).
 WRITE_SECONDS = 30
@@ -685,14 +686,14 @@ def _run(tasks: list[Task], jobs: int, records: list[dict], runs, args, run, t0,
 
     def on_wake() -> None:
         nonlocal last
-        while not _DECIDED.empty():
-            take(_DECIDED.get())
+        while not queue.empty():
+            take(queue.get())
         if time.perf_counter() - last > WRITE_SECONDS:
             keep()
             last = time.perf_counter()
             print(progress_line(len(mine), len(tasks), last - t0), flush=True)
 
-    _DECIDED = context.SimpleQueue()  # before the pool forks its workers: they inherit it
+    _DECIDED = queue = context.SimpleQueue()  # before the pool forks its workers: they inherit it
     try:
         with processes.pool(jobs, context, _init_worker) as pool:
             futures = [pool.submit(evaluate_group, g) for g in groups(tasks, jobs)]
@@ -703,7 +704,7 @@ def _run(tasks: list[Task], jobs: int, records: list[dict], runs, args, run, t0,
         keep()
         raise
     finally:
-        _DECIDED.close()
+        queue.close()
         _DECIDED = None
     return mine
 
