@@ -195,6 +195,12 @@ ARGUED: dict[tuple[str, str], str] = {
         "E_2j-1 + i E_2j, its conjugate, e_k = E_k; tested against that definition in "
         "tests/test_fi_survivors.py), and the zeros are skipped by the comprehension's 'if', so "
         "int(re) * X_j is X_j wherever it is formed",
+    ("wedge_n6.h2_residual", "sign: line 55 col 15: R(expr.subs({a: A, b: B}, simultaneous=True)) -> "
+                             "-R(expr.subs({a: A, b: B}, simultaneous=True))"):
+        "every numerator coefficient of L_gamma^{-1} negated (the scaled c_k' and D' are built "
+        "with R directly, not put): DO, so M-dot and gamma-dot, change sign, the field reversed in "
+        "time, and the residual is exactly minus the original's, for any (a, b) and any model: "
+        "zero modulo the sphere iff the original is, the function's one documented use",
 }
 
 
