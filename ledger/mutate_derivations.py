@@ -245,10 +245,17 @@ def _evaluate(task: Task) -> dict:
     try:
         clear_caches()
         if task.target == "runtime":
-            return mr.evaluate(fn, code, m.function, task.rows, record)
-        if not task.rows:
-            return mr.evaluate(fn, code, m.function, task.tests, record)
-        return _decide_by_rows(task, fn, code, record)
+            record = mr.evaluate(fn, code, m.function, task.rows, record)
+        elif not task.rows:
+            record = mr.evaluate(fn, code, m.function, task.tests, record)
+        else:
+            record = _decide_by_rows(task, fn, code, record)
+        if record["outcome"] == "survived":  # the last resort: the slow tests of its module
+            failed = mr.kill_slow(fn, code, m.function)
+            if failed is not None:
+                record.update(outcome="killed", row="slow tests",
+                              reason=f"{record['reason'][:200]}; then a slow test failed: {failed}")
+        return record
     except Exception:  # noqa: BLE001
         record.update(outcome="error", reason=traceback.format_exc(limit=3))
         return record

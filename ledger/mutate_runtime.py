@@ -81,7 +81,9 @@ class _InterruptSeen:
         self.seen = True
 
 
-def _pytest(args: list[str], plugins=()) -> tuple[int, str]:
+def _pytest(args: list[str], plugins=(), none_ok: bool = False) -> tuple[int, str]:
+    """``pytest.main(args)`` in this process from the checkout: (exit status, the first failure's
+    line). ``none_ok``: no test collected is a pass (status 0), not an error."""
     import pytest
 
     buffer = io.StringIO()
@@ -99,6 +101,8 @@ def _pytest(args: list[str], plugins=()) -> tuple[int, str]:
                             "ignore::ResourceWarning", *args], plugins=[*plugins, interrupt])
     if code == pytest.ExitCode.INTERRUPTED and interrupt.seen:  # Ctrl-C or SIGTERM reached pytest:
         raise KeyboardInterrupt("pytest was interrupted")  # the run ends, no mutant killed by it
+    if none_ok and code == pytest.ExitCode.NO_TESTS_COLLECTED:
+        return 0, ""
     lines = [ln for ln in buffer.getvalue().splitlines() if ln.startswith(("FAILED", "ERROR"))]
     note = (lines[0] if lines else f"pytest exit {code}")[:200]
     if code not in (pytest.ExitCode.OK, pytest.ExitCode.TESTS_FAILED):  # usage, internal, none run
@@ -305,6 +309,27 @@ def kill(fn, code, key: str, tests: tuple[str, ...]) -> str | None:
     finally:
         fn.__code__ = original
         clear_caches()  # e.g. jit_cache.code_version, computed with the mutant in place
+    return note if status != 0 else None
+
+
+def kill_slow(fn, code, key: str) -> str | None:
+    """The last resort for a survivor: the tests marked ``slow`` of the files naming its module
+    (:func:`mentioning`), ``pytest -x``, with ``code`` in place of ``fn``'s: the first failure's
+    line, or None (every one passed, or there is none). Not run per mutant otherwise (too long):
+    ``wedge_n6.h2_residual``'s symbolic check is one (round 25)."""
+    from chaplygin_nd.ledger.reach import clear_caches
+
+    files = mentioning([key])
+    if not files:
+        return None
+    original = fn.__code__
+    fn.__code__ = code
+    try:
+        with _cache_root(key.startswith("runtime.jit_cache.")):
+            status, note = _pytest(["-x", "-m", "slow and not site", *files], none_ok=True)
+    finally:
+        fn.__code__ = original
+        clear_caches()
     return note if status != 0 else None
 
 

@@ -326,3 +326,28 @@ def test_values_of_a_slots_class_without_equality_are_compared_attribute_by_attr
     assert identical(x * y, y * x) and mutate._same(x * y, y * x)
     assert not identical(x * y, x * x) and not mutate._same(x * y, x * x)
     assert not identical(_Dual(2, 3), _Dual(2, 4)) and not mutate._same(_Dual(2, 3), _Dual(2, 4))
+
+
+def test_a_survivor_meets_the_slow_tests_of_its_module_last(tmp_path, monkeypatch):
+    """The mutation run leaves slow tests out per mutant; a survivor is tried against them last
+    (round 25: wedge_n6.h2_residual's symbolic check is a slow test). Here a slow test of
+    algebra.so_dim fails on a mutant of it and passes on the original; a file with no slow test
+    kills nothing."""
+    from chaplygin_nd.ledger import mutate_runtime as mr
+
+    key = "algebra.so_dim"
+    fn = md.functions("derivations")[key]
+    mutant = next(m for m, _ in mutate.all_mutants(key, fn) if m.operator == "const")
+    code = mutate.compile_mutant(fn, mutant)
+    slow = tmp_path / "test_slow_so_dim.py"
+    slow.write_text("import pytest\nfrom chaplygin_nd.symbolic import algebra\n\n\n"
+                    "@pytest.mark.slow\ndef test_so_dim():\n"
+                    "    assert [algebra.so_dim(n) for n in range(2, 7)] == [1, 3, 6, 10, 15]\n")
+    quick = tmp_path / "test_quick_so_dim.py"
+    quick.write_text("from chaplygin_nd.symbolic import algebra\n\n\n"
+                     "def test_so_dim():\n    assert algebra.so_dim(4) == 6\n")
+    monkeypatch.setattr(mr, "mentioning", lambda keys: (str(slow),))
+    assert mr.kill_slow(fn, code, key) is not None
+    assert mr.kill_slow(fn, fn.__code__, key) is None
+    monkeypatch.setattr(mr, "mentioning", lambda keys: (str(quick),))
+    assert mr.kill_slow(fn, code, key) is None
