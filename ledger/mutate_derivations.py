@@ -233,9 +233,9 @@ def _evaluate(task: Task) -> dict:
     fn = functions(task.target)[task.mutant.function]
     original = fn.__code__
     m = task.mutant
-    record = {"target": task.target, "function": m.function, "index": m.index,
-              "mutation": f"{m.operator}: {m.description}", "row": None, "outcome": "",
-              "reason": ""}
+    record: dict[str, Any] = {"target": task.target, "function": m.function, "index": m.index,
+                              "mutation": f"{m.operator}: {m.description}", "row": None,
+                              "outcome": "", "reason": ""}
     start = time.perf_counter()
     try:
         code = mu.compile_mutant(fn, m)
