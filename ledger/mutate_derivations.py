@@ -201,6 +201,10 @@ ARGUED: dict[tuple[str, str], str] = {
         "with R directly, not put): DO, so M-dot and gamma-dot, change sign, the field reversed in "
         "time, and the residual is exactly minus the original's, for any (a, b) and any model: "
         "zero modulo the sphere iff the original is, the function's one documented use",
+    ("wedge_n6.h2_residual", "sign: line 112 col 15: tot -> -tot"):
+        "the derivative along the field negated (DX returns -X(f)): the field reversed in time, "
+        "and the residual Dp DX(NH) - NH DX(Dp), linear in DX, is exactly minus the original's "
+        "for any model: zero modulo the sphere iff the original is, its one documented use",
 }
 
 

@@ -274,3 +274,15 @@ def test_to_expression_is_the_real_part_sum_of_its_definition_in_sympy():
         assert sp.expand(got - want) == 0, blk.character
         checked += 1
     assert checked == len(B_.blocks) > 0
+
+
+def test_a_block_without_integrals_has_an_empty_kernel_in_its_own_basis():
+    """fi_reconstruct.kernel_rref on a block whose kernel is trivial (the M-degree-1,
+    gamma-degree-1 block of character 4, n = 4: no linear integral there): a 0-row matrix with one
+    column per real column, and the basis and block it was asked for. The tests reached that
+    branch with no such block (round 25's run: a 1-row result survived)."""
+    model = fi_field.axisymmetric(4, A, B)
+    R, basis, blk, cols = fi_reconstruct.kernel_rref(model, 1, 1, 0, 4, 0, 1)
+    assert R.shape == (0, len(cols)) and len(cols) == blk.columns > 0
+    assert blk.character == 4 and blk in basis.blocks
+    assert basis.exponents.shape == fi_basis.basis(4, 1, 1, model.planes).exponents.shape
