@@ -119,3 +119,18 @@ def test_derivations_do_not_import_printed():
         text = (ROOT / "symbolic" / name).read_text()
         assert "printed" not in "".join(line for line in text.splitlines()
                                         if line.startswith(("import", "from"))), name
+
+
+def test_reduce_delta_replaces_delta_squared_by_det_lambda():
+    """reduced_invariants.reduce_delta (eq:PrincMinors: delta^2 = det Lambda): delta^2 -> det
+    Lambda, delta^3 -> det Lambda * delta, delta and delta-free terms unchanged. S5:red-measure
+    reduces a residual that is zero either way, so wrong powers and a negated result survived it
+    (round 25's mutation run)."""
+    from chaplygin_nd.symbolic import reduced_invariants as ri
+
+    d, A, E = ri._delta, ri._A, ri._E
+    dL = ri.det_Lambda()
+    assert ri.reduce_delta(d**2) == dL
+    assert ri.reduce_delta(A * d**3) == A * dL * d
+    assert ri.reduce_delta(E * d + 3 * A) == E * d + 3 * A
+    assert ri.reduce_delta(ri.INV_RING(5)) == 5
