@@ -134,3 +134,17 @@ def test_reduce_delta_replaces_delta_squared_by_det_lambda():
     assert ri.reduce_delta(A * d**3) == A * dL * d
     assert ri.reduce_delta(E * d + 3 * A) == E * d + 3 * A
     assert ri.reduce_delta(ri.INV_RING(5)) == 5
+
+
+def test_block_is_a_matrix_over_the_ring_of_its_entries():
+    """fourd.block: every entry, the zeros on the diagonal included, is an element of the ring
+    of v and w (or a SymPy expression for SymPy entries), so that the matrix can be used as one
+    (.ring, as_expr). A Python int zero survived the rows (round 25's mutation run)."""
+    from chaplygin_nd.symbolic import fourd
+
+    v, w = fourd._k, fourd._u
+    blk = fourd.block(v, w)
+    assert all(entry.ring is fourd.RING for row in blk for entry in row)
+    assert blk[0][0] == 0 and blk[0][1] == -v[2] and blk[3][0] == -w[0]
+    sym = fourd.block(sp.symbols("v1:4"), sp.symbols("w1:4"))
+    assert all(isinstance(entry, sp.Expr) for row in sym for entry in row)
