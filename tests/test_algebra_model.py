@@ -86,3 +86,18 @@ def test_measure_residual_is_div_of_rho_x_over_rho():
     want = sum(sp.diff(rho * f, c) for f, c in zip(field, (x, y))) / rho
     got = measure_residual(field, [x, y], [(x, 3), (1 + y, sp.Rational(-1, 2))])
     assert sp.simplify(got - want) == 0 and sp.simplify(want) != 0
+
+
+def test_angular_velocity_with_symbolic_entries_is_the_rational_solve_put_together():
+    """model.angular_velocity's SymPy branch (symbolic entries: no row takes it, all rows solve
+    at rational points; round 25's run: a negated result survived) against its rational branch
+    at a value of the symbol, and eq:M-O itself."""
+    s = sp.Symbol("s", positive=True)
+    M = sp.Matrix([[0, 1, -2], [-1, 0, 3], [2, -3, 0]])
+    gamma = sp.Matrix([sp.Rational(2, 3), sp.Rational(1, 3), sp.Rational(2, 3)])
+    J = sp.diag(1, 1, 1 + s)
+    b = sp.Rational(3, 2)
+    Om = angular_velocity(M, gamma, J, b)
+    at = Om.subs(s, sp.Rational(1, 2)).applyfunc(sp.simplify)
+    assert at == angular_velocity(M, gamma, sp.diag(1, 1, sp.Rational(3, 2)), b)
+    assert (L_gamma(Om, gamma, J, b) - M).applyfunc(sp.simplify) == sp.zeros(3, 3)
