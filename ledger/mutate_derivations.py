@@ -222,6 +222,10 @@ ARGUED: dict[tuple[str, str], str] = {
        for mutation in ("factor: line 71 col 11: p[0] * r[0] -> r[0] * p[0]",
                         "factor: line 71 col 25: p[1] * r[1] -> r[1] * p[1]",
                         "factor: line 71 col 39: p[2] * r[2] -> r[2] * p[2]")},
+    ("wedge_n6.h2_residual", "sign: line 113 col 11: Dp * DX(NH) - NH * DX(Dp) -> "
+                             "-(Dp * DX(NH) - NH * DX(Dp))"):
+        "the residual negated: zero modulo the sphere iff the original is, its one documented use "
+        "(the sign of a residual is a convention)",
 }
 
 
