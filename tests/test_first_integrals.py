@@ -286,3 +286,11 @@ def test_a_block_without_integrals_has_an_empty_kernel_in_its_own_basis():
     assert R.shape == (0, len(cols)) and len(cols) == blk.columns > 0
     assert blk.character == 4 and blk in basis.blocks
     assert basis.exponents.shape == fi_basis.basis(4, 1, 1, model.planes).exponents.shape
+
+
+def test_search_is_search_degree_over_its_boxes():
+    """first_integrals.search (no row or test called it; round 25's run): one DegreeResult per
+    box, in order, each the search_degree of that box."""
+    model = fi_field.axisymmetric(4, A, B)
+    boxes = [(2, 0, 0), (1, 1, 0)]
+    assert fi.search(model, boxes) == [fi.search_degree(model, d, dg, k) for d, dg, k in boxes]
