@@ -206,11 +206,13 @@ ARGUED: dict[tuple[str, str], str] = {
         "and the residual Dp DX(NH) - NH DX(Dp), linear in DX, is exactly minus the original's "
         "for any model: zero modulo the sphere iff the original is, its one documented use",
     **{("fourd.inverse_apply", mutation):
-       "the two summands of one component-wise sum of ring elements exchanged: the same elements "
+       "the two summands of a component-wise sum, or the two factors of a product, of ring "
+       "elements exchanged: the same elements "
        "of the commutative ring (== holds); only the insertion order of the terms in the "
        "PolyElement dicts differs, which the replay's comparison reads and the rows do not, as "
        "for sixth_integral.Delta_ring"
-       for mutation in ("swap: line 192 col 12: _add(ap(C[0][0], kv), ap(C[0][1], uv)) -> "
+       for mutation in ("factor: line 191 col 44: c[1] * dot(q_, v) -> dot(q_, v) * c[1]",
+                        "swap: line 192 col 12: _add(ap(C[0][0], kv), ap(C[0][1], uv)) -> "
                         "_add(ap(C[0][1], uv), ap(C[0][0], kv))",
                         "swap: line 193 col 11: _add(ap(C[1][0], kv), ap(C[1][1], uv)) -> "
                         "_add(ap(C[1][1], uv), ap(C[1][0], kv))")},

@@ -101,3 +101,20 @@ def test_angular_velocity_with_symbolic_entries_is_the_rational_solve_put_togeth
     at = Om.subs(s, sp.Rational(1, 2)).applyfunc(sp.simplify)
     assert at == angular_velocity(M, gamma, sp.diag(1, 1, sp.Rational(3, 2)), b)
     assert (L_gamma(Om, gamma, J, b) - M).applyfunc(sp.simplify) == sp.zeros(3, 3)
+
+
+def test_symbol_helpers_are_their_docstrings():
+    """algebra.skew_symbols ({name}{i}{j} above the diagonal, 1-based, '_' between indices from
+    n = 10), algebra.basis_vector (its error message names the range 0..n-1) and
+    model.mass_tensor_symbols (diag(J_1, ..., J_n), positive). Their mutants changed no row
+    (generic symbols under other names, a message, a sign of J no row fixes): round 25's run."""
+    from chaplygin_nd.symbolic.algebra import basis_vector
+
+    S = skew_symbols("m", 4)
+    assert [S[0, 1].name, S[2, 3].name, S[1, 3].name] == ["m12", "m34", "m24"]
+    assert S[1, 0] == -S[0, 1] and S[0, 0] == 0
+    assert skew_symbols("m", 10)[8, 9].name == "m9_10"
+    with pytest.raises(ValueError, match=r"index 3 outside 0\.\.2"):
+        basis_vector(3, 3)
+    J = mass_tensor_symbols(3)
+    assert J == sp.diag(*sp.symbols("J1:4", positive=True)) and all(J[i, i].is_positive for i in range(3))
