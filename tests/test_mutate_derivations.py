@@ -351,3 +351,7 @@ def test_a_survivor_meets_the_slow_tests_of_its_module_last(tmp_path, monkeypatc
     assert mr.kill_slow(fn, fn.__code__, key) is None
     monkeypatch.setattr(mr, "mentioning", lambda keys: (str(quick),))
     assert mr.kill_slow(fn, code, key) is None
+    broken = tmp_path / "test_broken_slow.py"   # fails unmutated: it can kill nothing
+    broken.write_text("import pytest\n\n\n@pytest.mark.slow\ndef test_broken():\n    assert False\n")
+    monkeypatch.setattr(mr, "mentioning", lambda keys: (str(broken),))
+    assert mr.kill_slow(fn, code, key) is None
