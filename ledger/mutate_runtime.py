@@ -296,44 +296,41 @@ def equivalence(fn, mutant_code, tests: list[str], fresh: bool, same=_bitwise_eq
     return bool(state["same"]) and state["calls"] > 0, state["calls"], bool(state["ran"])
 
 
-def kill(fn, code, key: str, tests: tuple[str, ...]) -> str | None:
-    """Run ``tests`` (fastest first) with ``code`` in place of ``fn``'s, ``pytest -x``: the first
-    failure's line, or None when every test passes."""
+def _pytest_with(fn, code, key: str, args: list[str], none_ok: bool = False) -> tuple[int, str]:
+    """:func:`_pytest` with ``code`` in place of ``fn``'s (restored, and the caches cleared, after:
+    e.g. jit_cache.code_version, computed with the mutant in place)."""
     from chaplygin_nd.ledger.reach import clear_caches
 
     original = fn.__code__
     fn.__code__ = code
     try:
         with _cache_root(key.startswith("runtime.jit_cache.")):
-            status, note = _pytest(["-x", *tests])
+            return _pytest(args, none_ok=none_ok)
     finally:
         fn.__code__ = original
-        clear_caches()  # e.g. jit_cache.code_version, computed with the mutant in place
+        clear_caches()
+
+
+def kill(fn, code, key: str, tests: tuple[str, ...]) -> str | None:
+    """Run ``tests`` (fastest first) with ``code`` in place of ``fn``'s, ``pytest -x``: the first
+    failure's line, or None when every test passes."""
+    status, note = _pytest_with(fn, code, key, ["-x", *tests])
     return note if status != 0 else None
 
 
 def kill_slow(fn, code, key: str) -> str | None:
     """The last resort for a survivor: the tests marked ``slow`` of the files naming its module
     (:func:`mentioning`), ``pytest -x``, with ``code`` in place of ``fn``'s: the first failure's
-    line, or None (every one passed, or there is none). Not run per mutant otherwise (too long):
+    line, or None (every one passed, there is none, or one fails unmutated: it tells nothing;
+    round 25, one killed 11 mutants spuriously). Not run per mutant otherwise (too long):
     ``wedge_n6.h2_residual``'s symbolic check is one (round 25)."""
-    from chaplygin_nd.ledger.reach import clear_caches
-
     files = mentioning([key])
     if not files:
         return None
     args = ["-x", "-m", "slow and not site", *files]
-    with _cache_root(key.startswith("runtime.jit_cache.")):  # unmutated first: a slow test that
-        if _pytest(args, none_ok=True)[0] != 0:               # fails here tells nothing (round 25:
-            return None                                       # one killed 11 mutants spuriously)
-    original = fn.__code__
-    fn.__code__ = code
-    try:
-        with _cache_root(key.startswith("runtime.jit_cache.")):
-            status, note = _pytest(args, none_ok=True)
-    finally:
-        fn.__code__ = original
-        clear_caches()
+    if _pytest_with(fn, fn.__code__, key, args, none_ok=True)[0] != 0:
+        return None
+    status, note = _pytest_with(fn, code, key, args, none_ok=True)
     return note if status != 0 else None
 
 
