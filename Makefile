@@ -18,7 +18,7 @@ $(STAMP): pyproject.toml
 ## verify: run every proof, print the ledger, write VERIFICATION.md, verification.json and
 ## docs/claim-graph.svg, and fail on a `fails` row, an error, an `open` row without reason, a
 ## finding without a kind, or a stale generated/. `make verify SEED=N` draws every seeded point
-## from seed N (default: chaplygin_nd.symbolic.points.DEFAULT_SEED); the seed is recorded in both reports.
+## from seed N (default: chaplygin_nd.symbolic.exact.points.DEFAULT_SEED); the seed is recorded in both reports.
 SEED ?=
 verify: setup
 	$(CLI) verify --check-generated $(if $(SEED),--seed $(SEED))

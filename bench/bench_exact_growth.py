@@ -1,9 +1,9 @@
 r"""How the exact checks grow with $n$, per engine (SymPy, FLINT), and what each engine costs.
 
 Runs the all-$n$ ledger rows in this process with the seeded point checks up to
-``symbolic.points.ALL_N_MAX`` ($n = 24$), SymPy deciding the points up to ``SYMPY_N`` (default 14:
+``symbolic.exact.points.ALL_N_MAX`` ($n = 24$), SymPy deciding the points up to ``SYMPY_N`` (default 14:
 beyond the ledger's 12, to show its growth) and FLINT every $n$, and reads the engine's own timing
-record (:func:`symbolic.exact.point_timings`): seconds per (row, $n$, engine) summed over the
+record (:func:`symbolic.exact.identity.point_timings`): seconds per (row, $n$, engine) summed over the
 row's points at that $n$ (value and zero test), and per identity check the seconds each engine
 spent. The growth exponent of each (row, engine) is the least-squares slope of
 $\log(\text{seconds})$ against $\log n$: SymPy over $n \ge 8$, FLINT over the $n$ where it
@@ -42,11 +42,11 @@ def measure(top: int, sympy_n: int, rows=ROWS) -> dict:
     os.environ.setdefault("SYMPY_GROUND_TYPES", "gmpy")
     from chaplygin_nd.ledger.catalog import discover
     from chaplygin_nd.ledger.registry import registry
-    from chaplygin_nd.symbolic import exact, points
+    from chaplygin_nd.symbolic.exact import identity, points
 
-    old = points.ALL_N_MAX, exact.SYMPY_POINT_MAX_N, points.SPARSE_LARGE_N
+    old = points.ALL_N_MAX, identity.SYMPY_POINT_MAX_N, points.SPARSE_LARGE_N
     # every n up to ``top``, also for the rows the ledger samples sparsely above 12
-    points.ALL_N_MAX, exact.SYMPY_POINT_MAX_N = top, sympy_n
+    points.ALL_N_MAX, identity.SYMPY_POINT_MAX_N = top, sympy_n
     points.SPARSE_LARGE_N = tuple(range(13, top + 1))
     try:
         discover()
@@ -55,11 +55,11 @@ def measure(top: int, sympy_n: int, rows=ROWS) -> dict:
         kinds: dict = defaultdict(float)
         verdicts = {}
         for row in rows:
-            exact.point_timings(clear=True)
+            identity.point_timings(clear=True)
             start = time.perf_counter()
             verdicts[row] = specs[row].run().verdict
             wall = time.perf_counter() - start
-            for kind, _label, size, engine, seconds in exact.point_timings(clear=True):
+            for kind, _label, size, engine, seconds in identity.point_timings(clear=True):
                 if kind == "points" and size is not None:
                     per_n[(row, size, engine)] += seconds
                     band = "points n <= 12" if size <= 12 else "points n > 12"
@@ -68,7 +68,7 @@ def measure(top: int, sympy_n: int, rows=ROWS) -> dict:
                     kinds[("identity", engine)] += seconds
             print(f"  {row:24s} {verdicts[row]:8s} {wall:7.2f} s", flush=True)
     finally:
-        points.ALL_N_MAX, exact.SYMPY_POINT_MAX_N, points.SPARSE_LARGE_N = old
+        points.ALL_N_MAX, identity.SYMPY_POINT_MAX_N, points.SPARSE_LARGE_N = old
     table = [{"row": r, "n": n, "engine": e, "seconds": round(s, 5)}
              for (r, n, e), s in sorted(per_n.items())]
     return {"rows": table, "fits": fits(table, flint_from=sympy_n + 1), "verdicts": verdicts,
@@ -180,7 +180,7 @@ def _write(path: Path, text: str) -> None:
 
 def main(out: Path, quick: bool = False) -> int:
     """Measure, then write exact_growth.json / .md / .png into ``out``."""
-    from chaplygin_nd.symbolic.flint_engine import sympy_ground_types
+    from chaplygin_nd.symbolic.exact.flint_engine import sympy_ground_types
 
     top, sympy_n = (14, 12) if quick else (24, SYMPY_N)
     load0 = os.getloadavg()[0]

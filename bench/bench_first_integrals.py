@@ -32,7 +32,7 @@ def _one(n: int, box: tuple) -> dict:
     import time
 
     from chaplygin_nd.proofs.s6_first_integrals import model_for
-    from chaplygin_nd.symbolic import first_integrals as fi
+    from chaplygin_nd.symbolic.search import integral_search as fi
 
     t0 = time.perf_counter()
     r = fi.search_degree(model_for(n), *box)

@@ -128,9 +128,9 @@ def generic4d_rows(T: float = 100.0, tols=(1e-8, 1e-10, 1e-11, 1e-13, 1e-15)) ->
 
 def hand_written_script(tol: float):
     """What a user would write: ``heyoka.from_sympy`` of our derived SymPy n = 4 field (the component
-    field of symbolic.emit.axisym), one ``taylor_adaptive``, ``propagate_grid``; no builders, no cache."""
+    field of symbolic.codegen.emit.axisym), one ``taylor_adaptive``, ``propagate_grid``; no builders, no cache."""
     import heyoka as hy
-    from chaplygin_nd.symbolic.emit.axisym import component_kernels
+    from chaplygin_nd.symbolic.codegen.emit.axisym import component_kernels
 
     kernel = next(k for k in component_kernels(4) if k.name == "vector_field_axisym_4d")
     symbols = [s for arg in kernel.arguments[:2] for s in arg.symbols]

@@ -64,7 +64,7 @@ def points(count: int, seed: int = 2026) -> tuple[np.ndarray, np.ndarray]:
 def _lambdified():
     """The plain (no CSE) lambdify of the derived expressions, and its build seconds."""
     import sympy as sp
-    from chaplygin_nd.symbolic.emit.axisym import component_kernels
+    from chaplygin_nd.symbolic.codegen.emit.axisym import component_kernels
 
     start = time.perf_counter()
     kernel = next(k for k in component_kernels(4) if k.name == KERNEL)

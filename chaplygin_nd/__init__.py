@@ -27,7 +27,7 @@ import types as _types
 
 # SymPy's ground types, decided before SymPy is first imported: with python-flint installed,
 # SymPy >= 1.13 would silently switch to "flint" and its QQ arithmetic and DomainMatrix would
-# then run on FLINT — the second engine (symbolic/flint_engine.py) would share code with the
+# then run on FLINT — the second engine (symbolic/exact/flint_engine.py) would share code with the
 # first. "gmpy" keeps SymPy's engine its own (README: "Two exact engines").
 _os.environ.setdefault("SYMPY_GROUND_TYPES", "gmpy")
 

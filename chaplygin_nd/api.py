@@ -38,7 +38,7 @@ def decide(claim_id: str, *, seed: int | None = None) -> Result:
     :class:`~chaplygin_nd.ledger.runner.Result`: ``result.status`` (``holds``, ``corrected``, …),
     ``result.verdict`` (method, ``n_values``, the exact counterexample of a corrected row, kind),
     ``result.seconds``, ``result.uses``. ``seed`` is the seed of the seeded checks (default: the
-    ledger's, :data:`chaplygin_nd.symbolic.points.DEFAULT_SEED`). An unknown id raises
+    ledger's, :data:`chaplygin_nd.symbolic.exact.points.DEFAULT_SEED`). An unknown id raises
     ``KeyError`` naming the nearest ids, as ``chaplygin prove`` does. Domain: every row of
     ``chaplygin prove --list``.
 
@@ -55,7 +55,7 @@ def decide(claim_id: str, *, seed: int | None = None) -> Result:
     """
     from chaplygin_nd.ledger.catalog import resolve
     from chaplygin_nd.ledger.runner import run, select
-    from chaplygin_nd.symbolic import points
+    from chaplygin_nd.symbolic.exact import points
 
     if not isinstance(claim_id, str):
         raise TypeError(f"claim_id must be one ledger id (a str), not {type(claim_id).__name__}")
@@ -358,7 +358,7 @@ def first_integrals(n: int, degree: int, a: Any = None, b: Any = None, *, J: Any
     integrals $P/D^k$ of eq:motion-general with $P$ of $\gamma$-degree $\le$ ``d_gamma``
     (default $d + 2k$) on the sphere, $D = \Delta$ (eq:Delta) for the axisymmetric sphere
     (``a``, ``b``; eq:axisymm) or $\det L_\gamma$ for a diagonal mass tensor ``J`` (eq:Inertia).
-    Returns one :class:`~chaplygin_nd.symbolic.first_integrals.DegreeResult` per degree:
+    Returns one :class:`~chaplygin_nd.symbolic.search.integral_search.DegreeResult` per degree:
     ``found`` (an upper bound of the dimension of the integrals), ``known`` (a lower bound: the
     algebra of the known integrals), ``settled`` when they agree — then *exactly* nothing beyond
     the known integrals lies in the box. Parameters are exact rationals (``"-1/3"``, ``0.5``);
@@ -373,8 +373,8 @@ def first_integrals(n: int, degree: int, a: Any = None, b: Any = None, *, J: Any
     >>> [(r.d, r.found) for r in rows], all(r.settled and r.recovered for r in rows)
     ([(1, 1), (2, 3)], True)
     """
-    from chaplygin_nd.symbolic import first_integrals as fi
-    from chaplygin_nd.symbolic.fi_cli import parse_model
+    from chaplygin_nd.symbolic.search import integral_search as fi
+    from chaplygin_nd.symbolic.search.command import parse_model
 
     if not isinstance(degree, int) or degree < 1:
         raise ValueError(f"degree = {degree!r}: an integer >= 1")

@@ -29,11 +29,11 @@ COMMANDS = {
     "prove": ("chaplygin_nd.ledger.__main__", "prove", "decide the ledger rows named"),
     "simulate": ("chaplygin_nd.simulate.scene.cli", "main", "plan and run a scene"),
     "bench": ("chaplygin_nd.bench.__main__", "main", "run the benchmarks"),
-    "generate": ("chaplygin_nd.symbolic.codegen", "main", "rewrite generated/ from the proofs"),
+    "generate": ("chaplygin_nd.symbolic.codegen.kernels", "main", "rewrite generated/ from the proofs"),
     "mutate": ("chaplygin_nd.ledger.mutate", "main", "mutation testing of the printed formulas"),
     "mutate-derivations": ("chaplygin_nd.ledger.mutate_derivations", "main",
                            "mutation testing of the derivations and the runtime"),
-    "first-integrals": ("chaplygin_nd.symbolic.fi_cli", "main",
+    "first-integrals": ("chaplygin_nd.symbolic.search.command", "main",
                         "exact search for first integrals, degree by degree"),
     "docs": ("chaplygin_nd.cli", "docs", "build the reading site (a source checkout)"),
 }

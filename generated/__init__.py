@@ -1,1 +1,1 @@
-"""NumPy kernels and expression builders emitted by symbolic/codegen.py (do not edit; `make generate`)."""
+"""NumPy kernels and expression builders emitted by symbolic/codegen/kernels.py (do not edit; `make generate`)."""

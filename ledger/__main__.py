@@ -30,7 +30,7 @@ from pathlib import Path
 from chaplygin_nd.ledger import graph, report
 from chaplygin_nd.ledger.catalog import ROOT, is_checkout, resolve
 from chaplygin_nd.ledger.runner import run, select, unknown_registrations
-from chaplygin_nd.symbolic.points import DEFAULT_SEED
+from chaplygin_nd.symbolic.exact.points import DEFAULT_SEED
 
 from chaplygin_nd.cli import commit, version_line
 from chaplygin_nd.console import (
@@ -125,7 +125,7 @@ def _main(argv: list[str] | None, command: str) -> int:
     stale_text: list[str] = []
     also: Callable[..., object] | None = None
     if args.check_generated:
-        from chaplygin_nd.symbolic.codegen import stale_report
+        from chaplygin_nd.symbolic.codegen.kernels import stale_report
 
         also = stale_report
     results = run(rows, jobs=args.jobs, seed=args.seed, on_result=lambda r: say(report.line(r)),

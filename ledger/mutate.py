@@ -31,7 +31,7 @@ Writes ``mutation.json`` (``{"mutants": [{"function", "row", "mutation", "outcom
 ...]}``) atomically at the repository root and prints one summary line.
 
 ``--engines flint`` makes SymPy abstain from every exact zero test (FLINT alone decides them,
-:mod:`symbolic.flint_engine`) and writes ``mutation-flint.json``; ``--compare mutation.json``
+:mod:`symbolic.exact.flint_engine`) and writes ``mutation-flint.json``; ``--compare mutation.json``
 lists the mutants whose outcome differs from the two-engine run; ``--sample K`` runs a seeded
 sample of K mutants.
 """
@@ -66,7 +66,7 @@ from chaplygin_nd.ledger.reach import (
 )
 from chaplygin_nd.ledger.reach import load as load_reach
 from chaplygin_nd.ledger.reach import save as save_reach
-from chaplygin_nd.symbolic.flint_engine import ENGINES_ENV, active_engines, engine_label
+from chaplygin_nd.symbolic.exact.flint_engine import ENGINES_ENV, active_engines, engine_label
 
 from chaplygin_nd import processes
 from chaplygin_nd.console import OneLineParser, fail, path_argument, positive_int, say

@@ -132,16 +132,16 @@ ARGUED: dict[tuple[str, str], str] = {
                                              "_mul(Vi[k], ui)"):
         "the two factors of one product of heyoka expressions exchanged: the expression text "
         "differs, but IEEE multiplication is commutative, so the compiled code returns the same bits",
-    **{("fi_reconstruct.real_columns", mutation):
+    **{("search.reconstruction.real_columns", mutation):
        "scales one element of the real basis by 2: the mod-p matrix (_real_matrix) and the "
        "expression (to_expression) both read the coefficient, so the kernel vector's entry halves "
        "and the reconstructed integral is the same polynomial; the basis stays real, non-zero and "
        "independent (tests/test_first_integrals.py::test_real_columns_are_a_real_basis_of_each_block)"
        for mutation in ("const: line 80 col 24: 1 -> 2", "const: line 80 col 51: 1 -> 2")},
-    ("fi_reconstruct.real_columns", "const: line 80 col 54: 1 -> 2"):
+    ("search.reconstruction.real_columns", "const: line 80 col 54: 1 -> 2"):
         "the power of i is read only as a truth value (_real_matrix: i_p if ipow else 1; "
         "to_expression: u[0] if not ipow else -u[1]), so 2 acts as 1",
-    **{("fi_field.sample", mutation):
+    **{("search.sampled_field.sample", mutation):
        "another seeded draw of the same points: the mutant changes how many candidates a round "
        "draws (line 232) or draws t and M from 1..p-1 instead of 0..p-1 (lines 233, 238); it "
        "still returns `count` points of P mod p with gamma on the sphere, D, 1 + |t|^2 and the "
@@ -156,24 +156,24 @@ ARGUED: dict[tuple[str, str], str] = {
                         "factor: line 232 col 24: 1.2 * (count - have) -> 1.2",
                         "factor: line 232 col 24: 1.2 * (count - have) -> count - have",
                         "const: line 233 col 25: 0 -> 1", "const: line 238 col 41: 0 -> 1")},
-    ("first_integrals.search_degree", "const: line 219 col 95: 0 -> 1"):
+    ("search.integral_search.search_degree", "const: line 219 col 95: 0 -> 1"):
         "a box without known products gets K with one zero column instead of none, and reads it "
         "nowhere: known is 0 by the same 'if prods' (line 220) and the recovery check builds "
         "[F, K] only when there are products (line 224); tests/test_first_integrals.py's box "
         "(5, (3, 5, 1)) runs it and gives the same result",
-    ("fi_new.varies_in_M", "const: line 227 col 69: 0 -> 1"):
+    ("search.found_integral.varies_in_M", "const: line 227 col 69: 0 -> 1"):
         "another seeded exact point (stream 1 of the same seed and label instead of 0): the part "
         "needs one point where the exact slope dP/d eps is non-zero, a witness wherever it lies; "
         "the part's verdict is the same, its text names the other point",
-    ("fi_new.varies_in_M", "sign: line 231 col 24: M + eps * N -> M - eps * N"):
+    ("search.found_integral.varies_in_M", "sign: line 231 col 24: M + eps * N -> M - eps * N"):
         "the derivative along -N: d/d eps P(M - eps N)|_0 = -d/d eps P(M + eps N)|_0, non-zero "
         "exactly when the original is; the part's verdict is the same, its text shows -slope",
-    ("reduced5_invariants.relations", "const: line 344 col 36: 1 -> 2"):
+    ("reduction.invariants_n5.relations", "const: line 344 col 36: 1 -> 2"):
         "every relation doubled (each monomial starts from INV_RING(2)): 2r spans the same null "
         "space as r (the docstring's 'a basis of the exact null space') and 2r = 0 is the same "
         "relation; its users test vanishing (relation_part), count them, compare them with A_+-R1 "
         "(relations_on_P: all doubled alike) and take the zero set R1 = R2 = 0",
-    ("sixth_integral.Delta_ring", "factor: line 67 col 11: (2 + a) * (2 + b) -> (2 + b) * (2 + a)"):
+    ("family.sixth_integral.Delta_ring", "factor: line 67 col 11: (2 + a) * (2 + b) -> (2 + b) * (2 + a)"):
         "the same element of the commutative ring RING (== holds); only the insertion order of "
         "the terms in the PolyElement dict differs, which the replay's comparison reads and the "
         "rows do not (ring arithmetic, evaluation at a point, as_expr())",
@@ -187,21 +187,21 @@ ARGUED: dict[tuple[str, str], str] = {
                         "-(2 * Delta(x_, a_, b_) * (2 + a_ + b_))",
                         "factor: line 90 col 11: 2 * Delta(x_, a_, b_) -> Delta(x_, a_, b_)",
                         "const: line 90 col 11: 2 -> 3")},
-    ("fi_new.pfaffian", "sign: line 33 col 15: sp.Integer(0) -> -sp.Integer(0)"):
+    ("search.found_integral.pfaffian", "sign: line 33 col 15: sp.Integer(0) -> -sp.Integer(0)"):
         "-Integer(0) is Integer(0), SymPy's zero singleton (S.Zero): the same object is returned; "
         "the odd-size branch it sits in is run by tests/test_fi_survivors.py",
-    ("fi_reconstruct.to_expression", "factor: line 184 col 17: int(co.re[r, j]) * X[j] -> X[j]"):
+    ("search.reconstruction.to_expression", "factor: line 184 col 17: int(co.re[r, j]) * X[j] -> X[j]"):
         "the real parts of the coordinate forms are 0 or 1 (fi_basis.coordinates: zeta_j = "
         "E_2j-1 + i E_2j, its conjugate, e_k = E_k; tested against that definition in "
         "tests/test_fi_survivors.py), and the zeros are skipped by the comprehension's 'if', so "
         "int(re) * X_j is X_j wherever it is formed",
-    ("wedge_n6.h2_residual", "sign: line 55 col 15: R(expr.subs({a: A, b: B}, simultaneous=True)) -> "
+    ("family.wedge_n6.h2_residual", "sign: line 55 col 15: R(expr.subs({a: A, b: B}, simultaneous=True)) -> "
                              "-R(expr.subs({a: A, b: B}, simultaneous=True))"):
         "every numerator coefficient of L_gamma^{-1} negated (the scaled c_k' and D' are built "
         "with R directly, not put): DO, so M-dot and gamma-dot, change sign, the field reversed in "
         "time, and the residual is exactly minus the original's, for any (a, b) and any model: "
         "zero modulo the sphere iff the original is, the function's one documented use",
-    ("wedge_n6.h2_residual", "sign: line 112 col 15: tot -> -tot"):
+    ("family.wedge_n6.h2_residual", "sign: line 112 col 15: tot -> -tot"):
         "the derivative along the field negated (DX returns -X(f)): the field reversed in time, "
         "and the residual Dp DX(NH) - NH DX(Dp), linear in DX, is exactly minus the original's "
         "for any model: zero modulo the sphere iff the original is, its one documented use",
@@ -220,11 +220,11 @@ ARGUED: dict[tuple[str, str], str] = {
        "the two factors of one product of ring elements exchanged: the same element of the "
        "commutative ring (== holds); only the insertion order of the terms in the PolyElement "
        "dict differs, which the replay's comparison reads and the rows do not, as for "
-       "sixth_integral.Delta_ring"
+       "family.sixth_integral.Delta_ring"
        for mutation in ("factor: line 71 col 11: p[0] * r[0] -> r[0] * p[0]",
                         "factor: line 71 col 25: p[1] * r[1] -> r[1] * p[1]",
                         "factor: line 71 col 39: p[2] * r[2] -> r[2] * p[2]")},
-    ("wedge_n6.h2_residual", "sign: line 113 col 11: Dp * DX(NH) - NH * DX(Dp) -> "
+    ("family.wedge_n6.h2_residual", "sign: line 113 col 11: Dp * DX(NH) - NH * DX(Dp) -> "
                              "-(Dp * DX(NH) - NH * DX(Dp))"):
         "the residual negated: zero modulo the sphere iff the original is, its one documented use "
         "(the sign of a residual is a convention)",
@@ -308,7 +308,7 @@ def _recording(key: str, fn, check: str, base, seconds: float) -> Recording:
         _RECORDINGS.clear()
     outcome: dict = {}
     if check == GENERATED_CHECK:
-        from chaplygin_nd.symbolic.codegen import stale_report
+        from chaplygin_nd.symbolic.codegen.kernels import stale_report
 
         def run():
             outcome["same"] = not stale_report()
@@ -344,7 +344,7 @@ def _run_check(fn, code, original, check: str, base, seconds: float) -> tuple[bo
     fn.__code__ = code
     try:
         if check == GENERATED_CHECK:
-            from chaplygin_nd.symbolic.codegen import stale_report
+            from chaplygin_nd.symbolic.codegen.kernels import stale_report
 
             budget = max(mu.MIN_BUDGET, mu.BUDGET_FACTOR * seconds)
             try:

@@ -323,7 +323,7 @@ def kill_slow(fn, code, key: str) -> str | None:
     (:func:`mentioning`), ``pytest -x``, with ``code`` in place of ``fn``'s: the first failure's
     line, or None (every one passed, there is none, or one fails unmutated: it tells nothing;
     round 25, one killed 11 mutants spuriously). Not run per mutant otherwise (too long):
-    ``wedge_n6.h2_residual``'s symbolic check is one (round 25)."""
+    ``family.wedge_n6.h2_residual``'s symbolic check is one (round 25)."""
     files = mentioning([key])
     if not files:
         return None

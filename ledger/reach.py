@@ -19,8 +19,8 @@ function -> rows) atomically; ``make mutate`` uses the same map to pick the rows
 change, and the test suite uses it only to choose which rows to re-run live.
 
 The same recorder watches the *derivations*: the public functions of ``symbolic/`` outside
-``printed/`` and the code generator (:func:`derivation_functions`, keyed ``"reduced.horizontal_blocks"``,
-``"emit.axisym.stable_Delta"``). A function cached with ``functools.cache``/``lru_cache`` is seen
+``printed/`` and the code generator (:func:`derivation_functions`, keyed ``"reduction.reduced_n4.horizontal_blocks"``,
+``"codegen.emit.axisym.stable_Delta"``). A function cached with ``functools.cache``/``lru_cache`` is seen
 twice over: a miss runs its trampoline, a hit moves its ``cache_info()`` counters; a hit is also
 credited with the watched functions the cached one called when it was computed (:data:`CALLEES`,
 per process), so a row's record does not depend on which row filled the cache first. The derivations
@@ -57,16 +57,16 @@ def printed_functions() -> dict[str, FunctionType]:
 
 #: Modules of ``symbolic/`` that derive nothing, with the reason (their functions are not watched).
 NOT_DERIVATIONS = {
-    "codegen": "the code generator (prints expressions it is given)",
-    "codegen_builders": "the code generator's heyoka builders (print expressions they are given)",
-    "mpmath_eval": "the tests' 50-digit evaluator of derived expressions (reached by tests)",
-    "points": "seeded exact points and the ledger seed (inputs of checks, not formulas)",
-    "exact": "the exact zero-test engines (decide identities, build no formula)",
-    "flint_engine": "the second exact engine (FLINT): decides zero tests, builds no formula",
-    "sympy_fraction": "the SymPy engine's reading of a residual into Q(x) (part of the engine)",
+    "codegen.kernels": "the code generator (prints expressions it is given)",
+    "codegen.builders": "the code generator's heyoka builders (print expressions they are given)",
+    "exact.mpmath_eval": "the tests' 50-digit evaluator of derived expressions (reached by tests)",
+    "exact.points": "seeded exact points and the ledger seed (inputs of checks, not formulas)",
+    "exact.identity": "the exact zero-test engines (decide identities, build no formula)",
+    "exact.flint_engine": "the second exact engine (FLINT): decides zero tests, builds no formula",
+    "exact.sympy_fraction": "the SymPy engine's reading of a residual into Q(x) (part of the engine)",
     "flint_model": "the second engine's own evaluation of the definitions at exact points",
-    "flint_matrix": "the second engine's matrix type: printed formulas evaluated in fmpq",
-    "counterexample": "renders a counterexample of the engine (text and LaTeX), derives nothing",
+    "exact.flint_matrix": "the second engine's matrix type: printed formulas evaluated in fmpq",
+    "exact.counterexample": "renders a counterexample of the engine (text and LaTeX), derives nothing",
 }
 
 
@@ -155,7 +155,7 @@ class Recorder:
         return tuple(sorted(c for c in self.calls if c.split(".")[0] in PRINTED_MODULES))
 
     def derived(self) -> tuple[str, ...]:
-        """The derivations called (``"reduced.horizontal_blocks"``), sorted."""
+        """The derivations called (``"reduction.reduced_n4.horizontal_blocks"``), sorted."""
         return tuple(sorted(c for c in self.calls if c.split(".")[0] not in PRINTED_MODULES))
 
     def __enter__(self) -> Recorder:
@@ -221,8 +221,8 @@ def clear_derivation_caches() -> None:
 
 def emitted_derivations() -> list[str]:
     """The derivations called while every kernel of ``generated/`` is built (the emitters listed
-    in :data:`symbolic.codegen.MODULES`)."""
-    from chaplygin_nd.symbolic.codegen import MODULES
+    in :data:`symbolic.codegen.kernels.MODULES`)."""
+    from chaplygin_nd.symbolic.codegen.kernels import MODULES
 
     functions = derivation_functions()
     clear_derivation_caches()  # computed afresh: every callee is seen

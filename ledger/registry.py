@@ -6,7 +6,7 @@ A proof module registers one function per ledger row::
 
     @claim("eq:invL3D", uses=("eq:mom3D", "S2.1:detL3D"))
     def inverse_3d() -> Verdict:
-        printed = rational_identity(...)          # a symbolic.exact.Check
+        printed = rational_identity(...)          # a symbolic.exact.identity.Check
         return Verdict.decide(printed, method_suffix="", n_values=(3,))
 
 The verdict of a comparison is *computed*, never asserted: :meth:`Verdict.decide` returns
@@ -26,7 +26,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import asdict, dataclass, field
 
-from chaplygin_nd.symbolic.exact import Check
+from chaplygin_nd.symbolic.exact.identity import Check
 
 __all__ = ["Verdict", "Part", "claim", "registry", "VERDICTS", "ClaimSpec", "KINDS",
            "ERRATA_KINDS", "NEEDS_KIND",

@@ -22,7 +22,7 @@ import sympy
 from chaplygin_nd.ledger import sources
 from chaplygin_nd.ledger.registry import ERRATA_KINDS, KINDS, NEEDS_KIND, VERDICTS, registry
 from chaplygin_nd.ledger.runner import Result
-from chaplygin_nd.symbolic.points import n_text
+from chaplygin_nd.symbolic.exact.points import n_text
 
 from chaplygin_nd.writing import write_temporary
 

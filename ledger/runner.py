@@ -13,8 +13,13 @@ from dataclasses import dataclass, replace
 from chaplygin_nd.ledger.catalog import Row, all_rows, discover
 from chaplygin_nd.ledger.reach import Recorder
 from chaplygin_nd.ledger.registry import Verdict, registry
-from chaplygin_nd.symbolic import points
-from chaplygin_nd.symbolic.exact import engine_note, engine_tally, point_timings, reset_engine_tally
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.identity import (
+    engine_note,
+    engine_tally,
+    point_timings,
+    reset_engine_tally,
+)
 
 from chaplygin_nd import processes
 
@@ -83,7 +88,7 @@ def _run_one(claim_id: str, seed: int = points.DEFAULT_SEED, fresh: bool = False
             verdict = replace(verdict, n_values=tuple(sorted(set(verdict.n_values) | checked)))
         tally = engine_tally()
         if tally or verdict.verdict in ("holds", "corrected", "fails"):
-            # which engines decided the row's zero tests (symbolic.exact): said in its method
+            # which engines decided the row's zero tests (symbolic.exact.identity): said in its method
             verdict = replace(verdict, method=f"{verdict.method}; {engine_note(tally)}")
         return verdict, time.perf_counter() - start, "", recorder.printed(), recorder.derived()
     except Exception:  # a proof that raises is an error row, never a silent pass

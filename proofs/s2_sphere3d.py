@@ -33,9 +33,9 @@ from functools import cache
 
 import sympy as sp
 from chaplygin_nd.ledger.registry import Verdict, claim
-from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import hat, vector_symbols, wedge
-from chaplygin_nd.symbolic.exact import rational_identity
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.identity import rational_identity
 from chaplygin_nd.symbolic.measure import measure_residual
 from chaplygin_nd.symbolic.model import commutator, inertia_operator, mom3d, motion3d
 from chaplygin_nd.symbolic.printed import section2 as printed

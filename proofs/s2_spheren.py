@@ -27,14 +27,13 @@ $\tfrac{d}{dt}(u v^T) = \dot u v^T + u\dot v^T$ and $[AB, \cdot]$ rules that do 
 The energy and the measure need $L_\gamma^{-1}$, for which no closed form is known for a general
 $\mathbb{J}$: they are decided symbolically for $n = 3$ (and the energy for $n = 4$) and at exact
 rational points, where $\Omega = L_\gamma^{-1}M$ is an exact linear solve, up to $n = 24$
-(every $n \le 12$, then 16, 20, 24: :func:`symbolic.points.all_n`).
+(every $n \le 12$, then 16, 20, 24: :func:`symbolic.exact.points.all_n`).
 """
 
 from __future__ import annotations
 
 import sympy as sp
 from chaplygin_nd.ledger.registry import Verdict, claim
-from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import (
     basis_vector,
     commutator,
@@ -45,7 +44,8 @@ from chaplygin_nd.symbolic.algebra import (
     vector_symbols,
     wedge,
 )
-from chaplygin_nd.symbolic.exact import (
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.identity import (
     SYMPY_INVERSE_MAX_N,
     point_engines,
     rational_identity,
@@ -187,7 +187,7 @@ def _velocity_residuals(n, values=None):
     momentum = dM - commutator(L_gamma(Om, gamma, J, bb), Om)
     velocity = printed.motion_velocity_nd_residual(
         Om, Omd, gamma, lambda X: inertia_operator(X, J), bb)
-    # not expanded here: the exact engines read the residual as polynomials (symbolic/exact.py);
+    # not expanded here: the exact engines read the residual as polynomials (symbolic/exact/identity.py);
     # SymPy's expand of the symbolic n = 3..6 residual was 60 % of the row (issue 25), and at a
     # point the entries are already numbers
     return momentum - velocity, J
@@ -252,9 +252,9 @@ def _charpoly_point(n, p):
 
 
 def _emitted_coefficients(n: int):
-    r"""The coefficients of $p$ the kernels evaluate (:func:`symbolic.emit.axisym.p_coefficients`,
+    r"""The coefficients of $p$ the kernels evaluate (:func:`symbolic.codegen.emit.axisym.p_coefficients`,
     entry $(i, j)$ at $\lambda^i\sigma^j$) minus those of the printed $p$, exactly."""
-    from chaplygin_nd.symbolic.emit.axisym import M_symbols, gamma_symbols, p_coefficients
+    from chaplygin_nd.symbolic.codegen.emit.axisym import M_symbols, gamma_symbols, p_coefficients
 
     sigma, lam = sp.symbols("sigma lambda")
     M, _ = M_symbols(n)

@@ -38,7 +38,6 @@ from __future__ import annotations
 
 import sympy as sp
 from chaplygin_nd.ledger.registry import Verdict, claim
-from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import (
     basis_vector,
     hat,
@@ -46,10 +45,16 @@ from chaplygin_nd.symbolic.algebra import (
     vector_symbols,
     wedge,
 )
-from chaplygin_nd.symbolic.exact import Check, point_engines, rational_identity, zero_at_points
-from chaplygin_nd.symbolic.flint_engine import det as exact_det
-from chaplygin_nd.symbolic.flint_engine import rank as exact_rank
-from chaplygin_nd.symbolic.flint_matrix import entries, formula_matrix, from_columns
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.flint_engine import det as exact_det
+from chaplygin_nd.symbolic.exact.flint_engine import rank as exact_rank
+from chaplygin_nd.symbolic.exact.flint_matrix import entries, formula_matrix, from_columns
+from chaplygin_nd.symbolic.exact.identity import (
+    Check,
+    point_engines,
+    rational_identity,
+    zero_at_points,
+)
 from chaplygin_nd.symbolic.model import commutator, cross, mom3d, motion, motion3d
 from chaplygin_nd.symbolic.printed import section2 as printed2
 from chaplygin_nd.symbolic.printed import section3 as printed

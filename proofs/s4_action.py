@@ -30,11 +30,11 @@ from __future__ import annotations
 import sympy as sp
 from chaplygin_nd.ledger.registry import Verdict, claim
 from chaplygin_nd.proofs.s4_common import combine, gamma_symbols, random_point, sym_checks
-from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import commutator, skew_symbols
 from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
 from chaplygin_nd.symbolic.axisymmetric import E_n, L_gamma_axisym
-from chaplygin_nd.symbolic.exact import point_engines, zero_at_points
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.identity import point_engines, zero_at_points
 from chaplygin_nd.symbolic.printed import section4 as printed
 
 

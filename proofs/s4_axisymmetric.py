@@ -43,11 +43,11 @@ from chaplygin_nd.proofs.s4_common import (
     point_checks,
     sym_checks,
 )
-from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import commutator, skew_symbols, wedge
 from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
 from chaplygin_nd.symbolic.axisymmetric import L_gamma_axisym, inertia_axisym, mass_tensor
-from chaplygin_nd.symbolic.exact import rational_identity
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.identity import rational_identity
 from chaplygin_nd.symbolic.printed import section4 as printed
 from chaplygin_nd.symbolic.vertical import inertia_matrix_3d
 

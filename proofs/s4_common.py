@@ -4,7 +4,7 @@ r"""Shared machinery of the Section 4 proofs (registers no ledger row).
   proved modulo $\lVert\gamma\rVert^2 = 1$), generic points of $\mathcal{V}$ ($M = PAP$);
 * seeded exact rational points: $\gamma \in S^{n-1}$ by inverse stereographic projection,
   $a \in [-1, 1]$, $b > 0$;
-* :func:`combine` — several :class:`~symbolic.exact.Check` s as one (holds iff all hold).
+* :func:`combine` — several :class:`~symbolic.exact.identity.Check` s as one (holds iff all hold).
 
 The reduction argument used by most Section 4 rows
 ---------------------------------------------------
@@ -33,10 +33,15 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Sequence
 
 import sympy as sp
-from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import skew_symbols, vector_symbols, wedge
 from chaplygin_nd.symbolic.axisymmetric import a, b
-from chaplygin_nd.symbolic.exact import Check, point_engines, rational_identity, zero_at_points
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.identity import (
+    Check,
+    point_engines,
+    rational_identity,
+    zero_at_points,
+)
 from chaplygin_nd.symbolic.vertical import vertical_point
 
 __all__ = [

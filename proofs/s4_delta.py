@@ -21,9 +21,9 @@ from __future__ import annotations
 import sympy as sp
 from chaplygin_nd.ledger.registry import Verdict, claim
 from chaplygin_nd.proofs.s4_common import a, b, combine, fact
-from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.axisymmetric import Delta, x
-from chaplygin_nd.symbolic.exact import rational_identity
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.identity import rational_identity
 from chaplygin_nd.symbolic.printed import section4 as printed
 
 

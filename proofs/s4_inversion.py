@@ -38,7 +38,6 @@ from chaplygin_nd.proofs.s4_common import (
     point_checks,
     sym_checks,
 )
-from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import skew_symbols, wedge
 from chaplygin_nd.symbolic.axisym_inverse import (
     inverse_closed_form,
@@ -46,7 +45,8 @@ from chaplygin_nd.symbolic.axisym_inverse import (
     inverse_numerator,
 )
 from chaplygin_nd.symbolic.axisymmetric import Delta, E_n, L_gamma_axisym, mass_tensor, x
-from chaplygin_nd.symbolic.exact import rational_identity
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.identity import rational_identity
 from chaplygin_nd.symbolic.model import angular_velocity
 from chaplygin_nd.symbolic.printed import section4 as printed
 

@@ -1,7 +1,7 @@
 r"""K:* — the stable rewrites used by the generated kernels, each proved equal to what it replaces.
 
 * **K:Delta** — $\Delta(x) = (2+a)(2+b) - abx^2 = 2(2+a+b) + ab\,(1-x)(1+x)$. The kernels
-  (generated/axisym.py, fourd.py, reduced.py) evaluate the right-hand side; proved against the
+  (generated/axisym.py, fourd.py, reduced_n4.py) evaluate the right-hand side; proved against the
   *derived* $\Delta$ of :mod:`symbolic.axisymmetric` (the determinant of the block $C$), exactly, as
   a polynomial identity in $a, b, x$. Measured: both forms are within 1.1 ulp over the hard cases
   ($\Delta \ge 2 + b$ is never a small difference of large terms), so this row certifies the form
@@ -15,7 +15,7 @@ r"""K:* — the stable rewrites used by the generated kernels, each proved equal
   $c^2+s^2-1$, and that the resulting $R(\theta)$ is orthogonal and solves $R' = \hat zR$ for
   $\theta = \lVert z\rVert t$ (so $R = e^{t\hat z}$ by uniqueness), exactly.
 * **K:horizontal-sinc** — in the horizontal solution (S5:H-linear, corrected, from
-  :func:`symbolic.reduced.horizontal_solution`), $\sin(\nu t)/\nu = t\operatorname{sinc}(\nu t)$ and
+  :func:`symbolic.reduction.reduced_n4.horizontal_solution`), $\sin(\nu t)/\nu = t\operatorname{sinc}(\nu t)$ and
   $\nu\sin\nu t = \nu^2 t\operatorname{sinc}(\nu t)$, so the kernel needs only $\nu^2 \ge 0$ and stays
   accurate as $\nu \to 0$: proved by substituting $\operatorname{sinc}(\nu t) = \sin(\nu t)/(\nu t)$
   into the kernel's expression and comparing with the derived one, exactly (sin, cos as symbols).
@@ -26,7 +26,7 @@ from __future__ import annotations
 import sympy as sp
 from chaplygin_nd.ledger.registry import Verdict, claim
 from chaplygin_nd.symbolic.algebra import hat
-from chaplygin_nd.symbolic.exact import rational_identity
+from chaplygin_nd.symbolic.exact.identity import rational_identity
 
 SECTION = "Kernels — stable rewrites"
 
@@ -34,8 +34,8 @@ SECTION = "Kernels — stable rewrites"
 @claim("K:Delta", uses=("eq:Delta",), adds=(SECTION, "Δ(x) = 2(2+a+b) + ab(1−x)(1+x), the form the kernels evaluate, equals the derived Δ (certifies the form; no accuracy gain is claimed)"))
 def k_delta() -> Verdict:
     from chaplygin_nd.symbolic.axisymmetric import Delta, a, b, x
-    from chaplygin_nd.symbolic.emit.axisym import stable_Delta
-    from chaplygin_nd.symbolic.emit.fourd import stable_D
+    from chaplygin_nd.symbolic.codegen.emit.axisym import stable_Delta
+    from chaplygin_nd.symbolic.codegen.emit.fourd import stable_D
 
     check = rational_identity(stable_Delta(x, a, b) - Delta(x, a, b))
     common = rational_identity(stable_D() - 2 * (2 + a + b) * Delta(x, a, b))  # same a, b, x
@@ -80,13 +80,13 @@ def _mod_both(residual: sp.Matrix, z, c):
 
 @claim("K:horizontal-sinc", uses=("S5:H-linear",), adds=(SECTION, "sin(νt)/ν = t sinc(νt) in the horizontal-solution kernel, equal to the derived solution"))
 def k_horizontal_sinc() -> Verdict:
-    from chaplygin_nd.symbolic import reduced
-    from chaplygin_nd.symbolic.emit.reduced import horizontal_solution_stable
+    from chaplygin_nd.symbolic.codegen.emit.reduced import horizontal_solution_stable
+    from chaplygin_nd.symbolic.reduction import reduced_n4
 
     t, x0, G0 = sp.symbols("t x0 G0", real=True)
     nu = sp.Symbol("nu", positive=True)
     sn, cs = sp.symbols("sin_nut cos_nut", real=True)
-    derived = reduced.horizontal_solution(t, x0, G0, nu)
+    derived = reduced_n4.horizontal_solution(t, x0, G0, nu)
     stable = horizontal_solution_stable(t, x0, G0, nu**2)
     rule = {sp.sin(nu * t): sn, sp.cos(nu * t): cs, sp.sinc(nu * t): sn / (nu * t)}
     residual = [sp.expand(sp.sympify(p).subs(rule) - sp.sympify(q).subs(rule))

@@ -44,11 +44,11 @@ from chaplygin_nd.proofs.s4_common import (
     sym_checks,
     sym_gamma,
 )
-from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import commutator, skew_symbols
 from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
 from chaplygin_nd.symbolic.axisymmetric import E_n, L_gamma_axisym, inertia_axisym
-from chaplygin_nd.symbolic.exact import rational_identity
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.identity import rational_identity
 from chaplygin_nd.symbolic.printed import section4 as printed
 from chaplygin_nd.symbolic.vertical import chi, inertia_matrix_3d, inertia_tilde
 

@@ -50,7 +50,6 @@ from chaplygin_nd.proofs.s4_common import (
     sym_checks,
     sym_gamma,
 )
-from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import commutator, skew_symbols, vec, vector_symbols, wedge
 from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
 from chaplygin_nd.symbolic.axisymmetric import (
@@ -63,11 +62,16 @@ from chaplygin_nd.symbolic.axisymmetric import (
     mass_tensor,
     x,
 )
-from chaplygin_nd.symbolic.exact import SYMPY_INVERSE_MAX_N, rational_identity, zero_at_points
-from chaplygin_nd.symbolic.flint_engine import as_values, native
-from chaplygin_nd.symbolic.flint_engine import det as exact_det
-from chaplygin_nd.symbolic.flint_engine import rank as exact_rank
-from chaplygin_nd.symbolic.flint_matrix import entries, formula_matrix, from_columns
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.flint_engine import as_values, native
+from chaplygin_nd.symbolic.exact.flint_engine import det as exact_det
+from chaplygin_nd.symbolic.exact.flint_engine import rank as exact_rank
+from chaplygin_nd.symbolic.exact.flint_matrix import entries, formula_matrix, from_columns
+from chaplygin_nd.symbolic.exact.identity import (
+    SYMPY_INVERSE_MAX_N,
+    rational_identity,
+    zero_at_points,
+)
 from chaplygin_nd.symbolic.flint_model import L_matrix_at
 from chaplygin_nd.symbolic.measure import chaplygin_divergence_at, divergence
 from chaplygin_nd.symbolic.printed import section4 as printed

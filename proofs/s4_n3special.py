@@ -35,7 +35,7 @@ from chaplygin_nd.proofs.s4_common import SAMPLERS, a, b, combine, generic_verti
 from chaplygin_nd.symbolic.algebra import hat, unhat, wedge
 from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
 from chaplygin_nd.symbolic.axisymmetric import E_n, L_gamma_axisym
-from chaplygin_nd.symbolic.exact import Check, rational_identity
+from chaplygin_nd.symbolic.exact.identity import Check, rational_identity
 from chaplygin_nd.symbolic.printed import section4 as printed
 from chaplygin_nd.symbolic.vertical import zeta, zeta_3d
 

@@ -53,7 +53,6 @@ from __future__ import annotations
 import sympy as sp
 from chaplygin_nd.ledger.registry import Verdict, claim
 from chaplygin_nd.proofs.s4_common import combine
-from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import (
     basis_vector,
     commutator,
@@ -64,7 +63,8 @@ from chaplygin_nd.symbolic.algebra import (
     wedge,
 )
 from chaplygin_nd.symbolic.axisymmetric import L_gamma_axisym, mass_tensor
-from chaplygin_nd.symbolic.exact import rational_identity, zero_at_points
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.identity import rational_identity, zero_at_points
 from chaplygin_nd.symbolic.model import inertia_operator, mass_tensor_symbols, mom3d
 from chaplygin_nd.symbolic.physical_ball import (
     I1,

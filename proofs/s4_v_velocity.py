@@ -36,11 +36,11 @@ from chaplygin_nd.proofs.s4_common import (
     sym_checks,
     sym_gamma,
 )
-from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import skew_symbols
 from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
 from chaplygin_nd.symbolic.axisymmetric import E_n, L_gamma_axisym
-from chaplygin_nd.symbolic.exact import point_engines, zero_at_points
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.identity import point_engines, zero_at_points
 from chaplygin_nd.symbolic.printed import section4 as printed
 
 

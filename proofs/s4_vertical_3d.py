@@ -32,7 +32,7 @@ from chaplygin_nd.proofs.s4_common import a, b, generic_vertical, sym_checks
 from chaplygin_nd.symbolic.algebra import commutator, unhat, vector_symbols
 from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
 from chaplygin_nd.symbolic.axisymmetric import E_n
-from chaplygin_nd.symbolic.exact import rational_identity
+from chaplygin_nd.symbolic.exact.identity import rational_identity
 from chaplygin_nd.symbolic.printed import section4 as printed
 from chaplygin_nd.symbolic.vertical import euler_rhs_3d, inertia_matrix_3d, zeta_3d
 

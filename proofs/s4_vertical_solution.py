@@ -45,11 +45,11 @@ from chaplygin_nd.proofs.s4_common import (
     sym_checks,
 )
 from chaplygin_nd.proofs.trig_common import T, trig_identity
-from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import commutator, wedge
 from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
 from chaplygin_nd.symbolic.axisymmetric import E_n, L_gamma_axisym
-from chaplygin_nd.symbolic.exact import Check, Counterexample
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.identity import Check, Counterexample
 from chaplygin_nd.symbolic.printed import section4 as printed
 from chaplygin_nd.symbolic.vertical import zeta
 

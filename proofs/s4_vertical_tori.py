@@ -94,10 +94,10 @@ from __future__ import annotations
 import sympy as sp
 from chaplygin_nd.ledger.registry import Verdict, claim
 from chaplygin_nd.proofs.s4_common import SAMPLERS, combine, fact
-from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import commutator, so_basis, wedge
 from chaplygin_nd.symbolic.axisymmetric import Delta, E_n, a, b, x
-from chaplygin_nd.symbolic.exact import Check, Counterexample, rational_identity
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.identity import Check, Counterexample, rational_identity
 from chaplygin_nd.symbolic.printed import section4 as printed4
 from chaplygin_nd.symbolic.vertical import vertical_point, zeta
 from sympy.polys.matrices import DomainMatrix

@@ -4,16 +4,17 @@ r"""Shared helpers of the Section 5 proofs (no claims are registered here).
 * exact rational points of the phase space $P = \mathbb{R}^3\times\mathbb{R}^3\times S^3$ and of the
   horizontal set $\mathcal{H}$;
 * :func:`reduced_check`: an identity between functions of the invariants $(A,B,E,G,F_1,x,\delta)$ is
-  proved in the normal form (unique, see :mod:`symbolic.reduced_invariants`); if it fails, the
+  proved in the normal form (unique, see :mod:`symbolic.reduction.invariants_n4`); if it fails, the
   counterexample is searched on $P$ through the quotient map, so it is a point of the reduced space.
 """
 
 from __future__ import annotations
 
 import sympy as sp
-from chaplygin_nd.symbolic import fourd, points
-from chaplygin_nd.symbolic import reduced_invariants as ri
-from chaplygin_nd.symbolic.exact import Check, rational_identity, zero_at_points
+from chaplygin_nd.symbolic import fourd
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.identity import Check, rational_identity, zero_at_points
+from chaplygin_nd.symbolic.reduction import invariants_n4 as ri
 
 a, b, x = fourd.a, fourd.b, fourd.x
 k, u, q = fourd.k, fourd.u, fourd.q
@@ -60,7 +61,7 @@ def subs_point(pt: dict) -> dict:
 
 def invariants_at(pt: dict) -> dict:
     """The invariants $(A, B, E, G, F_1, \\delta)$ of a phase point, keyed by the symbols of
-    :mod:`symbolic.reduced_invariants` (plus a, b, x)."""
+    :mod:`symbolic.reduction.invariants_n4` (plus a, b, x)."""
     kk, uu, qq = pt["k"], pt["u"], pt["q"]
     d = lambda p, r: (p.T * r)[0, 0]  # noqa: E731
     return {ri.A: d(kk, kk), ri.B: d(uu, uu), ri.E: d(kk, qq), ri.G: d(uu, qq), ri.F1: d(kk, uu),

@@ -74,14 +74,14 @@ from functools import cache
 import sympy as sp
 from chaplygin_nd.ledger.registry import Verdict, claim
 from chaplygin_nd.proofs.s4_common import SAMPLERS, combine, frame_gamma, gamma_symbols
-from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import commutator, killing, skew_symbols, vector_symbols, wedge
 from chaplygin_nd.symbolic.axisym_inverse import inverse_denominator, inverse_numerator
 from chaplygin_nd.symbolic.axisymmetric import E_n, a, b, mass_tensor
-from chaplygin_nd.symbolic.exact import point_engines, rational_identity, zero_at_points
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.identity import point_engines, rational_identity, zero_at_points
 from chaplygin_nd.symbolic.model import angular_velocity
 from chaplygin_nd.symbolic.printed import section5 as printed
-from chaplygin_nd.symbolic.reduced import (
+from chaplygin_nd.symbolic.reduction.reduced_n4 import (
     horizontal_blocks,
     horizontal_frequency_squared,
     horizontal_solution,

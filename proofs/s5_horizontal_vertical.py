@@ -29,8 +29,8 @@ $\nu^2 = \frac{f_2-2bh}{(2+a)(a+b+2)}$.
 graph coordinates (and on the slices $x = 0$); the printed solution is refuted at exact points of
 $\mathcal{H}$; the corrected one is proved with $c = \cos\nu t$, $s = \sin\nu t$,
 $\dot c = -\nu s$, $\dot s = \nu c$, with the derived $\nu^2(h, f_2)$ the kernels use
-(:func:`symbolic.reduced.horizontal_frequency_squared`, modulo $\nu^2 - \nu^2(h, f_2)$) against the
-printed $\omega^2(h, f_2)$; the kernels' $A(x, G; h)$ (:func:`symbolic.reduced.horizontal_level_A`)
+(:func:`symbolic.reduction.reduced_n4.horizontal_frequency_squared`, modulo $\nu^2 - \nu^2(h, f_2)$) against the
+printed $\omega^2(h, f_2)$; the kernels' $A(x, G; h)$ (:func:`symbolic.reduction.reduced_n4.horizontal_level_A`)
 is compared with the first expression of eq:A-on-J. $n = 4$.
 """
 
@@ -39,10 +39,11 @@ from __future__ import annotations
 import sympy as sp
 from chaplygin_nd.ledger.registry import Verdict, claim
 from chaplygin_nd.proofs.s5_common import SAMPLERS, exact, horizontal_point, invariants_at, on_P
-from chaplygin_nd.symbolic import fourd, reduced
-from chaplygin_nd.symbolic import reduced_invariants as ri
-from chaplygin_nd.symbolic.exact import rational_identity, zero_at_points
+from chaplygin_nd.symbolic import fourd
+from chaplygin_nd.symbolic.exact.identity import rational_identity, zero_at_points
 from chaplygin_nd.symbolic.printed import section5 as printed
+from chaplygin_nd.symbolic.reduction import invariants_n4 as ri
+from chaplygin_nd.symbolic.reduction import reduced_n4
 
 a, b, x, k, u, q = fourd.a, fourd.b, fourd.x, fourd.k, fourd.u, fourd.q
 A, B, E, G, F1, delta = ri.A, ri.B, ri.E, ri.G, ri.F1, ri.delta
@@ -66,8 +67,8 @@ def _on(sub, exprs):
 
 
 def _tangent(constraints, graph, label):
-    X = reduced.field()
-    lie = [sum(sp.diff(cn, reduced.SYMBOLS[n]) * X[n] for n in reduced.COORDS) for cn in constraints]
+    X = reduced_n4.field()
+    lie = [sum(sp.diff(cn, reduced_n4.SYMBOLS[n]) * X[n] for n in reduced_n4.COORDS) for cn in constraints]
     return exact(sp.Matrix(_on(graph, lie)), label)
 
 
@@ -77,14 +78,14 @@ def h_so3() -> Verdict:
     image = _inv(q.cross(u) / x, u, q)                          # H, x != 0
     w = sp.Matrix(sp.symbols("w1:4", real=True))
     slice0 = {**_inv(q.cross(w), G0 * q, q), x: 0}             # H at x = 0: k _|_ q, u = G q
-    ints = reduced.integrals()
+    ints = reduced_n4.integrals()
     return Verdict.all_of([
         ("pi(H), x != 0, satisfies the relations", on_P(sp.Matrix(_on(image, shown)), "HSO3 image")),
         ("pi(H), x = 0", _on_S2(sp.Matrix(_on(slice0, shown)), "HSO3 x=0")),
-        ("graph satisfies the relations", exact(sp.Matrix(_on(reduced.horizontal_set(), shown)),
+        ("graph satisfies the relations", exact(sp.Matrix(_on(reduced_n4.horizontal_set(), shown)),
                                                 "HSO3 graph")),
-        ("invariant under the reduced field", _tangent(shown, reduced.horizontal_set(), "HSO3 inv")),
-        ("F1 = F3 = 0 on it", exact(sp.Matrix(_on(reduced.horizontal_set(),
+        ("invariant under the reduced field", _tangent(shown, reduced_n4.horizontal_set(), "HSO3 inv")),
+        ("F1 = F3 = 0 on it", exact(sp.Matrix(_on(reduced_n4.horizontal_set(),
                                                   [ints["F1"], ints["F3"]])), "HSO3 F3")),
     ], n_values=(4,), method="exact rational identities (image of k = q x u/x modulo |gamma|^2 = 1; "
                              "graph over (A, G, x); tangency of the derived reduced field)")
@@ -99,18 +100,18 @@ def v_so3() -> Verdict:
     return Verdict.all_of([
         ("pi(V), x != 0, satisfies the relations", on_P(sp.Matrix(_on(image, shown)), "VSO3 image")),
         ("pi(V), x = 0", _on_S2(sp.Matrix(_on(slice0, shown)), "VSO3 x=0")),
-        ("graph satisfies the relations", exact(sp.Matrix(_on(reduced.vertical_set(), shown)),
+        ("graph satisfies the relations", exact(sp.Matrix(_on(reduced_n4.vertical_set(), shown)),
                                                 "VSO3 graph")),
-        ("invariant under the reduced field", _tangent(shown, reduced.vertical_set(), "VSO3 inv")),
+        ("invariant under the reduced field", _tangent(shown, reduced_n4.vertical_set(), "VSO3 inv")),
     ], n_values=(4,), method="exact rational identities (image of u = -k x q/x modulo "
                              "|gamma|^2 = 1; graph over (B, E, x); tangency)")
 
 
 @claim("S5:V-equilibria", uses=("S5:V-SO3", "eq:red-system", "Th:Re"))
 def v_equilibria() -> Verdict:
-    X = reduced.field()
-    on_graph = sp.Matrix(_on(reduced.vertical_set(), [X[n] for n in reduced.COORDS]))
-    at0 = sp.Matrix(_on({G: 0, F1: 0, delta: 0, A: E**2, x: 0}, [X[n] for n in reduced.COORDS]))
+    X = reduced_n4.field()
+    on_graph = sp.Matrix(_on(reduced_n4.vertical_set(), [X[n] for n in reduced_n4.COORDS]))
+    at0 = sp.Matrix(_on({G: 0, F1: 0, delta: 0, A: E**2, x: 0}, [X[n] for n in reduced_n4.COORDS]))
     return Verdict.all_of([("x != 0", exact(on_graph, "Veq graph")),
                            ("x = 0 (A = E^2, delta = 0)", exact(at0, "Veq x=0"))], n_values=(4,),
                           method="exact: all 7 derived components vanish on the graph of V/SO(3)")
@@ -118,8 +119,8 @@ def v_equilibria() -> Verdict:
 
 def _level():
     """h, f2 as functions of (A, G, x) on H/SO(3) (derived integrals)."""
-    ints = reduced.integrals()
-    g = reduced.horizontal_set()
+    ints = reduced_n4.integrals()
+    g = reduced_n4.horizontal_set()
     return sp.together(ints["H"].xreplace(g)), sp.together(ints["F2"].xreplace(g))
 
 
@@ -127,7 +128,7 @@ def _level():
 def a_on_j() -> Verdict:
     hh, ff = _level()
     first, second = printed.A_on_J(G, x, hh, ff, a, b)
-    level = reduced.horizontal_level_A(h)  # A(x, G; h), what generated/reduced.py evaluates
+    level = reduced_n4.horizontal_level_A(h)  # A(x, G; h), what generated/reduced_n4.py evaluates
     first_h, _ = printed.A_on_J(G, x, h, f2, a, b)
     return Verdict.all_of([("first (from H = h)", exact(first - A, "AJ 1")),
                            ("second (from F2 = f2)", exact(second - A, "AJ 2")),
@@ -185,18 +186,18 @@ def closed_form_residuals(horizontal_solution, frequency_squared, omega2, t_, x0
 
 
 def _corrected_solution():
-    """The corrected closed form with the derived frequency (both emitted into generated/reduced.py)
+    """The corrected closed form with the derived frequency (both emitted into generated/reduced_n4.py)
     solves the printed linear system (whose omega^2 is checked against the derived field)."""
     omega2, _ = printed.omega_squared(h, f2, G, x, a, b)
-    return exact(sp.Matrix(closed_form_residuals(reduced.horizontal_solution,
-                                                 reduced.horizontal_frequency_squared(h, f2),
+    return exact(sp.Matrix(closed_form_residuals(reduced_n4.horizontal_solution,
+                                                 reduced_n4.horizontal_frequency_squared(h, f2),
                                                  omega2, t, x0, G0, nu)), "Hlin corrected")
 
 
 @claim("S5:H-linear", uses=("S5:H-SO3", "eq:A-on-J", "eq:red-system", "S5:red-integrals"))
 def h_linear() -> Verdict:
-    X = reduced.field()
-    g = reduced.horizontal_set()
+    X = reduced_n4.field()
+    g = reduced_n4.horizontal_set()
     hh, ff = _level()
     Gdot, xdot = printed.H_linear_system(G, x, hh, ff, a, b)
     w_a, w_b = printed.omega_squared(hh, ff, G, x, a, b)

@@ -26,7 +26,7 @@ from chaplygin_nd.ledger.registry import Verdict, claim
 from chaplygin_nd.proofs.s5_common import exact, horizontal_point, on_P, phase_point, subs_point
 from chaplygin_nd.symbolic import fourd
 from chaplygin_nd.symbolic.algebra import wedge
-from chaplygin_nd.symbolic.exact import zero_at_points
+from chaplygin_nd.symbolic.exact.identity import zero_at_points
 from chaplygin_nd.symbolic.printed import section5 as printed
 
 a, b, x, k, u, q = fourd.a, fourd.b, fourd.x, fourd.k, fourd.u, fourd.q

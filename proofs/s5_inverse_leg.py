@@ -24,7 +24,7 @@ import sympy as sp
 from chaplygin_nd.ledger.registry import Verdict, claim
 from chaplygin_nd.proofs.s5_common import on_P, phase_point, ring_on_P
 from chaplygin_nd.symbolic import fourd
-from chaplygin_nd.symbolic.exact import zero_at_points
+from chaplygin_nd.symbolic.exact.identity import zero_at_points
 from chaplygin_nd.symbolic.model import angular_velocity
 from chaplygin_nd.symbolic.printed import section5 as printed
 

@@ -26,8 +26,9 @@ from __future__ import annotations
 import sympy as sp
 from chaplygin_nd.ledger.registry import Verdict, claim
 from chaplygin_nd.proofs.s5_common import ring_on_P
-from chaplygin_nd.symbolic import fourd, points
-from chaplygin_nd.symbolic.exact import Check, Counterexample
+from chaplygin_nd.symbolic import fourd
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.identity import Check, Counterexample
 from chaplygin_nd.symbolic.printed import section5 as printed
 
 a, b, x = fourd.a, fourd.b, fourd.x

@@ -8,7 +8,7 @@ measure "is the restriction of the volume form $\mu_r = \Delta^{-2}\,dA\,dB\,dE\
 $\mathbb{R}^7$ to $\mathcal{R}$".
 
 In our words. Integrals: the 4D integrals ($F_3 = -[\lambda\sigma]p$, $H = \tfrac12\langle M,\Omega\rangle_\kappa$)
-written in the invariants by :mod:`symbolic.reduced_invariants` agree with the printed ones; they
+written in the invariants by :mod:`symbolic.reduction.invariants_n4` agree with the printed ones; they
 are conserved by the derived reduced field and their differentials (with $d\Phi$,
 $\Phi = \delta^2 - \det\Lambda$) have rank 5 at a seeded point, i.e. they are independent on $\mathcal{R}$.
 
@@ -33,23 +33,25 @@ from __future__ import annotations
 import sympy as sp
 from chaplygin_nd.ledger.registry import Verdict, claim
 from chaplygin_nd.proofs.s5_common import exact, invariants_at, phase_point, reduced_check
-from chaplygin_nd.symbolic import fourd, points, reduced
-from chaplygin_nd.symbolic import reduced_invariants as ri
+from chaplygin_nd.symbolic import fourd
+from chaplygin_nd.symbolic.exact import points
 from chaplygin_nd.symbolic.measure import measure_residual
 from chaplygin_nd.symbolic.printed import section5 as printed
+from chaplygin_nd.symbolic.reduction import invariants_n4 as ri
+from chaplygin_nd.symbolic.reduction import reduced_n4
 
 a, b, x = fourd.a, fourd.b, fourd.x
 A, B, E, G, F1, delta = ri.A, ri.B, ri.E, ri.G, ri.F1, ri.delta
-COORDS = [reduced.SYMBOLS[n] for n in reduced.COORDS]
+COORDS = [reduced_n4.SYMBOLS[n] for n in reduced_n4.COORDS]
 DET = ri.det_Lambda().as_expr()
 
 
 def _lie(f, X):
-    return sum(sp.diff(f, c) * X[n] for n, c in zip(reduced.COORDS, COORDS, strict=False))
+    return sum(sp.diff(f, c) * X[n] for n, c in zip(reduced_n4.COORDS, COORDS, strict=False))
 
 
 def _independent() -> Verdict:
-    ints = reduced.integrals()
+    ints = reduced_n4.integrals()
     fs = [ints[n] for n in ("F1", "F2", "F3", "H")] + [delta**2 - DET]
     pt = invariants_at(phase_point(points.generator(points.ledger_seed(), "red-int rank")))
     J = sp.Matrix([[sp.diff(f, c).xreplace(pt) for c in COORDS] for f in fs])
@@ -61,8 +63,8 @@ def _independent() -> Verdict:
 
 @claim("S5:red-integrals", uses=("S5:F123", "S5:H4D", "eq:red-system"))
 def red_integrals() -> Verdict:
-    ints = reduced.integrals()
-    X = reduced.field()
+    ints = reduced_n4.integrals()
+    X = reduced_n4.field()
     shown = {"F1": F1, "F2": printed.red_F2(A, B), "F3": printed.red_F3(A, B, E, G, x, delta),
              "H": printed.red_H(A, B, E, G, x, delta, a, b)}
     parts = []
@@ -80,9 +82,9 @@ def red_integrals() -> Verdict:
 def chart_residual(rho):
     r"""$\sum_y \tfrac{d}{dy}\big(\rho\,X_y\big)$ over the chart $y = (A,B,E,G,F_1,x)$ of a sheet of
     $\mathcal{R}$, for a density $\rho(x, \delta)$, with $\partial_y\delta = \partial_y\det\Lambda/(2\delta)$."""
-    X = reduced.field()
+    X = reduced_n4.field()
     total = sp.Integer(0)
-    for n, y in zip(reduced.COORDS, COORDS, strict=False):
+    for n, y in zip(reduced_n4.COORDS, COORDS, strict=False):
         if n == "delta":
             continue
         F = rho * X[n]
@@ -92,9 +94,9 @@ def chart_residual(rho):
 
 @claim("S5:red-measure", uses=("eq:red-system", "S5:measure4D"))
 def red_measure() -> Verdict:
-    X = reduced.field()
+    X = reduced_n4.field()
     rho7 = printed.red_measure_density(a, b, x)
-    ambient = exact(measure_residual([X[n] for n in reduced.COORDS], COORDS, [(rho7, 1)]),
+    ambient = exact(measure_residual([X[n] for n in reduced_n4.COORDS], COORDS, [(rho7, 1)]),
                     "red-measure R7")
     Dl = printed.Delta(a, b, x)
     naive = reduced_check(chart_residual(printed.red_measure_on_R(a, b, x, delta)),

@@ -4,7 +4,7 @@ r"""eq:red-system — the seven components of the $SO(3)$-reduced vector field.
 vector field on $\mathbb{R}^7\ni(A,B,E,G,F_1,x,\delta)$ ($\dot A, \dot B, \dot E, \dot G, \dot F_1 = 0,
 \dot x = G/(a+b+2), \dot\delta$; see :func:`symbolic.printed.section5.red_system`).
 
-In our words: we derive the field from scratch (:mod:`symbolic.reduced`): differentiate each
+In our words: we derive the field from scratch (:mod:`symbolic.reduction.reduced_n4`): differentiate each
 invariant along the derived 4D field, clear the common denominator $D = 2(2+a+b)\Delta(x)$, and
 write the resulting $SO(3)$-invariant polynomial in its unique normal form in the invariants
 (linear in $\delta$, $\lVert q\rVert^2 = 1-x^2$; an ansatz over all invariant monomials of the right
@@ -23,9 +23,10 @@ from __future__ import annotations
 
 from chaplygin_nd.ledger.registry import Verdict, claim
 from chaplygin_nd.proofs.s5_common import reduced_check, ring_on_P
-from chaplygin_nd.symbolic import fourd, reduced
-from chaplygin_nd.symbolic import reduced_invariants as ri
+from chaplygin_nd.symbolic import fourd
 from chaplygin_nd.symbolic.printed import section5 as printed
+from chaplygin_nd.symbolic.reduction import invariants_n4 as ri
+from chaplygin_nd.symbolic.reduction import reduced_n4
 
 a, b, x = fourd.a, fourd.b, fourd.x
 
@@ -42,12 +43,12 @@ def raw_derivatives():
 
 @claim("eq:red-system", uses=("eq:motion-n4", "eq:inverse-Leg", "eq:PrincMinors"))
 def red_system() -> Verdict:
-    derived = reduced.field()
-    numer = reduced.field_numerators()
+    derived = reduced_n4.field()
+    numer = reduced_n4.field_numerators()
     raw = raw_derivatives()
     shown = printed.red_system(ri.A, ri.B, ri.E, ri.G, ri.F1, x, ri.delta, a, b)
     parts = []
-    for name in reduced.COORDS:
+    for name in reduced_n4.COORDS:
         back = ring_on_P(ri.to_phase_space(numer[name]) - raw[name], f"red {name} back")
         cmp_ = reduced_check(shown[name] - derived[name], f"red-system {name}")
         v = Verdict.all_of([("derived = d/dt of the invariant on P", back),

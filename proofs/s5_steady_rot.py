@@ -26,9 +26,10 @@ import sympy as sp
 from chaplygin_nd.ledger.registry import Verdict, claim
 from chaplygin_nd.proofs.s5_common import exact, on_P, ring_on_P
 from chaplygin_nd.proofs.trig_common import T, trig_identity
-from chaplygin_nd.symbolic import fourd, points
+from chaplygin_nd.symbolic import fourd
 from chaplygin_nd.symbolic.algebra import commutator
 from chaplygin_nd.symbolic.axisymmetric import L_gamma_axisym
+from chaplygin_nd.symbolic.exact import points
 from chaplygin_nd.symbolic.printed import section5 as printed
 
 a, b, x, k, u, q, eta, xi = (fourd.a, fourd.b, fourd.x, fourd.k, fourd.u, fourd.q, fourd.eta,

@@ -40,7 +40,7 @@ from chaplygin_nd.simulate.analysis.chaos import LADDER_BOUNDED, LADDER_GROWTH, 
 from chaplygin_nd.simulate.analysis.control import CHAOTIC_J
 from chaplygin_nd.simulate.analysis.drawn_evidence import BATCH
 from chaplygin_nd.simulate.analysis.frequencies import REGULAR
-from chaplygin_nd.symbolic.points import ledger_seed
+from chaplygin_nd.symbolic.exact.points import ledger_seed
 from chaplygin_nd.symbolic.printed import section4 as printed4
 from chaplygin_nd.symbolic.printed import section5 as printed5
 

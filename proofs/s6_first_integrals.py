@@ -1,7 +1,7 @@
 r"""Beyond the paper: an exact search for first integrals, and a sixth integral for $n = 5$ (rows
 S6:first-integrals and S6:euler-jacobi-n5; issue 23).
 
-**The search** (symbolic/first_integrals.py, one mechanism for every $n$ and every diagonal mass
+**The search** (symbolic/search/integral_search.py, one mechanism for every $n$ and every diagonal mass
 tensor): the integrals $P/D^k$ of eq:motion-general with $P$ of $M$-degree $d$ and $\gamma$-degree
 $\le d_\gamma$ on the sphere ($D = \Delta$ of eq:Delta for the axisymmetric sphere, $\det L_\gamma$
 otherwise), in the weight-zero part of a maximal torus of $SO(n-1)$ (every $SO(n-1)$-invariant
@@ -24,7 +24,7 @@ and read off in closed form:
 .. math::  F = \langle v, (2+a)E_n + bx\gamma\rangle^2 / \Delta,
 
 proved for **symbolic** $a, b$ by an exact identity modulo $\|\gamma\|^2 = 1$ with SymPy and
-FLINT (symbolic/fi_new.py): $n = 3$ in ``make verify``, $n = 5$ in ``make verify-deep`` (40 s
+FLINT (symbolic/search/found_integral.py): $n = 3$ in ``make verify``, $n = 5$ in ``make verify-deep`` (40 s
 under load); at seeded exact rational points with random $a, b$ for $n = 5$ (``make verify``) and
 $n = 7, 9$ (``make verify-deep``). It is **functionally independent** of the
 five known ones for $n = 5$ (exact Jacobian rank 6 on $TP$ at a seeded rational point, both
@@ -56,9 +56,9 @@ from collections.abc import Callable
 
 import sympy as sp
 from chaplygin_nd.ledger.registry import Part, Verdict, claim, decided
-from chaplygin_nd.symbolic import fi_field, fi_known, fi_new
-from chaplygin_nd.symbolic import first_integrals as fi
-from chaplygin_nd.symbolic.points import ledger_seed
+from chaplygin_nd.symbolic.exact.points import ledger_seed
+from chaplygin_nd.symbolic.search import found_integral, known_integrals, sampled_field
+from chaplygin_nd.symbolic.search import integral_search as fi
 
 SECTION = "Conclusions — open problems (beyond the paper)"
 A, B = sp.Rational(-1, 3), sp.Rational(3, 2)
@@ -71,9 +71,9 @@ DEEP = {4: ((3, 5, 1), (4, 6, 1)), 5: ((3, 5, 1), (4, 4, 0), (4, 6, 1), (5, 5, 0
         6: ((2, 4, 1), (3, 5, 1), (4, 4, 0), (4, 4, 1)), 7: ((2, 4, 1), (3, 3, 0), (4, 4, 0))}
 
 
-def model_for(n: int) -> fi_field.Model:
+def model_for(n: int) -> sampled_field.Model:
     """The model of the row at n: n = 3 generic, otherwise axisymmetric (a = -1/3, b = 3/2)."""
-    return fi_field.general(GENERIC_J, GENERIC_B) if n == 3 else fi_field.axisymmetric(n, A, B)
+    return sampled_field.general(GENERIC_J, GENERIC_B) if n == 3 else sampled_field.axisymmetric(n, A, B)
 
 
 def degree_table(boxes: dict) -> list[dict]:
@@ -100,7 +100,7 @@ def _controls(table) -> Part:
     ctl = [r for r in table if r["n"] in (3, 4) or (r["n"] == 5 and r["d"] < 4)]
     ok = all(r["settled"] and r["recovered"] is not False and r["known_paper_only"] == r["known"]
              for r in ctl)
-    ranks = {n: fi_known.jacobian_rank(model_for(n), ledger_seed())["rank"] for n in (3, 4)}
+    ranks = {n: known_integrals.jacobian_rank(model_for(n), ledger_seed())["rank"] for n in (3, 4)}
     ok = ok and ranks == {3: 3, 4: 4}
     text = "; ".join(f"n={r['n']} (d={r['d']}, d_gamma={r['d_gamma']}, k={r['k']}): {r['unknowns']} "
                      f"unknowns, found {r['found']} = known {r['known']}" for r in ctl)
@@ -130,18 +130,18 @@ def _identity(name: str, check) -> Part:
 
 
 def _rank_mod_p(name: str, n: int, what: str) -> Part:
-    r = fi_known.jacobian_rank_mod_p(model_for(n), True, seed=ledger_seed())
+    r = known_integrals.jacobian_rank_mod_p(model_for(n), True, seed=ledger_seed())
     return Part(name, "holds" if r["rank_mod_p"] == r["functions"] else "fails",
                 f"Jacobian rank mod {r['prime']} = {r['rank_mod_p']} of {r['functions']} {what}")
 
 
 def _varies(name: str, n: int, builder) -> Part:
-    ok, text = fi_new.varies_in_M(n, builder, ledger_seed())
+    ok, text = found_integral.varies_in_M(n, builder, ledger_seed())
     return Part(name, "holds" if ok else "fails", f"exact evaluation: {text}")
 
 
 def _rank_n5() -> Part:
-    r = fi_known.jacobian_rank(model_for(5), ledger_seed(), include_new=True)
+    r = known_integrals.jacobian_rank(model_for(5), ledger_seed(), include_new=True)
     return Part("independence n = 5: rank of (4 coefficients of p, H, F) on TP",
                 "holds" if r["rank"] == 6 else "fails",
                 f"exact Jacobian rank {r['rank']} of {r['functions']} at a seeded rational "
@@ -155,23 +155,23 @@ def _proofs(deep: bool) -> list[tuple[bool, Callable[[], Part]]]:
     steps: list[tuple[bool, Callable[[], Part]]] = []
     for n in ((3, 5) if deep else (3,)):
         steps.append((n < 5, lambda n=n: _identity(f"X(F) = 0, n = {n}, symbolic a, b",
-                                                   fi_new.prove_symbolic(n))))
+                                                   found_integral.prove_symbolic(n))))
     for n in ((5, 7, 9) if deep else (5,)):
         steps.append((n <= 5, lambda n=n: _identity(f"X(F) = 0, n = {n}, random a, b",
-                                                    fi_new.prove_at_points(n, 2, seed=seed))))
-    steps.append((False, lambda: _identity("X(G) = 0, n = 6, random a, b", fi_new.prove_at_points(
-        6, 2, seed=seed, builder=fi_new.new_integral_6))))
-    steps.append((False, lambda: _varies("G is not constant, n = 6", 6, fi_new.new_integral_6)))
+                                                    found_integral.prove_at_points(n, 2, seed=seed))))
+    steps.append((False, lambda: _identity("X(G) = 0, n = 6, random a, b", found_integral.prove_at_points(
+        6, 2, seed=seed, builder=found_integral.new_integral_6))))
+    steps.append((False, lambda: _varies("G is not constant, n = 6", 6, found_integral.new_integral_6)))
     for n in ((5, 6, 7, 8) if deep else (5, 6)):
         steps.append((n <= 5, lambda n=n: _identity(
             f"X(G_n) = 0 (general form), n = {n}, random a, b",
-            fi_new.prove_at_points(n, 2, seed=seed, builder=fi_new.general_integral))))
+            found_integral.prove_at_points(n, 2, seed=seed, builder=found_integral.general_integral))))
     for n in (5, 6):
         steps.append((n <= 5, lambda n=n: _varies(f"G_n (general form) is not constant, n = {n}",
-                                                  n, fi_new.general_integral)))
+                                                  n, found_integral.general_integral)))
     if deep:
         steps.append((False, lambda: _identity("X(G) = 0, n = 6, symbolic a, b",
-                                               fi_new.prove_symbolic(6, builder=fi_new.new_integral_6))))
+                                               found_integral.prove_symbolic(6, builder=found_integral.new_integral_6))))
         steps.append((False, lambda: _rank_mod_p(
             "independence n = 6: the coefficients of p, H and G", 6,
             "(full rank mod p proves independence over QQ)")))
@@ -227,10 +227,10 @@ def s6_first_integrals() -> Verdict:
                "`chaplygin first-integrals`"))
     from dataclasses import replace
     data = {"degree_table": table,
-            "new_integrals": [{"n": n, "text": fi_new.new_integral_text(n),
+            "new_integrals": [{"n": n, "text": found_integral.new_integral_text(n),
                                "proved": [p.name for p in parts if p.name.startswith("X(F)")
                                           and f"n = {n}," in p.name]} for n in (3, 5, 7)]
-            + [{"n": 6, "text": fi_new.new_integral_6_text(),
+            + [{"n": 6, "text": found_integral.new_integral_6_text(),
                 "proved": [p.name for p in parts if p.name.startswith("X(G)")]}],
             "seconds": round(time.perf_counter() - t0, 2)}
     return replace(v, data=data)
@@ -246,7 +246,7 @@ def s6_euler_jacobi_n5() -> Verdict:
 
     exact = reduced_dimension_check()
     quotient = 14 - exact["orbit_rank"][0]
-    r = fi_known.jacobian_rank(model_for(5), ledger_seed(), include_new=True)
+    r = known_integrals.jacobian_rank(model_for(5), ledger_seed(), include_new=True)
     ok = exact["orbit_rank"] == (6, 6) and exact["invariant"] and r["rank"] == quotient - 2
     checked = Part("dim P/SO(4) = 8; six invariant integrals of rank 6",
                    "holds" if ok else "fails",

@@ -45,8 +45,9 @@ from chaplygin_nd.simulate.analysis import evidence_rows as er
 from chaplygin_nd.simulate.analysis.control import CHAOTIC_J
 from chaplygin_nd.simulate.analysis.drawn_evidence import BATCH
 from chaplygin_nd.simulate.analysis.frequencies import REGULAR
-from chaplygin_nd.symbolic import algebra, model, points
-from chaplygin_nd.symbolic.points import ledger_seed
+from chaplygin_nd.symbolic import algebra, model
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.points import ledger_seed
 
 SECTION = "Conclusions — open problems (beyond the paper)"
 N = 5

@@ -2,7 +2,7 @@ r"""Beyond the paper: the reduced equations on $P/SO(4)$ for $n = 5$ (row S6:red
 
 The paper's conclusion leaves open: "Obtain the reduced equations on $P/SO(n-1)$ for $n \ge 5$ and
 determine if they are integrable." This row derives them for $n = 5$ (the first half), as eq:red-system
-is derived for $n = 4$ (:mod:`symbolic.reduced5_invariants`, :mod:`symbolic.reduced5`).
+is derived for $n = 4$ (:mod:`symbolic.reduction.invariants_n5`, :mod:`symbolic.reduction.reduced_n5`).
 
 **Claim.** With $M = \begin{pmatrix} K & u\\ -u^T & 0\end{pmatrix}$, $\gamma = (q, x)$, $K_\pm = K \pm \star K$,
 $S = K_+K_-$, the ten functions
@@ -32,11 +32,12 @@ from __future__ import annotations
 
 import sympy as sp
 from chaplygin_nd.ledger.registry import Verdict, claim
-from chaplygin_nd.symbolic import algebra, points
-from chaplygin_nd.symbolic import reduced5 as r5
-from chaplygin_nd.symbolic import reduced5_invariants as ri5
-from chaplygin_nd.symbolic.exact import Check, rational_identity
-from chaplygin_nd.symbolic.points import ledger_seed
+from chaplygin_nd.symbolic import algebra
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.identity import Check, rational_identity
+from chaplygin_nd.symbolic.exact.points import ledger_seed
+from chaplygin_nd.symbolic.reduction import invariants_n5 as ri5
+from chaplygin_nd.symbolic.reduction import reduced_n5 as r5
 
 SECTION = "Conclusions — open problems (beyond the paper)"
 SPHERE = (*ri5.q, ri5.gamma[4])
@@ -88,7 +89,7 @@ def _point():
 
 def separation_part() -> tuple[Check, Check]:
     r"""Part 3: rank of the differentials of the ten coordinates on $TP$ and invariance, exactly."""
-    from chaplygin_nd.symbolic import flint_engine
+    from chaplygin_nd.symbolic.exact import flint_engine
 
     Mv, g = _point()
     gens = ri5.generator_polys()

@@ -48,12 +48,12 @@ from __future__ import annotations
 import sympy as sp
 from chaplygin_nd.ledger.registry import Verdict, claim
 from chaplygin_nd.proofs.s6_open_reduced_n5 import _integral_gradients
-from chaplygin_nd.symbolic import points
-from chaplygin_nd.symbolic import reduced5 as r5
-from chaplygin_nd.symbolic import reduced5_invariants as ri5
-from chaplygin_nd.symbolic import sixth_integral as si
-from chaplygin_nd.symbolic.exact import Check, rational_identity
-from chaplygin_nd.symbolic.points import ledger_seed
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.identity import Check, rational_identity
+from chaplygin_nd.symbolic.exact.points import ledger_seed
+from chaplygin_nd.symbolic.family import sixth_integral as si
+from chaplygin_nd.symbolic.reduction import invariants_n5 as ri5
+from chaplygin_nd.symbolic.reduction import reduced_n5 as r5
 
 SECTION = "Conclusions — open problems (beyond the paper)"
 SPHERE = (*ri5.q, ri5.gamma[4])
@@ -61,7 +61,7 @@ _PAIRS = [(i, j) for i in range(5) for j in range(i + 1, 5)]
 
 
 def _DX(f):
-    r"""$D\dot f$ along the derived field on $P$ for ``f`` in :data:`symbolic.reduced5_invariants.RING`."""
+    r"""$D\dot f$ along the derived field on $P$ for ``f`` in :data:`symbolic.reduction.invariants_n5.RING`."""
     R = ri5.RING
     g = R.gens
     Mdot, gdot = r5.phase_field_numerators()
@@ -95,7 +95,7 @@ def descends() -> Check:
 
 def independence() -> tuple[Check, dict]:
     """Part (3): rank 6 of the differentials of the five known integrals and $F$ on $TP$."""
-    from chaplygin_nd.symbolic import flint_engine
+    from chaplygin_nd.symbolic.exact import flint_engine
 
     rng = points.generator(ledger_seed(), "S6:sixth-integral-n5")
     gamma = points.sphere_point(rng, 5)
@@ -130,14 +130,14 @@ def independence() -> tuple[Check, dict]:
 
 def same_as_search() -> Check:
     r"""Part (5): the integral the exact search finds (S6:first-integrals,
-    :func:`symbolic.fi_new.new_integral`: $F_s = \langle w, (2+a)E_5 + bx\gamma\rangle^2/\Delta$) and $F$
+    :func:`symbolic.search.found_integral.new_integral`: $F_s = \langle w, (2+a)E_5 + bx\gamma\rangle^2/\Delta$) and $F$
     are one integral modulo the known ones: $aF_s - (2+a)F = -b\langle w,\gamma\rangle^2$ (the last is the
     known $c_{\sigma\lambda^0}$), a polynomial identity after multiplying by $\Delta$ (both engines).
     Two independent routes (the numerical guide with an ansatz in the invariants here, the
     mod-$p$ search on $P$ there) found it."""
-    from chaplygin_nd.symbolic import fi_new
+    from chaplygin_nd.symbolic.search import found_integral
 
-    N_search, Dl = fi_new.new_integral(ri5.M, ri5.gamma, r5.a, r5.b)
+    N_search, Dl = found_integral.new_integral(ri5.M, ri5.gamma, r5.a, r5.b)
     N_here = si.numerator_expr(ri5.M, ri5.gamma, r5.a, r5.b)
     w = sp.Matrix(si.pfaffian_vector([[ri5.M[i, j] for j in range(5)] for i in range(5)]))
     L = (w.T * ri5.gamma)[0, 0]

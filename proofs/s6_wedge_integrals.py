@@ -14,13 +14,13 @@ $\lfloor n/2\rfloor$-tori in the $(2n-2)$-dimensional $P/SO(n-1)$ needs (issue 2
 
 **Checked here.** (1) $\dot H_k = 0$ exactly at a seeded rational point of $P$ with random rational
 $a \in [-1, 1]\setminus\{0\}$, $b \in [1, 3]$, for every $k$ and $n = 4, \dots, 9$ ($\Omega$ by an exact solve of the
-definition eq:M-O-axi-symm, :mod:`symbolic.wedge_integrals`; SymPy ``DomainMatrix`` and FLINT
+definition eq:M-O-axi-symm, :mod:`symbolic.family.wedge_integrals`; SymPy ``DomainMatrix`` and FLINT
 ``fmpq_mat``, which must agree): Schwartz–Zippel evidence of the identity for those $n$, the method the
 ledger uses for all-$n$ rows up to $n = 12$ (here to 9 for cost). (2) At a seeded rational point, the
 differentials on $TP$ of the $n$ known integrals and $H_2..H_{\lceil n/2\rceil-1}$ have rank
 $2n - 2 - \lfloor n/2\rfloor$ and vanish on the generators of $SO(n-1)$, $n = 5, \dots, 8$ (SymPy and
 FLINT ranks, exact zeros). For $n = 6$, $\dot H_2 = 0$ is also checked as an identity in symbolic $a, b$
-beside the ledger (:mod:`symbolic.wedge_n6`, ``tests/test_wedge_n6.py``: FLINT reduction of the
+beside the ledger (:mod:`symbolic.family.wedge_n6`, ``tests/test_wedge_n6.py``: FLINT reduction of the
 164 220-term residual modulo $\lVert\gamma\rVert^2 = 1$, 40 s; SymPy's reduction agreed in a 600 s run).
 For $n = 5$ the symbolic proof is row S6:sixth-integral-n5 ($H_2$ and its $F$
 is $(\lVert w\rVert^2 + F)/(2+a+b)$; tests/test_reduced5.py).
@@ -39,10 +39,10 @@ from __future__ import annotations
 import sympy as sp
 from chaplygin_nd.ledger.registry import Verdict, claim
 from chaplygin_nd.proofs.s6_open_reduced_n5 import _generators, _integral_gradients
-from chaplygin_nd.symbolic import flint_engine, points
-from chaplygin_nd.symbolic import wedge_integrals as wi
-from chaplygin_nd.symbolic.exact import Check
-from chaplygin_nd.symbolic.points import ledger_seed
+from chaplygin_nd.symbolic.exact import flint_engine, points
+from chaplygin_nd.symbolic.exact.identity import Check
+from chaplygin_nd.symbolic.exact.points import ledger_seed
+from chaplygin_nd.symbolic.family import wedge_integrals as wi
 
 SECTION = "Conclusions — open problems (beyond the paper)"
 RATE_N = (4, 5, 6, 7, 8, 9)

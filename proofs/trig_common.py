@@ -11,7 +11,7 @@ engine like any other identity (the circle is irreducible, so the remainder crit
 from __future__ import annotations
 
 import sympy as sp
-from chaplygin_nd.symbolic.exact import Check, rational_identity
+from chaplygin_nd.symbolic.exact.identity import Check, rational_identity
 
 T = sp.Symbol("t", real=True)
 C, S = sp.symbols("cos_t sin_t", real=True)

@@ -22,7 +22,7 @@ reconstruction forms $\Omega$ (for $g\Omega$, which is $O(n^3)$ anyway).
 
 Matrices are nested lists; a structural zero is the Python integer ``0`` and is never multiplied
 (so the graph has no ``0*x`` nodes). ``ops`` supplies ``rational(p, q)`` and ``sqrt`` in the
-target arithmetic (see :mod:`symbolic.codegen_builders`). The state order is that of
+target arithmetic (see :mod:`symbolic.codegen.builders`). The state order is that of
 :class:`simulate.dynamics.field.FullField`: $\mathrm{vec}\,M$ (entries $i<j$, lexicographic), $\gamma$,
 then $g$ row-major and $c$.
 """

@@ -4,8 +4,8 @@ The FLINT engine's side of the heavy point steps of the all-$n$ rows: $L_\gamma$
 ``fmpq_mat``, $\Omega = L_\gamma^{-1}M$, and the ingredients of the ambient divergence of
 eq:motion-general (eq:invmeasuredet). :func:`symbolic.model.angular_velocity` and
 :func:`symbolic.measure.chaplygin_divergence_at` call these when the current engine is FLINT
-(:func:`symbolic.flint_engine.use_engine`); their SymPy side is unchanged, and
-:func:`symbolic.exact.zero_at_points` requires the two values to be equal wherever both run.
+(:func:`symbolic.exact.flint_engine.use_engine`); their SymPy side is unchanged, and
+:func:`symbolic.exact.identity.zero_at_points` requires the two values to be equal wherever both run.
 
 The divergence is computed here by a different route from the SymPy side (which inverts
 $L_\gamma$ and forms every $\partial_{\gamma_k}L_\gamma$ as a matrix): one exact solve with $n + 1$
@@ -19,8 +19,13 @@ from __future__ import annotations
 
 import flint
 import sympy as sp
-from chaplygin_nd.symbolic.flint_engine import current_engine, note_call, to_fmpq, to_sympy_matrix
-from chaplygin_nd.symbolic.model import L_matrix_qq, _L_entries
+from chaplygin_nd.symbolic.exact.flint_engine import (
+    current_engine,
+    note_call,
+    to_fmpq,
+    to_sympy_matrix,
+)
+from chaplygin_nd.symbolic.mass_operator import L_entries, L_matrix_qq
 
 __all__ = ["L_matrix_fmpq", "L_matrix_at", "angular_velocity_fmpq", "divergence_at_fmpq"]
 
@@ -33,14 +38,14 @@ def _pairs(n: int) -> list[tuple[int, int]]:
 
 def L_matrix_fmpq(gamma, J: sp.Matrix, b) -> flint.fmpq_mat:
     r"""The matrix of $L_\gamma$ (eq:M-O) in the basis $E_i\wedge E_j$, entries in ``fmpq``."""
-    rows = _L_entries([to_fmpq(v) for v in gamma], [to_fmpq(v) for v in J.diagonal()],
+    rows = L_entries([to_fmpq(v) for v in gamma], [to_fmpq(v) for v in J.diagonal()],
                       to_fmpq(b), _ZERO, _ONE)
     return flint.fmpq_mat(rows)
 
 
 def L_matrix_at(gamma: sp.Matrix, J: sp.Matrix, b):
     r"""$L_\gamma$ (eq:M-O) at a rational point in the current engine's own matrix type:
-    ``fmpq_mat`` (FLINT) or a sparse ``DomainMatrix`` over QQ (SymPy, ``model.L_matrix_qq``)."""
+    ``fmpq_mat`` (FLINT) or a sparse ``DomainMatrix`` over QQ (SymPy, ``mass_operator.L_matrix_qq``)."""
     note_call()
     if current_engine() == "flint":
         return L_matrix_fmpq(gamma, J, b)
@@ -85,7 +90,7 @@ def divergence_at_fmpq(M: sp.Matrix, gamma: sp.Matrix, J: sp.Matrix, b) -> dict:
       \wedge e_k$), hence $\operatorname{tr}(L_\gamma^{-1}\partial_kL_\gamma) = 2b\operatorname{tr}
       (L_\gamma^{-1}P_k) = 2b\sum_r (Y_r)_{rk}$.
 
-    Wherever both engines run, :func:`symbolic.exact.zero_at_points` requires these values to
+    Wherever both engines run, :func:`symbolic.exact.identity.zero_at_points` requires these values to
     equal SymPy's, which forms the full inverse and every $\partial_kL_\gamma$ (no shortcut).
     """
     n = gamma.rows

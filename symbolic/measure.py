@@ -25,7 +25,7 @@ from collections.abc import Sequence
 
 import sympy as sp
 from chaplygin_nd.symbolic.algebra import commutator, so_basis, unvec, vec
-from chaplygin_nd.symbolic.model import L_matrix_qq
+from chaplygin_nd.symbolic.mass_operator import L_matrix_qq
 from sympy.polys.domains import QQ
 from sympy.polys.matrices import DomainMatrix
 
@@ -69,7 +69,7 @@ def chaplygin_divergence_at(M: sp.Matrix, gamma: sp.Matrix, J: sp.Matrix, b) -> 
     Then $\operatorname{div}(\rho X)/\rho = \texttt{div} + \sum_k \dot\gamma_k\,\partial_k\log\rho$ for
     any density $\rho(\gamma)$; e.g. $\rho = (\det L_\gamma)^{-1/2}$ (eq:invmeasuredet).
     """
-    from chaplygin_nd.symbolic import flint_engine  # the engine of this evaluation
+    from chaplygin_nd.symbolic.exact import flint_engine  # the engine of this evaluation
     flint_engine.note_call()
     if flint_engine.current_engine() == "flint":
         from chaplygin_nd.symbolic.flint_model import divergence_at_fmpq

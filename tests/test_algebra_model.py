@@ -2,7 +2,6 @@
 
 import pytest
 import sympy as sp
-from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import (
     commutator,
     hat,
@@ -15,12 +14,13 @@ from chaplygin_nd.symbolic.algebra import (
     vector_symbols,
     wedge,
 )
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.mass_operator import L_matrix_qq
 from chaplygin_nd.symbolic.measure import chaplygin_divergence_at
 from chaplygin_nd.symbolic.model import (
     L_gamma,
     L_matrix,
     L_matrix_derivative,
-    L_matrix_qq,
     angular_velocity,
     mass_tensor_symbols,
 )

@@ -256,7 +256,7 @@ def test_dir_of_the_package_is_clean():
 
 
 @pytest.mark.parametrize("module, argv", [
-    ("mutate_derivations", ["--target", "derivations", "--function", "fi_field.mod"]),
+    ("mutate_derivations", ["--target", "derivations", "--function", "search.sampled_field.mod"]),
     ("mutate_derivations", ["--sample", "5"]),
     ("mutate", ["--function", "section4.K"]),
 ])

@@ -1,6 +1,6 @@
 """The code generator: a hand edit of generated/ is caught, and output is deterministic.
 
-The stale check is :func:`symbolic.codegen.stale_report`, called by ``make verify``
+The stale check is :func:`symbolic.codegen.kernels.stale_report`, called by ``make verify``
 (``chaplygin verify --check-generated``). These tests edit a *temporary copy* of generated/, never
 the real files.
 """
@@ -14,46 +14,46 @@ import sys
 from pathlib import Path
 
 import pytest
-from chaplygin_nd.symbolic import codegen
+from chaplygin_nd.symbolic.codegen import kernels
 
 
 @pytest.fixture(scope="module")
 def fresh(tmp_path_factory) -> Path:
     """generated/ regenerated once into a temporary folder."""
     out = tmp_path_factory.mktemp("fresh")
-    codegen.write(out)
+    kernels.write(out)
     return out
 
 
 def test_checked_in_generated_is_current(fresh):
     """generated/ in the repository equals what symbolic/ produces now (else: `make generate`)."""
-    assert codegen.diff_report(codegen.GENERATED, fresh) == ""
+    assert kernels.diff_report(kernels.GENERATED, fresh) == ""
 
 
 def test_hand_edit_is_detected_with_diff_and_fix(fresh, tmp_path):
     """Editing one generated line makes the stale report non-empty, show the line and the fix."""
     copy = tmp_path / "generated"
-    shutil.copytree(codegen.GENERATED, copy)
+    shutil.copytree(kernels.GENERATED, copy)
     target = copy / "axisym.py"
     text = target.read_text()
     line = next(li for li in text.splitlines() if li.strip().startswith("out[0] = "))
     target.write_text(text.replace(line, line + " * 1.0000001", 1))
-    report = codegen.stale_report(copy)
+    report = kernels.stale_report(copy)
     assert "generated/ is stale" in report
     shown = report.splitlines()
     assert "-" + line + " * 1.0000001" in shown and "+" + line in shown  # the edit, and what is due
     assert "make generate" in report
     # a deleted file and an extra file are stale too
     target.write_text(text)  # restored: no difference (diff_report is stale_report's comparison)
-    assert codegen.diff_report(copy, fresh) == ""
+    assert kernels.diff_report(copy, fresh) == ""
     (copy / "reduced.py").unlink()
-    assert "reduced.py" in codegen.diff_report(copy, fresh)
+    assert "reduced.py" in kernels.diff_report(copy, fresh)
 
 
 def test_banner(fresh):
     """Every generated module names its producer, claims, input hash, 'do not edit' and op counts,
     and imports NumPy only."""
-    for stem, producer in codegen.MODULES:
+    for stem, producer in kernels.MODULES:
         text = (fresh / f"{stem}.py").read_text()
         head = text[:3000]
         assert producer in head and "DO NOT EDIT" in head and "Source hash (sha256" in head
@@ -69,10 +69,10 @@ def test_banner(fresh):
 def test_deterministic_across_hash_seeds(fresh, tmp_path):
     """Same input => byte-identical files, whatever PYTHONHASHSEED the generating process has."""
     out = tmp_path / "seeded"
-    code = f"from pathlib import Path; from symbolic.codegen import write; write(Path({str(out)!r}))"
+    code = f"from pathlib import Path; from symbolic.codegen.kernels import write; write(Path({str(out)!r}))"
     env = dict(os.environ, PYTHONHASHSEED="12345")
-    subprocess.run([sys.executable, "-c", code], check=True, env=env, cwd=codegen.ROOT, timeout=120)
-    assert codegen.diff_report(out, fresh) == ""
+    subprocess.run([sys.executable, "-c", code], check=True, env=env, cwd=kernels.ROOT, timeout=120)
+    assert kernels.diff_report(out, fresh) == ""
 
 
 def test_expression_builders_are_stamped_import_nothing_and_are_stale_checked(fresh, tmp_path):
@@ -86,4 +86,4 @@ def test_expression_builders_are_stamped_import_nothing_and_are_stale_checked(fr
     shutil.copytree(fresh, copy)
     target = copy / "expression_builders.py"
     target.write_text(text.replace("ops.rational(1, 2)", "ops.rational(1, 3)", 1))
-    assert "expression_builders.py" in codegen.diff_report(copy, fresh)
+    assert "expression_builders.py" in kernels.diff_report(copy, fresh)

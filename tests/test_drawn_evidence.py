@@ -54,7 +54,7 @@ def test_control_must_separate_on_both_indicators():
 @pytest.mark.slow
 def test_n5_quotient_and_integrals_at_another_seed():
     from chaplygin_nd.proofs import s6_open_reduced_n5 as s6
-    from chaplygin_nd.symbolic import points
+    from chaplygin_nd.symbolic.exact import points
 
     saved = points.ledger_seed()
     try:

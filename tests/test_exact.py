@@ -4,8 +4,8 @@ import random
 
 import pytest
 import sympy as sp
-from chaplygin_nd.symbolic import points
-from chaplygin_nd.symbolic.exact import exact_zero, rational_identity, zero_at_points
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.identity import exact_zero, rational_identity, zero_at_points
 
 g = sp.symbols("g1:4", real=True)
 a, b, x = sp.symbols("a b x")

@@ -1,4 +1,4 @@
-"""The second exact engine (symbolic/flint_engine.py, symbolic/flint_model.py): FLINT reads SymPy's
+"""The second exact engine (symbolic/exact/flint_engine.py, symbolic/flint_model.py): FLINT reads SymPy's
 expressions by a tree walk, decides the same zero tests as SymPy, disagreements raise, the
 FLINT-only mode decides alone, and the FLINT point routes give SymPy's exact values."""
 
@@ -8,11 +8,11 @@ import sys
 
 import pytest
 import sympy as sp
-from chaplygin_nd.symbolic import exact, flint_engine, points
 from chaplygin_nd.symbolic.algebra import skew_symbols
 from chaplygin_nd.symbolic.axisymmetric import mass_tensor
-from chaplygin_nd.symbolic.exact import rational_identity, zero_at_points
-from chaplygin_nd.symbolic.flint_engine import EngineDisagreement, FlintRing, use_engine
+from chaplygin_nd.symbolic.exact import flint_engine, identity, points
+from chaplygin_nd.symbolic.exact.flint_engine import EngineDisagreement, FlintRing, use_engine
+from chaplygin_nd.symbolic.exact.identity import rational_identity, zero_at_points
 from chaplygin_nd.symbolic.flint_model import divergence_at_fmpq
 from chaplygin_nd.symbolic.measure import chaplygin_divergence_at
 from chaplygin_nd.symbolic.model import angular_velocity
@@ -149,14 +149,14 @@ def test_generic_symbolic_identity_both_engines():
 
 
 def test_engine_note_names_the_engines():
-    note = exact.engine_note({("identity", "SymPy+FLINT"): 3, ("points", "FLINT"): 2})
+    note = identity.engine_note({("identity", "SymPy+FLINT"): 3, ("points", "FLINT"): 2})
     assert "identities SymPy+FLINT x3" in note and "points FLINT x2" in note
 
 
 def test_sympy_ground_types_are_gmpy_so_the_engines_share_no_code():
     env = {k: v for k, v in os.environ.items() if k != "SYMPY_GROUND_TYPES"}
     code = ("import chaplygin_nd, sympy; from sympy.external.gmpy import GROUND_TYPES; "
-            "from chaplygin_nd.symbolic.flint_engine import engine_label; "
+            "from chaplygin_nd.symbolic.exact.flint_engine import engine_label; "
             "print(GROUND_TYPES, engine_label(('sympy', 'flint')))")
     out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
                          check=True).stdout.split()

@@ -13,15 +13,20 @@ import itertools
 import numpy as np
 import pytest
 import sympy as sp
-from chaplygin_nd.symbolic import fi_basis, fi_field, fi_known, fi_new
-from chaplygin_nd.symbolic import first_integrals as fi
+from chaplygin_nd.symbolic.search import (
+    candidate_basis,
+    found_integral,
+    known_integrals,
+    sampled_field,
+)
+from chaplygin_nd.symbolic.search import integral_search as fi
 
 A, B = sp.Rational(-1, 3), sp.Rational(3, 2)
-GENERIC3 = fi_field.general((1, sp.Rational(3, 2), sp.Rational(7, 3)), sp.Rational(1, 2))
-P = fi_field.PRIMES[0]
+GENERIC3 = sampled_field.general((1, sp.Rational(3, 2), sp.Rational(7, 3)), sp.Rational(1, 2))
+P = sampled_field.PRIMES[0]
 
 
-# ---- fi_basis.coordinates: the linear forms of the module docstring -------------------------
+# ---- candidate_basis.coordinates: the linear forms of the module docstring -------------------------
 
 def _definition(n: int, planes: int):
     """(labels, vectors, weights) of the basis zeta_j = E_{2j-1} + i E_{2j}, its conjugate, then
@@ -45,9 +50,9 @@ def _definition(n: int, planes: int):
 
 @pytest.mark.parametrize("n, planes", [(3, 0), (4, 1), (5, 2), (5, 1)])
 def test_coordinates_are_the_linear_forms_of_the_definition(n, planes):
-    """Names, Gaussian-integer rows, weights and the reflections' action of fi_basis.coordinates
+    """Names, Gaussian-integer rows, weights and the reflections' action of candidate_basis.coordinates
     against u^T M v (u before v) and u^T gamma evaluated over QQ(i) at an integer point."""
-    co = fi_basis.coordinates(n, planes)
+    co = candidate_basis.coordinates(n, planes)
     labels, vecs, wts = _definition(n, planes)
     pairs = list(itertools.combinations(range(n), 2))
     assert co.names == tuple([f"M[{labels[a]},{labels[b]}]" for a, b in pairs]
@@ -80,10 +85,10 @@ def test_coordinates_are_the_linear_forms_of_the_definition(n, planes):
 def test_coordinates_refuse_more_planes_than_the_torus_has(n, planes, bound):
     """A maximal torus of SO(n-1) has floor((n-1)/2) planes: the error names that bound."""
     with pytest.raises(ValueError, match=rf"^planes must lie in 0\.\.{bound}$"):
-        fi_basis.coordinates(n, planes)
+        candidate_basis.coordinates(n, planes)
 
 
-# ---- fi_known.values: each generator's value against its definition over QQ ----------------
+# ---- known_integrals.values: each generator's value against its definition over QQ ----------------
 
 def _point(n: int, seed: int):
     """An exact point: integer skew M, gamma on the sphere (inverse stereographic projection of
@@ -97,11 +102,11 @@ def _point(n: int, seed: int):
     M = sp.zeros(n, n)
     for c, (i, j) in enumerate(pairs):
         M[i, j], M[j, i] = m[c], -m[c]
-    z = np.array([[x % P for x in m] + [fi_field.mod(x, P) for x in g]], dtype=np.int64)
+    z = np.array([[x % P for x in m] + [sampled_field.mod(x, P) for x in g]], dtype=np.int64)
     return M, g, z
 
 
-def _omega(model: fi_field.Model, M, g):
+def _omega(model: sampled_field.Model, M, g):
     """Omega from its definition L_gamma(Omega) = M (eq:M-O), L_gamma(X) = J X + X J +
     b ((X gamma) gamma^T - gamma (X gamma)^T), solved over QQ."""
     n = M.shape[0]
@@ -125,13 +130,13 @@ def _pf4(A, idx):
     return A[a, b] * A[c, d] - A[a, c] * A[b, d] + A[a, d] * A[b, c]
 
 
-def _expected(model: fi_field.Model, M, g, include_new: bool) -> dict:
+def _expected(model: sampled_field.Model, M, g, include_new: bool) -> dict:
     """The generators by definition (fi_known's docstring), exact rationals, by name."""
     n = M.shape[0]
     lam, sig = sp.symbols("lambda sigma")
     p = sp.Poly((M + sig * g * g.T - lam * sp.eye(n)).det(), lam, sig)
     out = {}
-    for gen in fi_known.generators(model, include_new):   # (-1)^n p: fi_known's docstring
+    for gen in known_integrals.generators(model, include_new):   # (-1)^n p: fi_known's docstring
         if gen.name.startswith("p0[lambda^"):
             out[gen.name] = (-1) ** n * p.coeff_monomial(lam ** int(gen.name[10:-1]))
         elif gen.name.startswith("p1[sigma lambda^"):
@@ -145,35 +150,35 @@ def _expected(model: fi_field.Model, M, g, include_new: bool) -> dict:
         assert v * v.T == M.adjugate()          # adj(M) = v v^T: the Pfaffians and their signs
         out["<v, gamma>"] = (v.T * g)[0, 0]
         if include_new:
-            num, den = fi_new.new_integral(M, g, model.a, model.b)
+            num, den = found_integral.new_integral(M, g, model.a, model.b)
             out["F"] = num / den
     return out
 
 
 @pytest.mark.parametrize("n, include_new", [(4, False), (5, True)])
 def test_known_values_are_the_generators_of_the_definition(n, include_new):
-    """fi_known.values at an exact point, column by column, against the definitions over QQ
+    """known_integrals.values at an exact point, column by column, against the definitions over QQ
     reduced mod p: a sign or a scale of one generator (which no rank sees) is caught. The
     coefficients of (-1)^n det(M + sigma gamma gamma^T - lambda), Pf M (n = 4), <v, gamma> with
     adj(M) = v v^T and F (n = 5), H = <M, Omega>/2 with Omega solved from eq:M-O."""
-    model = fi_field.axisymmetric(n, A, B)
+    model = sampled_field.axisymmetric(n, A, B)
     M, g, z = _point(n, 11)
-    got = fi_known.values(model, z, P, include_new)[0]
+    got = known_integrals.values(model, z, P, include_new)[0]
     want = _expected(model, M, g, include_new)
-    names = [gen.name for gen in fi_known.generators(model, include_new)]
+    names = [gen.name for gen in known_integrals.generators(model, include_new)]
     assert len(got) == len(names) and set(names) == set(want)
     for name in names:
-        assert int(got[names.index(name)]) == fi_field.mod(want[name], P), name
+        assert int(got[names.index(name)]) == sampled_field.mod(want[name], P), name
     assert want["H"] > 0      # the energy is positive definite in M (a check of _omega itself)
 
 
 def test_general_integral_for_n6_is_the_hodge_form_g():
-    """fi_new.general_integral's docstring: for n = 6 it is G of new_integral_6 (built from
+    """found_integral.general_integral's docstring: for n = 6 it is G of new_integral_6 (built from
     W = *(M ^ M)/8, another formula), equal at an exact point — its sign and scale included."""
     M, g, _ = _point(6, 5)
     a, b = sp.Rational(2, 9), sp.Rational(5, 3)
-    n1, d1 = fi_new.general_integral(M, g, a, b)
-    n2, d2 = fi_new.new_integral_6(M, g, a, b)
+    n1, d1 = found_integral.general_integral(M, g, a, b)
+    n2, d2 = found_integral.new_integral_6(M, g, a, b)
     assert d1 != 0 and n1 != 0 and n1 / d1 == n2 / d2
 
 
@@ -182,15 +187,15 @@ def test_general_integral_for_n6_is_the_hodge_form_g():
 def test_a_box_without_known_products_has_known_rank_zero_in_every_block():
     """n = 3, M-degree 1, gamma-degree 0: no product of the generators lies there (<M, gamma>
     needs gamma-degree 1), so every block's known rank is 0 (and the blocks are the basis')."""
-    assert fi_known.products(GENERIC3, 1, 0, 0) == []
+    assert known_integrals.products(GENERIC3, 1, 0, 0) == []
     ranks = fi.known_ranks(GENERIC3, 1, 0, 0, False)
-    assert ranks == {blk.character: 0 for blk in fi_basis.basis(3, 1, 0, 0).blocks}
+    assert ranks == {blk.character: 0 for blk in candidate_basis.basis(3, 1, 0, 0).blocks}
 
 
 @pytest.mark.parametrize("model, box, count", [
     (GENERIC3, (1, 0, 0), 0),                          # nothing M-linear without gamma
     (GENERIC3, (1, 1, 0), 1),                          # <M, gamma>: gamma-degree exactly 1
-    (fi_field.axisymmetric(4, A, B), (2, 0, 0), 2),    # the two Casimirs |M|^2, Pf M of so(4)
+    (sampled_field.axisymmetric(4, A, B), (2, 0, 0), 2),    # the two Casimirs |M|^2, Pf M of so(4)
 ])
 def test_boxes_at_the_lowest_gamma_degree_hold_their_integrals(model, box, count):
     """gamma-degree 0 and 1 boxes (d_gamma >= 0 is in the domain): the generators of gamma-degree
@@ -210,7 +215,7 @@ def test_the_numerators_of_a_d_squared_box_are_in_the_kernel():
 def test_the_rank_branch_gives_the_nullity_of_the_kernel_branch(monkeypatch):
     """Blocks above RECOVERY_MAX take nullity = columns - rank; with RECOVERY_MAX = 0 every block
     does, and the nullities equal the F_p kernel dimensions of the default run."""
-    model = fi_field.axisymmetric(4, A, B)
+    model = sampled_field.axisymmetric(4, A, B)
     kernel = fi.search_degree(model, 2, 4, 1)
     monkeypatch.setattr(fi, "RECOVERY_MAX", 0)
     ranked = fi.search_degree(model, 2, 4, 1)
@@ -222,9 +227,9 @@ def test_the_rank_branch_gives_the_nullity_of_the_kernel_branch(monkeypatch):
 def test_several_chunks_give_the_matrix_of_one(monkeypatch):
     """The condition rows are built in chunks of about CHUNK_ENTRIES entries (memory only): with
     chunks of a few rows the search decides every block as with one chunk."""
-    model = fi_field.axisymmetric(4, A, B)
+    model = sampled_field.axisymmetric(4, A, B)
     one = fi.search_degree(model, 2, 4, 1)
-    B_ = fi_basis.basis(4, 2, 4, model.planes)
+    B_ = candidate_basis.basis(4, 2, 4, model.planes)
     monkeypatch.setattr(fi, "CHUNK_ENTRIES", 7 * B_.size)
     chunked = fi.search_degree(model, 2, 4, 1)
     assert chunked.blocks == one.blocks and chunked.found == one.found == 4
@@ -234,7 +239,7 @@ def test_as_many_conditions_as_unknowns_settle_a_control_box(monkeypatch):
     """MARGIN = 0: each block gets exactly as many conditions as unknowns (every row counts:
     one dropped leaves a kernel that is not an integral); the control box still settles."""
     monkeypatch.setattr(fi, "MARGIN", 0)
-    r = fi.search_degree(fi_field.axisymmetric(4, A, B), 2, 4, 1)
+    r = fi.search_degree(sampled_field.axisymmetric(4, A, B), 2, 4, 1)
     assert (r.found, r.known, r.settled) == (4, 4, True)
 
 
@@ -243,17 +248,17 @@ def test_as_many_conditions_as_unknowns_settle_a_control_box(monkeypatch):
 def test_sixth_integral_pfaffian_vector_is_the_documented_one():
     """w_i = (-1)^i Pf(M without row and column i) (0-based), pinned where the Pfaffian is known in
     closed form: for M = E_12 + E_34 (the standard symplectic form on the first four coordinates)
-    Pf = 1, so w = (0, 0, 0, 0, 1); and at an integer point it is fi_new.pfaffian_vector (the
+    Pf = 1, so w = (0, 0, 0, 0, 1); and at an integer point it is found_integral.pfaffian_vector (the
     vector of F, another implementation of the same definition) with M w = 0. The row's N_F is
     quadratic in w and cannot see its sign."""
-    from chaplygin_nd.symbolic import sixth_integral
+    from chaplygin_nd.symbolic.family import sixth_integral
 
     M = sp.zeros(5, 5)
     M[0, 1], M[1, 0], M[2, 3], M[3, 2] = 1, -1, 1, -1
     assert sixth_integral.pfaffian_vector(M.tolist()) == [0, 0, 0, 0, 1]
     M, _g, _z = _point(5, 3)
     w = sixth_integral.pfaffian_vector(M.tolist())
-    assert sp.Matrix(w) == fi_new.pfaffian_vector(M) and M * sp.Matrix(w) == sp.zeros(5, 1)
+    assert sp.Matrix(w) == found_integral.pfaffian_vector(M) and M * sp.Matrix(w) == sp.zeros(5, 1)
     assert any(w)
 
 
@@ -264,32 +269,32 @@ def test_prove_symbolic_proves_the_integral_at_the_parameters_given():
 
     def spy(M, gamma, a, b):
         seen.append((a, b))
-        return fi_new.new_integral(M, gamma, a, b)
+        return found_integral.new_integral(M, gamma, a, b)
 
-    assert fi_new.prove_symbolic(3, A, B, builder=spy).ok
+    assert found_integral.prove_symbolic(3, A, B, builder=spy).ok
     assert seen == [(A, B)]
 
 
-# ---- fi_known.generators: the degrees of the new integrals (round 25) --------------------------
+# ---- known_integrals.generators: the degrees of the new integrals (round 25) --------------------------
 
-@pytest.mark.parametrize("n, name, integral", [(5, "F", fi_new.new_integral),
-                                               (6, "G", fi_new.new_integral_6)])
+@pytest.mark.parametrize("n, name, integral", [(5, "F", found_integral.new_integral),
+                                               (6, "G", found_integral.new_integral_6)])
 def test_the_new_integrals_generators_have_their_numerators_degrees(n, name, integral):
     """A generator's M-degree and gamma-degree are those of its numerator (the latter modulo the
     sphere), computed here from the symbolic numerator. The n = 6 branch (G) is one S6:first-
     integrals never takes: a mutant giving G gamma-degree 3 survived it."""
     from chaplygin_nd.symbolic.algebra import skew_symbols, vector_symbols
 
-    model = fi_field.axisymmetric(n, A, B)
-    gen = next(g for g in fi_known.generators(model, include_new=True) if g.name == name)
+    model = sampled_field.axisymmetric(n, A, B)
+    gen = next(g for g in known_integrals.generators(model, include_new=True) if g.name == name)
     M, gam = skew_symbols("m", n), vector_symbols("g", n)
     num, _ = integral(M, gam, model.a, model.b)
     assert gen.m_degree == sp.Poly(num, *sorted(M.free_symbols, key=str)).total_degree()
-    assert gen.g_degree == fi_known._sphere_degree(num, list(gam))
+    assert gen.g_degree == known_integrals._sphere_degree(num, list(gam))
     assert gen.d_power == 1
 
 
-# ---- fi_new.pfaffian and reduced5_invariants.K_matrix (round 25) -------------------------------
+# ---- found_integral.pfaffian and reduced5_invariants.K_matrix (round 25) -------------------------------
 
 @pytest.mark.parametrize("size", [0, 2, 3, 4, 6])
 def test_fi_new_pfaffian_is_the_definition(size):
@@ -297,17 +302,17 @@ def test_fi_new_pfaffian_is_the_definition(size):
     quadratic forms, blind to a sign: round 25's run), and 0 for an odd size (a branch no row
     takes)."""
     import definitions
-    from chaplygin_nd.symbolic import points
+    from chaplygin_nd.symbolic.exact import points
 
     A = points.skew_matrix(points.generator(size, "tests/test_fi_survivors pfaffian"), size) \
         if size else sp.zeros(0, 0)
-    assert fi_new.pfaffian(A) == (definitions.pfaffian(A) if size else 1)
+    assert found_integral.pfaffian(A) == (definitions.pfaffian(A) if size else 1)
 
 
 def test_k_matrix_is_the_upper_left_block_and_u_the_last_column():
-    """reduced5_invariants.K_matrix's docstring: K = (M_ij), i, j < 4, and u = (M_i5), i < 4. A
+    """reduction.invariants_n5.K_matrix's docstring: K = (M_ij), i, j < 4, and u = (M_i5), i < 4. A
     K with a fifth column or row survived the rows (they index it below 4; round 25)."""
-    from chaplygin_nd.symbolic import reduced5_invariants as ri
+    from chaplygin_nd.symbolic.reduction import invariants_n5 as ri
 
     Mm = [[10 * i + j for j in range(5)] for i in range(5)]
     K, u = ri.K_matrix(Mm)
@@ -316,10 +321,10 @@ def test_k_matrix_is_the_upper_left_block_and_u_the_last_column():
 
 
 def test_the_axisymmetric_model_carries_its_a_and_b():
-    """fi_field.axisymmetric: J = Id + a E_n E_n^T (eq:axisymm), the given b, kind and a. The
+    """sampled_field.axisymmetric: J = Id + a E_n E_n^T (eq:axisymm), the given b, kind and a. The
     search's counts are the same for every generic (a, b), so S6:first-integrals did not see a and
     b exchanged (round 25)."""
-    model = fi_field.axisymmetric(5, A, B)
+    model = sampled_field.axisymmetric(5, A, B)
     assert model.J == (1, 1, 1, 1, 1 + A) and model.b == B and model.a == A
     assert model.kind == "axisymmetric" and model.n == 5 and model.planes == 2
     assert all(isinstance(v, sp.Rational) for v in (*model.J, model.a, model.b))

@@ -1,4 +1,4 @@
-"""symbolic/flint_matrix.py (printed matrix formulas in fmpq arithmetic) and the one-solve FLINT
+"""symbolic/exact/flint_matrix.py (printed matrix formulas in fmpq arithmetic) and the one-solve FLINT
 divergence of symbolic/flint_model.py: equal, entry by entry, to SymPy's values."""
 
 from __future__ import annotations
@@ -7,10 +7,16 @@ import flint
 import pytest
 import sympy as sp
 from chaplygin_nd.proofs import s3_vertical_horizontal as s3
-from chaplygin_nd.symbolic import flint_model, points
+from chaplygin_nd.symbolic import flint_model
 from chaplygin_nd.symbolic.algebra import wedge
-from chaplygin_nd.symbolic.flint_engine import linear_algebra_calls, use_engine
-from chaplygin_nd.symbolic.flint_matrix import FlintMatrix, entries, formula_matrix, from_columns
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.flint_engine import linear_algebra_calls, use_engine
+from chaplygin_nd.symbolic.exact.flint_matrix import (
+    FlintMatrix,
+    entries,
+    formula_matrix,
+    from_columns,
+)
 from chaplygin_nd.symbolic.measure import chaplygin_divergence_at
 from chaplygin_nd.symbolic.printed import section3 as printed
 

@@ -4,11 +4,11 @@ r"""Every generated kernel against the derived expression it was emitted from.
    exact SymPy value of the derived expression = its mpmath evaluation at 50 digits (to 1e-45
    relative) = the NumPy kernel (to the float bound below).
 2. *Fidelity on seeded samples*: NumPy kernel vs the 50-digit mpmath evaluation of the derived
-   expression with exact constants (:mod:`symbolic.mpmath_eval`), error bounded by
+   expression with exact constants (:mod:`symbolic.exact.mpmath_eval`), error bounded by
    ``FIDELITY_ULPS`` machine epsilons times the formula's condition scale
    $\lvert f\rvert_{\mathrm{abs}}$ (absolute-value evaluation; Higham §3.1).
 
-The kernel list is read from :data:`symbolic.codegen.MODULES`, so a new kernel is covered here
+The kernel list is read from :data:`symbolic.codegen.kernels.MODULES`, so a new kernel is covered here
 without a new test. Independent references (linear solves, the definitions) and the hard cases
 live in test_kernels_axisym.py, test_kernels_fourd.py and test_kernels_sphere3d.py.
 """
@@ -21,8 +21,8 @@ import mpmath
 import numpy as np
 import pytest
 import sympy as sp
-from chaplygin_nd.symbolic.codegen import MODULES, kernels_of
-from chaplygin_nd.symbolic.mpmath_eval import mp_abs_eval, mp_eval
+from chaplygin_nd.symbolic.codegen.kernels import MODULES, kernels_of
+from chaplygin_nd.symbolic.exact.mpmath_eval import mp_abs_eval, mp_eval
 
 EPS = np.finfo(float).eps
 #: Straight-line float evaluation of a formula of depth k has error <= gamma_k |f|_abs with

@@ -1,6 +1,6 @@
 r"""4D block kernels and reduced 7D kernels against independent 50-digit references; hard cases.
 
-References come from the definitions only (:mod:`symbolic.mpmath_eval`): at a phase point
+References come from the definitions only (:mod:`symbolic.exact.mpmath_eval`): at a phase point
 $(k, u, q, x)$ given to 50 digits on $S^3$, $M = \begin{pmatrix}\hat k & u\\ -u^T & 0\end{pmatrix}$,
 $\Omega$ by an mpmath LU solve of $L_\gamma$ (eq:M-O), the field $([M,\Omega], -\Omega\gamma)$ in blocks,
 $F_1, F_2$, $F_3 = -[\lambda\sigma]\det(M + \sigma\gamma\gamma^T - \lambda)$ (numerical derivative at 50
@@ -26,7 +26,7 @@ import numpy as np
 import pytest
 from chaplygin_nd.generated import fourd as g4
 from chaplygin_nd.generated import reduced as gr
-from chaplygin_nd.symbolic.mpmath_eval import mp_block, mp_L_matrix, mp_Omega, mp_unblock
+from chaplygin_nd.symbolic.exact.mpmath_eval import mp_block, mp_L_matrix, mp_Omega, mp_unblock
 
 EPS = np.finfo(float).eps
 BOUND_ULPS = 8

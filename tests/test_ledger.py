@@ -15,7 +15,7 @@ from chaplygin_nd.ledger.catalog import (
     paper_labels,
 )
 from chaplygin_nd.ledger.registry import Verdict, registry
-from chaplygin_nd.symbolic.exact import rational_identity
+from chaplygin_nd.symbolic.exact.identity import rational_identity
 
 x = sp.Symbol("x")
 SECTIONING = re.compile(r"^S{1,2}:")

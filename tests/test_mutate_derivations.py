@@ -24,13 +24,13 @@ def test_the_sample_is_deterministic_and_covers_both_targets():
         assert first == md.sample(target, 30) and len(first) == 30
         assert len({m.function for m in first}) > 5
     assert "runtime.axisym.vertical_solution" in md.functions("runtime")
-    assert "reduced.horizontal_frequency_squared" in md.functions("derivations")
+    assert "reduction.reduced_n4.horizontal_frequency_squared" in md.functions("derivations")
     assert not any(k.split(".")[-1].startswith("_") for k in md.functions("runtime"))
 
 
 def test_a_mutant_of_the_emitted_frequency_is_killed_by_its_row():
     discover()
-    key = "reduced.horizontal_frequency_squared"
+    key = "reduction.reduced_n4.horizontal_frequency_squared"
     fn = md.functions("derivations")[key]
     m = next(m for m, _ in mutate.all_mutants(key, fn) if "2 * b * h" in m.description
              and m.operator == "sign")
@@ -126,7 +126,7 @@ def test_planning_says_what_it_runs_and_counts_rows_and_tests(capsys):
     from chaplygin_nd.ledger.phase import Phase
 
     discover()
-    key = "reduced.horizontal_frequency_squared"
+    key = "reduction.reduced_n4.horizontal_frequency_squared"
     m = next(iter(mutate.all_mutants(key, md.functions("derivations")[key])))[0]
     tasks = md.plan("derivations", [m], jobs=1)
     out = capsys.readouterr().out
@@ -144,16 +144,16 @@ def test_planning_says_what_it_runs_and_counts_rows_and_tests(capsys):
 
 def test_values_holding_arrays_are_compared_field_by_field_and_never_raise():
     """The comparers of the mutation tools on a derivation's dataclass of arrays
-    (fi_basis.Coordinates): the dataclass's own ``==`` raises on arrays, which once aborted the
+    (candidate_basis.Coordinates): the dataclass's own ``==`` raises on arrays, which once aborted the
     row that compared, and the few calls compared before were reported "equivalent". Field by
     field, arrays bit for bit; a ``field(compare=False)`` (a time taken) is no part of the value."""
     import dataclasses
 
     import numpy as np
     from chaplygin_nd.ledger.mutate_replay import identical
-    from chaplygin_nd.symbolic import fi_basis
+    from chaplygin_nd.symbolic.search import candidate_basis
 
-    one, same = fi_basis.coordinates(5, 2), fi_basis.coordinates(5, 2)
+    one, same = candidate_basis.coordinates(5, 2), candidate_basis.coordinates(5, 2)
     other = dataclasses.replace(one, re=2 * one.re)
     for compare in (identical, mutate._same):
         assert compare(one, same) is True
@@ -174,13 +174,13 @@ def test_an_equivalence_check_cut_short_is_not_equal(monkeypatch):
     """``_equivalence`` runs the row with a comparer at every call; when the row does not run to
     its end as unmutated (here: it raises after one call), the calls compared are not all the
     row's calls, so the mutant is not equivalent."""
-    from chaplygin_nd.symbolic import fi_field
+    from chaplygin_nd.symbolic.search import sampled_field
 
-    fn = fi_field.mod
+    fn = sampled_field.mod
     original = fn.__code__
 
     def row_that_dies(claim_id, budget=None, base=None):
-        fi_field.mod(1, 5)
+        sampled_field.mod(1, 5)
         return ("error",), "raised"
 
     monkeypatch.setattr(mutate, "run_row", row_that_dies)
@@ -214,7 +214,7 @@ def test_kept_records_of_mutants_the_code_no_longer_has_are_dropped(monkeypatch,
     """--resume / --rerun keep an earlier run's records only for mutants the code still has: a
     record whose line moved (here: a line the function does not have) is dropped, with one line,
     and its function's mutants as they are now run as undecided."""
-    key = "reduced.horizontal_frequency_squared"
+    key = "reduction.reduced_n4.horizontal_frequency_squared"
     mutants = [m for m, _ in mutate.all_mutants(key, md.functions("derivations")[key])]
     monkeypatch.setattr(md, "sample", lambda target, size, seed=md.SEED: mutants)
     real = {"target": "derivations", "function": key, "outcome": "killed",
@@ -306,8 +306,8 @@ def test_a_replay_that_never_returns_is_cut_at_the_budget_and_the_check_is_run(m
     monkeypatch.setattr(md, "_run_check",
                         lambda fn, code, original, check, base, seconds: (ran.append(check) or True,
                                                                           "ran past its budget"))
-    fn = md.functions("derivations")["reduced.horizontal_frequency_squared"]
-    m = mutate.all_mutants("reduced.horizontal_frequency_squared", fn)[0][0]
+    fn = md.functions("derivations")["reduction.reduced_n4.horizontal_frequency_squared"]
+    m = mutate.all_mutants("reduction.reduced_n4.horizontal_frequency_squared", fn)[0][0]
     task = NS(mutant=m, rows=(("S5:H-linear", ("holds",), 0.01),), emitted=frozenset())
     record = {}
     md._decide_by_rows(task, fn, fn.__code__, record)
@@ -320,7 +320,7 @@ def test_values_of_a_slots_class_without_equality_are_compared_attribute_by_attr
     identity, so a mutant that only swapped the factors of a product (the same dual number)
     "differed" at every call and survived."""
     from chaplygin_nd.ledger.mutate_replay import identical
-    from chaplygin_nd.symbolic.wedge_integrals import _Dual
+    from chaplygin_nd.symbolic.family.wedge_integrals import _Dual
 
     x, y = _Dual(2, 3), _Dual(5, 7)
     assert identical(x * y, y * x) and mutate._same(x * y, y * x)

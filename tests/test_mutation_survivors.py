@@ -169,9 +169,9 @@ def test_parse_model_builds_the_model_the_user_gave():
     """chaplygin first-integrals: a and b (or J and b) reach the model in their places (eq:axisymm:
     J = Id + a E_n E_n^T; eq:Inertia: J = diag(J)); the search's tests only used a = b."""
     import sympy as sp
-    from chaplygin_nd.symbolic import fi_cli
+    from chaplygin_nd.symbolic.search import command
 
-    m = fi_cli.parse_model(4, "1/2", "3", None)
+    m = command.parse_model(4, "1/2", "3", None)
     assert (m.n, m.J, m.b) == (4, (1, 1, 1, sp.Rational(3, 2)), 3)
-    g = fi_cli.parse_model(3, None, "2", "1,2,3")
+    g = command.parse_model(3, None, "2", "1,2,3")
     assert (g.n, g.J, g.b, g.kind) == (3, (1, 2, 3), 2, "general")

@@ -8,8 +8,8 @@ from chaplygin_nd.ledger.catalog import discover
 from chaplygin_nd.ledger.registry import Verdict, registry
 from chaplygin_nd.proofs.s4_common import combine
 from chaplygin_nd.proofs.s5_common import phase_point, reduced_check
-from chaplygin_nd.symbolic import reduced_invariants as ri
-from chaplygin_nd.symbolic.exact import Check
+from chaplygin_nd.symbolic.exact.identity import Check
+from chaplygin_nd.symbolic.reduction import invariants_n4 as ri
 
 
 def test_empty_conjunctions_raise():

@@ -66,20 +66,20 @@ def test_the_stored_map_is_what_the_tracer_records():
 
 def test_recorder_sees_derivations_and_cache_hits():
     from chaplygin_nd.symbolic import vertical
-    from chaplygin_nd.symbolic.reduced import horizontal_blocks
+    from chaplygin_nd.symbolic.reduction.reduced_n4 import horizontal_blocks
 
     vertical.zeta_coefficient()                     # warm the lru cache: the next call is a hit
     with reach.Recorder() as rec:
         horizontal_blocks(sp.Rational(1, 2), 1, 3)  # from-import route
         vertical.zeta_coefficient()                 # a cache hit: no trampoline runs
-    assert {"reduced.horizontal_blocks", "vertical.zeta_coefficient"} <= set(rec.derived())
+    assert {"reduction.reduced_n4.horizontal_blocks", "vertical.zeta_coefficient"} <= set(rec.derived())
     assert not set(rec.printed())
 
 
 def test_unreached_emitted_flags_an_emitted_derivation_no_row_calls():
-    emitted = ["reduced.horizontal_blocks", "reduced.horizontal_frequency_squared"]
-    rows = {"S5:H-linear-nD": ["reduced.horizontal_blocks"]}
-    assert reach.unreached_emitted(rows, emitted) == ["reduced.horizontal_frequency_squared"]
+    emitted = ["reduction.reduced_n4.horizontal_blocks", "reduction.reduced_n4.horizontal_frequency_squared"]
+    rows = {"S5:H-linear-nD": ["reduction.reduced_n4.horizontal_blocks"]}
+    assert reach.unreached_emitted(rows, emitted) == ["reduction.reduced_n4.horizontal_frequency_squared"]
 
 
 def test_every_emitted_derivation_is_reached_by_a_ledger_row():
@@ -87,7 +87,7 @@ def test_every_emitted_derivation_is_reached_by_a_ledger_row():
     (``make verify`` checks the same on its live run)."""
     derived, stored_emitted = reach.load_derived()
     emitted = reach.emitted_derivations()
-    assert "reduced.horizontal_frequency_squared" in emitted and "reduced.horizontal_blocks" in emitted
+    assert "reduction.reduced_n4.horizontal_frequency_squared" in emitted and "reduction.reduced_n4.horizontal_blocks" in emitted
     assert emitted == stored_emitted, "refresh the map: python -m chaplygin_nd.ledger.remap"
     missing = reach.unreached_emitted(derived, emitted)
     assert missing == [], f"emitted derivations reached by no row: {missing}"

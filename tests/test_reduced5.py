@@ -2,9 +2,9 @@ r"""The $SO(4)$-reduced $n = 5$ sphere (row S6:reduced-n5): kernels against 50-d
 reduced orbit against the full orbit, and the derivation's safeguards.
 
 References from the definitions only: at a phase point $(M, \gamma)$ given to 50 digits on $S^4$,
-$\Omega$ by an mpmath LU solve of $L_\gamma$ (eq:M-O, :mod:`symbolic.mpmath_eval`), the field
+$\Omega$ by an mpmath LU solve of $L_\gamma$ (eq:M-O, :mod:`symbolic.exact.mpmath_eval`), the field
 $([M, \Omega], -\Omega\gamma)$, and $\dot r$ by the chain rule along it — the directional derivative of
-the generators (their definition, :func:`symbolic.reduced5_invariants.generators_from`) computed
+the generators (their definition, :func:`symbolic.reduction.invariants_n5.generators_from`) computed
 exactly with dual numbers — never the reduced field itself.
 
 Error: ``ulps = |kernel - ref| / (eps * scale)``, scale of component $f$ of $M$-degree $k$:
@@ -19,7 +19,7 @@ import mpmath
 import numpy as np
 import pytest
 from chaplygin_nd.generated import reduced5 as g5
-from chaplygin_nd.symbolic.mpmath_eval import mp_Omega, mp_unvec
+from chaplygin_nd.symbolic.exact.mpmath_eval import mp_Omega, mp_unvec
 
 EPS = np.finfo(float).eps
 #: measured maximum over the cases below: 0.87 ulps (invariants), 0.53 ulps (field)
@@ -85,7 +85,7 @@ def _point(rng, case):
 
 def _reference(Mv, gm, a, b):
     """(r, rdot, ell, m) at the point, from the definitions (module docstring)."""
-    from chaplygin_nd.symbolic.reduced5_invariants import generators_from
+    from chaplygin_nd.symbolic.reduction.invariants_n5 import generators_from
 
     M = mp_unvec(Mv, 5)
     Om = mp_Omega(M, gm, mpmath.mpf(a), mpmath.mpf(b))
@@ -97,7 +97,7 @@ def _reference(Mv, gm, a, b):
     names = ("Ap", "Am", "B", "G", "Ep", "Em", "Suu", "Suq", "Sqq")
     r = [gm[4]] + [gens[n].v for n in names]
     rdot = [gd[4]] + [gens[n].w for n in names]
-    from chaplygin_nd.symbolic.mpmath_eval import mp_L_matrix
+    from chaplygin_nd.symbolic.exact.mpmath_eval import mp_L_matrix
 
     L = np.array(mp_L_matrix(gm, mpmath.mpf(a), mpmath.mpf(b)).tolist(), dtype=float)
     ell = float(np.linalg.norm(np.linalg.inv(L), 2))
@@ -227,7 +227,7 @@ def test_pfaffian_vector_signs_follow_the_definition():
     E_pq + E_rs on the four indices other than i (p < q < r < s), the 4x4 Pfaffian of M without i is
     M_pq M_rs = 1 and every other minor keeps a zero row, so w = (-1)^i e_i. The integral of
     S6:sixth-integral-n5 is quadratic in w, so no row sees the sign; this test does."""
-    from chaplygin_nd.symbolic import sixth_integral as si
+    from chaplygin_nd.symbolic.family import sixth_integral as si
 
     for i in range(5):
         p, q, r, s = (j for j in range(5) if j != i)
@@ -279,9 +279,9 @@ def test_wedge_integral_H2_is_the_sixth_integral_for_n5():
     """S6:wedge-integrals at n = 5: H_2 = <M^M, (2 + D_B)^{-1} M^M> = (|w|^2 + F)/(2 + a + b) exactly,
     F the integral of S6:sixth-integral-n5 (so the two rows name the same new integral)."""
     import sympy as sp
-    from chaplygin_nd.symbolic import points
-    from chaplygin_nd.symbolic import sixth_integral as si
-    from chaplygin_nd.symbolic import wedge_integrals as wi
+    from chaplygin_nd.symbolic.exact import points
+    from chaplygin_nd.symbolic.family import sixth_integral as si
+    from chaplygin_nd.symbolic.family import wedge_integrals as wi
 
     rng = points.generator(7, "H2 vs F")
     for _ in range(3):
@@ -296,8 +296,8 @@ def test_wedge_integral_rate_detects_a_wrong_operator():
     """The exact rate of S6:wedge-integrals is zero for (2 + D_B)^{-1} and non-zero for (3 + D_B)^{-1}
     (n = 6, k = 2, both engines): the check can fail."""
     import sympy as sp
-    from chaplygin_nd.symbolic import points
-    from chaplygin_nd.symbolic import wedge_integrals as wi
+    from chaplygin_nd.symbolic.exact import points
+    from chaplygin_nd.symbolic.family import wedge_integrals as wi
 
     rng = points.generator(8, "rate")
     M, g = points.skew_matrix(rng, 6), points.sphere_point(rng, 6)
@@ -345,7 +345,7 @@ def test_generator_products_are_every_exponent_vector_once_in_the_documented_ord
     the order is documented, and fixes how the published coefficients are listed)."""
     import itertools
 
-    from chaplygin_nd.symbolic import reduced5_invariants as ri
+    from chaplygin_nd.symbolic.reduction import invariants_n5 as ri
 
     ranges = [range(min(deg[t] // d[t] for t in range(3) if d[t]) + 1)
               for d in (ri.TRIDEGREE[name] for name in ri.NAMES)]
@@ -360,7 +360,7 @@ def test_generation_check_reports_the_counts_of_its_definition():
     the tridegree, ``rank`` the rank of their values (at most ``products``, at most the invariant
     dimension, which it must equal for ``spans``). Round 25's mutation run: S6:reduced-n5 reads
     only ``spans``, so a count of 1 and a rank of 1 for a tridegree without products survived it."""
-    from chaplygin_nd.symbolic import reduced5_invariants as ri
+    from chaplygin_nd.symbolic.reduction import invariants_n5 as ri
 
     rows = ri.generation_check([(1, 0, 0), (3, 2, 0), (2, 2, 2)], seed=3)
     assert [r["deg"] for r in rows] == [(1, 0, 0), (3, 2, 0), (2, 2, 2)]
@@ -377,7 +377,7 @@ def test_the_reduced_field_and_integrals_are_their_numerators_over_their_denomin
     others polynomials), which no row and no test called (round 25's run: a field times D and
     other changes survived)."""
     import sympy as sp
-    from chaplygin_nd.symbolic import reduced5 as r5
+    from chaplygin_nd.symbolic.reduction import reduced_n5 as r5
 
     field, numerators = r5.field(), r5.field_numerators()
     assert list(field) == list(numerators)

@@ -13,8 +13,8 @@ from chaplygin_nd.ledger import graph, report
 from chaplygin_nd.ledger.catalog import Row
 from chaplygin_nd.ledger.registry import KINDS, NEEDS_KIND, VERDICTS, Part, Verdict
 from chaplygin_nd.ledger.runner import Result, run, select
-from chaplygin_nd.symbolic import points
-from chaplygin_nd.symbolic.exact import Check, Counterexample, rational_identity
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.identity import Check, Counterexample, rational_identity
 
 x = sp.Symbol("x")
 TRUE, FALSE = rational_identity(x - x), rational_identity(x - 1)
@@ -111,7 +111,7 @@ def test_markdown_keeps_prose_out_of_math_and_shows_each_formula_once(tmp_path):
 
 
 def test_a_stale_generated_folder_gives_a_report_that_says_stale(tmp_path, monkeypatch):
-    import chaplygin_nd.symbolic.codegen as codegen
+    import chaplygin_nd.symbolic.codegen.kernels as codegen
 
     real_select = cli.select
     monkeypatch.setattr(cli, "ROOT", tmp_path)

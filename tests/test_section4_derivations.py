@@ -10,7 +10,6 @@ import pytest
 import sympy as sp
 from chaplygin_nd.ledger.catalog import all_rows, discover
 from chaplygin_nd.ledger.registry import registry
-from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import commutator, unvec, vec
 from chaplygin_nd.symbolic.axisym_inverse import (
     inverse_closed_form,
@@ -27,6 +26,7 @@ from chaplygin_nd.symbolic.axisymmetric import (
     mass_tensor,
     x,
 )
+from chaplygin_nd.symbolic.exact import points
 from chaplygin_nd.symbolic.model import angular_velocity
 from chaplygin_nd.symbolic.vertical import chi, inertia_tilde, vertical_point, zeta
 from sympy.polys.matrices import DomainMatrix

@@ -16,10 +16,10 @@ from __future__ import annotations
 import mpmath as mp
 import pytest
 import sympy as sp
-from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import commutator
 from chaplygin_nd.symbolic.axisym_inverse import inverse_closed_form
 from chaplygin_nd.symbolic.axisymmetric import E_n, L_matrix_axisym
+from chaplygin_nd.symbolic.exact import points
 from chaplygin_nd.symbolic.vertical import vertical_point, zeta
 
 SEED = 3_20261121

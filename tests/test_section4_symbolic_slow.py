@@ -17,7 +17,7 @@ from chaplygin_nd.symbolic.axisym_inverse import (
     inverse_numerator,
 )
 from chaplygin_nd.symbolic.axisymmetric import E_n, L_gamma_axisym
-from chaplygin_nd.symbolic.exact import rational_identity
+from chaplygin_nd.symbolic.exact.identity import rational_identity
 from chaplygin_nd.symbolic.printed import section4 as printed
 from chaplygin_nd.symbolic.vertical import vertical_point, zeta
 

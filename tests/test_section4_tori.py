@@ -7,9 +7,9 @@ import sympy as sp
 from chaplygin_nd.ledger.catalog import discover
 from chaplygin_nd.ledger.registry import registry
 from chaplygin_nd.proofs import s4_vertical_tori as tori
-from chaplygin_nd.symbolic import points
 from chaplygin_nd.symbolic.algebra import wedge
 from chaplygin_nd.symbolic.axisymmetric import E_n
+from chaplygin_nd.symbolic.exact import points
 from chaplygin_nd.symbolic.vertical import vertical_point, zeta
 
 

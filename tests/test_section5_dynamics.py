@@ -6,7 +6,7 @@ r"""Section 5 as dynamics: the derived 4D field, the reduced field and the close
 * a steady rotation ($\eta_0\times\xi_0 = 0$) keeps $\Omega$ constant and follows
   $M(t) = e^{-\Omega_0 t}M_0e^{\Omega_0 t}$, $\gamma(t) = e^{-\Omega_0 t}\gamma_0$.
 
-The right-hand sides are the derived numerators of :mod:`symbolic.fourd` / :mod:`symbolic.reduced`
+The right-hand sides are the derived numerators of :mod:`symbolic.fourd` / :mod:`symbolic.reduction.reduced_n4`
 evaluated term by term with exact rational coefficients converted at the working precision.
 """
 
@@ -18,9 +18,11 @@ import pytest
 import scipy.integrate
 import scipy.linalg
 import sympy as sp
-from chaplygin_nd.symbolic import fourd, points, reduced
-from chaplygin_nd.symbolic import reduced_invariants as ri
+from chaplygin_nd.symbolic import fourd
+from chaplygin_nd.symbolic.exact import points
 from chaplygin_nd.symbolic.printed import section5 as printed
+from chaplygin_nd.symbolic.reduction import invariants_n4 as ri
+from chaplygin_nd.symbolic.reduction import reduced_n4
 
 
 @pytest.fixture(autouse=True)
@@ -62,15 +64,15 @@ def _four_d_rhs():
 
 
 def _reduced_rhs():
-    X = reduced.field_numerators()
+    X = reduced_n4.field_numerators()
     comps = {n: compile_poly(p, ri.INV_GENS) for n, p in X.items()}
-    Dn = compile_poly(ri.INV_RING(sp.expand(reduced.D)), ri.INV_GENS)
+    Dn = compile_poly(ri.INV_RING(sp.expand(reduced_n4.D)), ri.INV_GENS)
 
     def rhs(a, b, z):
         A, B, E, G, F1, x, delta = z
         vals = [a, b, x, A, B, E, G, F1, delta]
         d = Dn(vals)
-        return [comps[n](vals) / d for n in reduced.COORDS]
+        return [comps[n](vals) / d for n in reduced_n4.COORDS]
     return rhs
 
 
@@ -132,7 +134,7 @@ def _level_values(a_, b_, y):
     inv = {ri.A: (k.T * k)[0], ri.B: (u.T * u)[0], ri.E: (k.T * q)[0], ri.G: (u.T * q)[0],
            ri.F1: (k.T * u)[0], ri.delta: (q.T * k.cross(u))[0], fourd.x: x,
            fourd.a: a_, fourd.b: b_}
-    ints = reduced.integrals()
+    ints = reduced_n4.integrals()
     return inv[ri.G], ints["H"].xreplace(inv), ints["F2"].xreplace(inv)
 
 
@@ -142,7 +144,7 @@ def test_horizontal_closed_form_matches_4d_flow(seed):
     G0, h, f2 = _level_values(a_, b_, y0)
     x0 = y0[9]
     assert G0 != 0
-    nu2 = reduced.horizontal_frequency_squared(h, f2).xreplace({fourd.a: a_, fourd.b: b_})
+    nu2 = reduced_n4.horizontal_frequency_squared(h, f2).xreplace({fourd.a: a_, fourd.b: b_})
     nu = float(sp.sqrt(nu2))
     fld = _float_field()(float(a_), float(b_))
     T = 4.0

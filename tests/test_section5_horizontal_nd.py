@@ -8,7 +8,7 @@ from __future__ import annotations
 import pytest
 from chaplygin_nd.proofs import s5_horizontal_nd as row
 from chaplygin_nd.proofs.s4_common import SAMPLERS
-from chaplygin_nd.symbolic.exact import rational_identity
+from chaplygin_nd.symbolic.exact.identity import rational_identity
 
 CHECKED = [i for i in range(len(row.NAMES)) if i != row.CONSERVATION]
 

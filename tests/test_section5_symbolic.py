@@ -18,9 +18,11 @@ import sympy as sp
 from chaplygin_nd.ledger.catalog import all_rows, claims_rows, discover
 from chaplygin_nd.ledger.registry import registry
 from chaplygin_nd.proofs.s5_common import reduced_check, ring_on_P
-from chaplygin_nd.symbolic import fourd, points, reduced
-from chaplygin_nd.symbolic import reduced_invariants as ri
+from chaplygin_nd.symbolic import fourd
+from chaplygin_nd.symbolic.exact import points
 from chaplygin_nd.symbolic.model import angular_velocity
+from chaplygin_nd.symbolic.reduction import invariants_n4 as ri
+from chaplygin_nd.symbolic.reduction import reduced_n4
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -75,8 +77,8 @@ def test_reduced_field_is_chain_rule_of_4d_field(seed):
              "delta": d(qd, k.cross(u)) + d(q, kd.cross(u)) + d(q, k.cross(ud))}
     inv = {ri.A: d(k, k), ri.B: d(u, u), ri.E: d(k, q), ri.G: d(u, q), ri.F1: d(k, u),
            ri.delta: d(q, k.cross(u)), fourd.x: pt["x"], fourd.a: pt["a"], fourd.b: pt["b"]}
-    X = reduced.field()
-    for n in reduced.COORDS:
+    X = reduced_n4.field()
+    for n in reduced_n4.COORDS:
         assert sp.Rational(X[n].xreplace(inv)) == sp.Rational(chain[n]), n
 
 
@@ -97,7 +99,7 @@ def test_helpers_refute_false_identities_on_phase_space():
     R = fourd.RV
     chk = ring_on_P(fourd.dot(R["q"], R["q"]) + R["x"] ** 2 - 1 + R["a"] * R["x"], "probe ring")
     assert not chk and chk.counterexample is not None
-    X = reduced.field()
+    X = reduced_n4.field()
     chk = reduced_check(X["G"] - X["G"] * (1 + fourd.x * ri.delta / 7), "probe reduced")
     assert not chk
     pt = dict(chk.counterexample.point)
@@ -115,7 +117,7 @@ def test_every_section5_row_has_a_proof():
 
 
 def test_derivations_do_not_import_printed():
-    for name in ("fourd.py", "reduced.py", "reduced_invariants.py"):
+    for name in ("fourd.py", "reduction/reduced_n4.py", "reduction/invariants_n4.py"):
         text = (ROOT / "symbolic" / name).read_text()
         assert "printed" not in "".join(line for line in text.splitlines()
                                         if line.startswith(("import", "from"))), name
@@ -126,7 +128,7 @@ def test_reduce_delta_replaces_delta_squared_by_det_lambda():
     Lambda, delta^3 -> det Lambda * delta, delta and delta-free terms unchanged. S5:red-measure
     reduces a residual that is zero either way, so wrong powers and a negated result survived it
     (round 25's mutation run)."""
-    from chaplygin_nd.symbolic import reduced_invariants as ri
+    from chaplygin_nd.symbolic.reduction import invariants_n4 as ri
 
     d, A, E = ri._delta, ri._A, ri._E
     dL = ri.det_Lambda()

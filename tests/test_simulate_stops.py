@@ -139,7 +139,7 @@ def test_codegen_help_prints_usage_and_writes_nothing():
 
     before = digest()
     mtimes = {p.name: p.stat().st_mtime_ns for p in (ROOT / "generated").glob("*.py")}
-    r = subprocess.run([sys.executable, "-m", "chaplygin_nd.symbolic.codegen", "-h"], capture_output=True,
+    r = subprocess.run([sys.executable, "-m", "chaplygin_nd.symbolic.codegen.kernels", "-h"], capture_output=True,
                        text=True, cwd=ROOT, timeout=60)
     assert r.returncode == 0 and r.stdout.startswith("usage:") and "wrote" not in r.stdout
     assert digest() == before

@@ -1,10 +1,10 @@
-"""symbolic.sympy_fraction: the SymPy engine's one-cancellation reading of an expression equals
+"""symbolic.exact.sympy_fraction: the SymPy engine's one-cancellation reading of an expression equals
 ``FracField.from_expr`` (numerator and denominator), and refuses what is not a rational function."""
 
 import pytest
 import sympy as sp
-from chaplygin_nd.symbolic import exact
-from chaplygin_nd.symbolic.sympy_fraction import reduced_fraction
+from chaplygin_nd.symbolic.exact import identity
+from chaplygin_nd.symbolic.exact.sympy_fraction import reduced_fraction
 from sympy.polys.fields import field
 from sympy.polys.orderings import lex
 
@@ -51,7 +51,7 @@ def test_numerator_polynomial_on_the_sphere():
     """The engine's entry point: an identity on the circle (numerator in the ideal) and one off."""
     g1, g2 = sp.symbols("g1 g2")
     gens = [g2, g1, a]
-    num, den = exact.numerator_polynomial((g1**2 + g2**2 - 1) * a / (a + 1), gens, (g1, g2))
+    num, den = identity.numerator_polynomial((g1**2 + g2**2 - 1) * a / (a + 1), gens, (g1, g2))
     assert not num
-    num, den = exact.numerator_polynomial(g1**2 / (a + 1), gens, (g1, g2))
+    num, den = identity.numerator_polynomial(g1**2 / (a + 1), gens, (g1, g2))
     assert num and den == den.ring(a + 1)

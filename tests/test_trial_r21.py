@@ -29,8 +29,8 @@ def test_an_option_after_an_option_is_still_missing_its_value(capsys):
 
 
 def test_first_integrals_reads_the_documented_negative_a(capsys):
-    """symbolic/fi_cli.py documents ``--a -1/3``; it was refused as a missing value."""
-    from chaplygin_nd.symbolic.fi_cli import main
+    """symbolic/search/command.py documents ``--a -1/3``; it was refused as a missing value."""
+    from chaplygin_nd.symbolic.search.command import main
 
     assert exit_code(main, ["4", "2", "--a", "-5/3", "--b", "3/2"]) == 2  # parsed, then judged
     assert "a = -5/3 is outside the domain a >= -1" in one_error_line(capsys)
@@ -59,7 +59,7 @@ def test_first_integrals_refuses_a_bad_json_path_before_the_search(tmp_path, mon
                                                                    where, needle):
     """``--json /tmp`` ran the search, then raised IsADirectoryError and left ``/tmpXXXX.tmp``;
     ``--json ''`` wrote nothing without a word; a missing folder raised FileNotFoundError."""
-    from chaplygin_nd.symbolic.fi_cli import main
+    from chaplygin_nd.symbolic.search.command import main
 
     monkeypatch.chdir(tmp_path)
     assert exit_code(main, ["4", "1", "--a", "0", "--b", "1", "--json", where]) == 2
@@ -70,7 +70,7 @@ def test_first_integrals_refuses_a_bad_json_path_before_the_search(tmp_path, mon
 def test_first_integrals_json_is_written_whole(tmp_path, monkeypatch):
     import json
 
-    from chaplygin_nd.symbolic.fi_cli import main
+    from chaplygin_nd.symbolic.search.command import main
 
     monkeypatch.chdir(tmp_path)
     assert exit_code(main, ["4", "1", "--a", "-1/3", "--b", "3/2", "--json", "t.json"]) == 0

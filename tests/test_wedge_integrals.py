@@ -1,4 +1,4 @@
-"""symbolic/wedge_integrals.py (row S6:wedge-integrals) against its definitions, at exact points.
+"""symbolic/family/wedge_integrals.py (row S6:wedge-integrals) against its definitions, at exact points.
 
 The row checks dH_k/dt = 0 and a Jacobian rank. Both are blind to some errors: each of the two
 terms of the rate vanishes on its own at the points checked, so a wrong factor on either term
@@ -15,8 +15,9 @@ from __future__ import annotations
 import definitions
 import pytest
 import sympy as sp
-from chaplygin_nd.symbolic import model, points
-from chaplygin_nd.symbolic import wedge_integrals as wi
+from chaplygin_nd.symbolic import model
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.family import wedge_integrals as wi
 
 
 def _point(n: int, seed: int = 7):

@@ -1,4 +1,4 @@
-"""Row S6:wedge-integrals at n = 6 as a symbolic identity in a, b (symbolic.wedge_n6): the residual of
+"""Row S6:wedge-integrals at n = 6 as a symbolic identity in a, b (symbolic.family.wedge_n6): the residual of
 dH_2/dt (164 220 terms) is zero modulo |gamma|^2 = 1 (FLINT fmpq_mpoly divmod, ~7 s), and its value at
 seeded rational points of P with rational a, b is zero in SymPy's own arithmetic (the second engine
 on the same polynomial; SymPy's full sparse reduction took 600 s, too slow for the suite). The exact
@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import pytest
 import sympy as sp
-from chaplygin_nd.symbolic import points
-from chaplygin_nd.symbolic import wedge_n6 as w6
-from chaplygin_nd.symbolic.exact import _ordered_gens
-from chaplygin_nd.symbolic.flint_engine import FlintRing
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.flint_engine import FlintRing
+from chaplygin_nd.symbolic.exact.identity import _ordered_gens
+from chaplygin_nd.symbolic.family import wedge_n6 as w6
 
 
 @pytest.mark.slow

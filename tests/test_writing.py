@@ -159,11 +159,11 @@ def test_every_output_option_uses_the_same_check(tmp_path, capsys, path):
     """``simulate --out``, ``bench --out`` and ``first-integrals --json`` refuse the same places."""
     from chaplygin_nd.bench.__main__ import _unusable_out
     from chaplygin_nd.simulate.scene import cli as simulate_cli
-    from chaplygin_nd.symbolic import fi_cli
+    from chaplygin_nd.symbolic.search import command
 
     assert _unusable_out(Path(path)).startswith("cannot create it")
     assert simulate_cli.main(["steady4d", "--out", path, "--no-plots"]) == 2
-    assert fi_cli.main(["3", "1", "--a", "1/2", "--b", "1", "--json", str(Path(path).parent / "t.json")]) == 2
+    assert command.main(["3", "1", "--a", "1/2", "--b", "1", "--json", str(Path(path).parent / "t.json")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 2 and all(line.startswith("error: ") for line in err), err
     assert not os.path.exists(path)
@@ -218,10 +218,10 @@ def test_bench_files_keep_the_mode_of_the_files_they_replace(tmp_path):
 
 
 def test_first_integrals_json_gets_the_mode_of_a_plain_open(tmp_path, capsys):
-    from chaplygin_nd.symbolic import fi_cli
+    from chaplygin_nd.symbolic.search import command
 
     out = tmp_path / "table.json"
     with umask(0o022):
-        assert fi_cli.main(["3", "1", "--a", "1/2", "--b", "1", "--json", str(out)]) == 0
+        assert command.main(["3", "1", "--a", "1/2", "--b", "1", "--json", str(out)]) == 0
     assert mode(out) == 0o644 and isinstance(json.loads(out.read_text()), list)
     assert [p.name for p in tmp_path.iterdir()] == ["table.json"]

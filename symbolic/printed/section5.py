@@ -4,7 +4,7 @@ Each function is one displayed formula of chaplygin-sphere-nd.tex (Section 5, "T
 Chaplygin sphere"), tagged with its ledger id and the LaTeX source line, transcribed symbol by
 symbol. Nothing here is derived, corrected or simplified; no derivation imports this module
 (DESIGN.md rule 1) — only ``proofs/s5_*`` compare it with :mod:`symbolic.fourd` and
-:mod:`symbolic.reduced`.
+:mod:`symbolic.reduction.reduced_n4`.
 
 Vectors are SymPy 3x1 matrices ($k, u, q, \xi, \eta$); $x$, $a$, $b$ and the invariants are SymPy
 expressions. $\Delta(x) = (2+a)(2+b) - abx^2$ is eq:Delta (line 389) as printed in Section 4.

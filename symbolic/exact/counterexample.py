@@ -1,4 +1,4 @@
-r"""An exact counterexample of the identity engine (:mod:`symbolic.exact`): a rational point and
+r"""An exact counterexample of the identity engine (:mod:`symbolic.exact.identity`): a rational point and
 the exact non-zero residual there, rendered as text and as LaTeX (components gathered into
 vectors, $\gamma = (\tfrac{2}{3}, \dots)$)."""
 

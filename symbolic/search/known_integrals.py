@@ -11,9 +11,9 @@ Generators (each an integral of eq:motion-general for every diagonal $\mathbb{J}
   ($\mathrm{adj}(M) = vv^T$, so $\gamma^T\mathrm{adj}(M)\gamma = \langle v, \gamma\rangle^2$): a continuous
   square root of an integral is an integral; for $n = 3$ this is $\langle M, \gamma\rangle$;
 * the energy $H = \frac12\langle M, \Omega\rangle_\kappa$ (Section 2.2), $= P_H/D$ with $D$ the search's
-  denominator (fi_field);
+  denominator (search.sampled_field);
 * for the axisymmetric sphere and odd $n$, with ``include_new``: the integral found by the search,
-  $F = \langle v, (2+a)E_n + bx\gamma\rangle^2/\Delta$ (symbolic/fi_new.py; proved there).
+  $F = \langle v, (2+a)E_n + bx\gamma\rangle^2/\Delta$ (symbolic/search/found_integral.py; proved there).
 
 Each carries its $M$-degree, a bound of its numerator's $\gamma$-degree modulo $\|\gamma\|^2 = 1$
 and its power of $D$, so that a product is placed in a candidate space only when it lies there.
@@ -27,8 +27,8 @@ from functools import lru_cache
 import flint
 import numpy as np
 import sympy as sp
-from chaplygin_nd.symbolic import fi_field
-from chaplygin_nd.symbolic.fi_field import Model
+from chaplygin_nd.symbolic.search import sampled_field
+from chaplygin_nd.symbolic.search.sampled_field import Model
 
 __all__ = ["Generator", "generators", "products", "values", "jacobian_rank"]
 
@@ -162,7 +162,7 @@ def values(model: Model, z: np.ndarray, p: int, include_new: bool = False) -> np
             v = (v + (-1) ** i * _pfaffian(M[:, keep][:, :, keep], p) % p * g[:, i]) % p
         cols["<v, gamma>"] = v
         if include_new and model.kind == "axisymmetric":
-            a, b = fi_field.mod(model.a, p), fi_field.mod(model.b, p)
+            a, b = sampled_field.mod(model.a, p), sampled_field.mod(model.b, p)
             x = g[:, -1]
             w = np.zeros((R,), dtype=np.int64)
             for i in range(n):
@@ -171,19 +171,19 @@ def values(model: Model, z: np.ndarray, p: int, include_new: bool = False) -> np
                 ui = (b * x % p * g[:, i] + ((2 + a) if i == n - 1 else 0)) % p
                 w = (w + vi * ui) % p
             delta = ((2 + a) * (2 + b) - a * b % p * x % p * x) % p
-            cols["F"] = w * w % p * fi_field.inv_mod(delta, p) % p
+            cols["F"] = w * w % p * sampled_field.inv_mod(delta, p) % p
     if include_new and model.kind == "axisymmetric" and n == 6:
         cols["G"] = _g6(M, g, model, p)
     elif include_new and model.kind == "axisymmetric" and n > 6:
         cols["G"] = _g_general(M, g, model, p)
-    f = fi_field.field_at(model, z, p)
+    f = sampled_field.field_at(model, z, p)
     Om = f["Omega"]
     cols["H"] = sum(M[:, i, j] * Om[:, i, j] % p for i, j in pairs) % p * pow(2, p - 2, p) % p
     return np.stack([cols[gen.name] for gen in generators(model, include_new)], axis=1)
 
 
 def _g6(M, g, model: Model, p: int) -> np.ndarray:
-    """G of symbolic/fi_new.py (n = 6) mod p at the points, as a function (numerator / Delta)."""
+    """G of symbolic/search/found_integral.py (n = 6) mod p at the points, as a function (numerator / Delta)."""
     import itertools
 
     n = 6
@@ -200,7 +200,7 @@ def _g6(M, g, model: Model, p: int) -> np.ndarray:
                 sgn = (-1) ** sum(1 for u in range(6) for v in range(u + 1, 6) if t[u] > t[v])
                 acc = (acc + sgn * (M[:, q[0], q[1]] * M[:, q[2], q[3]] % p)) % p
             W[:, i, j] = acc * inv8 % p
-    a, b = fi_field.mod(model.a, p), fi_field.mod(model.b, p)
+    a, b = sampled_field.mod(model.a, p), sampled_field.mod(model.b, p)
     x = g[:, -1]
     P = W[:, :, -1] % p
     Q = np.einsum("rij,rj->ri", W, g) % p
@@ -211,11 +211,11 @@ def _g6(M, g, model: Model, p: int) -> np.ndarray:
     num = (2 * a * (a + 2) % p * pp + 4 * a * b % p * x % p * pq + 2 * b * (b + 2) % p * qq
            + a * b % p * ((a + b + 4) % p) % p * (pg * pg % p)) % p
     delta = ((2 + a) * (2 + b) - a * b % p * x % p * x) % p
-    return num * fi_field.inv_mod(delta, p) % p
+    return num * sampled_field.inv_mod(delta, p) % p
 
 
 def _g_general(M, g, model: Model, p: int) -> np.ndarray:
-    """G_n of symbolic/fi_new.py ``general_integral`` mod p at the points (numerator / Delta)."""
+    """G_n of symbolic/search/found_integral.py ``general_integral`` mod p at the points (numerator / Delta)."""
     import itertools
 
     n = model.n
@@ -235,12 +235,12 @@ def _g_general(M, g, model: Model, p: int) -> np.ndarray:
     def dot(A, B):
         return sum(A[S] * B[S] % p for S in A) % p
 
-    a, b = fi_field.mod(model.a, p), fi_field.mod(model.b, p)
+    a, b = sampled_field.mod(model.a, p), sampled_field.mod(model.b, p)
     x = g[:, -1]
     num = (2 * a * (a + 2) % p * dot(we, we) + 4 * a * b % p * x % p * dot(we, wg)
            + 2 * b * (b + 2) % p * dot(wg, wg) + a * b % p * ((a + b + 4) % p) % p * dot(weg, weg)) % p
     delta = ((2 + a) * (2 + b) - a * b % p * x % p * x) % p
-    return num * fi_field.inv_mod(delta, p) % p
+    return num * sampled_field.inv_mod(delta, p) % p
 
 
 def _gradients_at(model: Model, M: sp.Matrix, gamma: sp.Matrix) -> sp.Matrix:
@@ -276,13 +276,13 @@ def _gradients_at(model: Model, M: sp.Matrix, gamma: sp.Matrix) -> sp.Matrix:
 
 
 def _new_gradient(model: Model, M: sp.Matrix, gamma: sp.Matrix) -> list:
-    """Exact gradient of F (symbolic/fi_new.py) at the point, in (vec M, gamma)."""
-    from chaplygin_nd.symbolic import fi_new
+    """Exact gradient of F (symbolic/search/found_integral.py) at the point, in (vec M, gamma)."""
     from chaplygin_nd.symbolic.algebra import skew_symbols, vec, vector_symbols
+    from chaplygin_nd.symbolic.search import found_integral
 
     n = model.n
     Ms, gs = skew_symbols("m", n), vector_symbols("g", n)
-    num, den = fi_new.new_integral(Ms, gs, model.a, model.b)
+    num, den = found_integral.new_integral(Ms, gs, model.a, model.b)
     syms = list(vec(Ms)) + list(gs)
     ctx = flint.fmpq_mpoly_ctx.get(tuple(f"x{i}" for i in range(len(syms))), "lex")
 
@@ -305,8 +305,8 @@ def jacobian_rank(model: Model, seed: int, include_new: bool = False) -> dict:
     restricted to $T_{(M,\gamma)}P$ at a seeded rational point, by SymPy (``DomainMatrix`` over
     $\mathbb{Q}$) and FLINT (``fmpq_mat``); they must agree. The square roots have gradients
     proportional to their squares' and are not counted again."""
-    from chaplygin_nd.symbolic import points
-    from chaplygin_nd.symbolic.flint_engine import to_fmpq
+    from chaplygin_nd.symbolic.exact import points
+    from chaplygin_nd.symbolic.exact.flint_engine import to_fmpq
     from sympy.polys.matrices import DomainMatrix
 
     rng = points.generator(seed, "S6:first-integrals", model.n, model.kind)
@@ -331,31 +331,31 @@ def jacobian_rank_mod_p(model: Model, include_new: bool = True, prime_index: int
     rational Jacobian (rank$_p \le$ rank$_\mathbb{Q}$). Each directional derivative is the linear
     coefficient of $\varepsilon \mapsto D^k f(z + \varepsilon e)$ (a polynomial of degree $< 24$),
     interpolated exactly mod $p$, then divided by $D$. Full rank mod $p$ proves independence."""
-    p = fi_field.PRIMES[prime_index]
+    p = sampled_field.PRIMES[prime_index]
     gens = generators(model, include_new)
     keep = [i for i, g in enumerate(gens) if g.name not in ("Pf(M)", "<v, gamma>")]
     n = model.n
     dim = n * (n - 1) // 2
-    z0 = fi_field.sample(model, 1, p, np.random.default_rng([seed, 17, n]))["z"][0]
+    z0 = sampled_field.sample(model, 1, p, np.random.default_rng([seed, 17, n]))["z"][0]
     eps = np.arange(1, 25, dtype=np.int64)
     grads = []
     for c in range(dim + n):
         pts = np.array([(z0 + e * (np.arange(dim + n) == c)) % p for e in eps])
         f = values(model, pts, p, include_new)[:, keep]
-        D = fi_field.field_at(model, pts, p)["D"]
+        D = sampled_field.field_at(model, pts, p)["D"]
         cols = []
         for j, i in enumerate(keep):
             num = f[:, j] * (D if gens[i].d_power else 1) % p
             cols.append(_linear_coefficient(eps, num, p))
         grads.append(cols)
     J = np.array(grads, dtype=np.int64).T % p            # functions x coordinates
-    D0 = fi_field.field_at(model, z0[None, :], p)["D"][0]
+    D0 = sampled_field.field_at(model, z0[None, :], p)["D"][0]
     f0 = values(model, z0[None, :], p, include_new)[0, keep]
-    inv = int(fi_field.inv_mod(np.array([D0]), p)[0])
+    inv = int(sampled_field.inv_mod(np.array([D0]), p)[0])
     for j, i in enumerate(keep):   # d(P/D) = (dP - f dD)/D with P = f D for the rational ones
         if gens[i].d_power:
             dD = np.array([_linear_coefficient(
-                eps, fi_field.field_at(model, np.array([(z0 + e * (np.arange(dim + n) == c)) % p
+                eps, sampled_field.field_at(model, np.array([(z0 + e * (np.arange(dim + n) == c)) % p
                                                         for e in eps]), p)["D"], p)
                 for c in range(dim + n)])
             J[j] = (J[j] - f0[j] * dD) % p * inv % p

@@ -1,5 +1,5 @@
 r"""``chaplygin first-integrals``: the exact first-integral search from the command line
-(row S6:first-integrals; symbolic/first_integrals.py).
+(row S6:first-integrals; symbolic/search/integral_search.py).
 
     chaplygin first-integrals 5 4 --a -1/3 --b 3/2          # axisymmetric n = 5, M-degree 1..4
     chaplygin first-integrals 3 3 --J 1,3/2,7/3 --b 1/2     # a generic mass tensor
@@ -32,7 +32,7 @@ def _rational(text: str, name: str):
 def parse_model(n: int, a, b, J):
     """The model of the search from user input, or ValueError with one line naming the field:
     n >= 3; b > 0; either a >= -1 (axisymmetric, eq:axisymm) or J (n positive rationals)."""
-    from chaplygin_nd.symbolic import fi_field
+    from chaplygin_nd.symbolic.search import sampled_field
 
     if not isinstance(n, int) or n < 3:
         raise ValueError(f"n = {n!r}: the sphere needs an integer n >= 3")
@@ -47,13 +47,13 @@ def parse_model(n: int, a, b, J):
         Js = [_rational(str(j), "J") for j in (J.split(",") if isinstance(J, str) else J)]
         if len(Js) != n or any(j <= 0 for j in Js):
             raise ValueError(f"J must be {n} positive rationals (the diagonal mass tensor, eq:Inertia)")
-        return fi_field.general(Js, b)
+        return sampled_field.general(Js, b)
     if a is None:
         raise ValueError("give a (axisymmetric, eq:axisymm) or J (a diagonal mass tensor)")
     a = _rational(str(a), "a")
     if a < -1:
         raise ValueError(f"a = {a} is outside the domain a >= -1 (eq:axisymm)")
-    return fi_field.axisymmetric(n, a, b)
+    return sampled_field.axisymmetric(n, a, b)
 
 
 def main(argv: list[str]) -> int:
@@ -97,7 +97,7 @@ def main(argv: list[str]) -> int:
     import sys
     import time
 
-    from chaplygin_nd.symbolic import first_integrals as fi
+    from chaplygin_nd.symbolic.search import integral_search as fi
 
     rows = []
     for d in range(args.start, args.degree + 1):

@@ -12,7 +12,7 @@ from functools import cache
 import sympy as sp
 from chaplygin_nd.symbolic import sphere3d
 from chaplygin_nd.symbolic.algebra import column
-from chaplygin_nd.symbolic.codegen import Argument, Kernel
+from chaplygin_nd.symbolic.codegen.kernels import Argument, Kernel
 from chaplygin_nd.symbolic.model import motion3d
 
 M_ = sp.symbols("M1:4", real=True)

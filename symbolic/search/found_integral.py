@@ -147,7 +147,7 @@ def general_integral(M: sp.Matrix, gamma: sp.Matrix, a, b) -> tuple[sp.Expr, sp.
 
 def new_integral_6_text() -> str:
     """G (n = 6) as text SymPy parses, in M_<i><j>, gamma_<i>, a, b."""
-    from chaplygin_nd.symbolic.fi_reconstruct import real_symbols
+    from chaplygin_nd.symbolic.search.reconstruction import real_symbols
 
     Ms, gs = real_symbols(6)
     a, b = sp.symbols("a b")
@@ -157,7 +157,7 @@ def new_integral_6_text() -> str:
 
 def new_integral_text(n: int) -> str:
     """F as text SymPy parses, in M_<i><j> (i < j), gamma_<i> (1-based), a, b."""
-    from chaplygin_nd.symbolic.fi_reconstruct import real_symbols
+    from chaplygin_nd.symbolic.search.reconstruction import real_symbols
 
     Ms, gs = real_symbols(n)
     a, b = sp.symbols("a b")
@@ -170,10 +170,10 @@ def new_integral_text(n: int) -> str:
 
 
 def prove_symbolic(n: int, a=None, b=None, builder=None):
-    r"""Exact proof of $X(F) = 0$ with both engines (symbolic/exact.py), for symbolic $a, b$ by
-    default: $\Delta X(P) - P X(\Delta) \equiv 0$ modulo the sphere (fi_reconstruct)."""
-    from chaplygin_nd.symbolic.fi_field import Model
-    from chaplygin_nd.symbolic.fi_reconstruct import prove_integral, real_symbols
+    r"""Exact proof of $X(F) = 0$ with both engines (symbolic/exact/identity.py), for symbolic $a, b$ by
+    default: $\Delta X(P) - P X(\Delta) \equiv 0$ modulo the sphere (search.reconstruction)."""
+    from chaplygin_nd.symbolic.search.reconstruction import prove_integral, real_symbols
+    from chaplygin_nd.symbolic.search.sampled_field import Model
 
     a = sp.Symbol("a") if a is None else a
     b = sp.Symbol("b") if b is None else b
@@ -185,13 +185,13 @@ def prove_symbolic(n: int, a=None, b=None, builder=None):
 
 def prove_at_points(n: int, count: int = 2, seed: int | None = None, builder=None):
     r"""$X(F) = 0$ at seeded exact rational points of $P$ with random $a \in [-1, 1]$, $b > 0$
-    (symbolic/exact.py ``zero_at_points``, both engines where they apply): $X(F)$ from the
+    (symbolic/exact/identity.py ``zero_at_points``, both engines where they apply): $X(F)$ from the
     exact $\Omega = L_\gamma^{-1}M$ (a linear solve of eq:M-O) and the exact directional
     derivatives $\frac{d}{d\varepsilon}$ of $F$ along $(\dot M, \dot\gamma)$; odd $n$."""
     from chaplygin_nd.symbolic import model as mdl
-    from chaplygin_nd.symbolic import points
     from chaplygin_nd.symbolic.algebra import commutator
-    from chaplygin_nd.symbolic.exact import zero_at_points
+    from chaplygin_nd.symbolic.exact import points
+    from chaplygin_nd.symbolic.exact.identity import zero_at_points
 
     eps = sp.Symbol("eps")
 
@@ -221,7 +221,7 @@ def varies_in_M(n: int, builder, seed: int) -> tuple[bool, str]:
     \gamma)|_0 \ne 0$ at a seeded exact rational point with a random skew $N$ and random
     $a, b$. An exact non-zero rational is a witness. Without it, $X(F) = 0$ says nothing: the
     zero function passes it (row S6:first-integrals)."""
-    from chaplygin_nd.symbolic import points
+    from chaplygin_nd.symbolic.exact import points
 
     eps = sp.Symbol("eps")
     rng = points.generator(seed, f"S6:first-integrals varies n={n}", 0)

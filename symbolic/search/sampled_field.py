@@ -15,7 +15,7 @@ Two models, both exact modulo $p$:
 Points: $\gamma$ is the inverse stereographic projection of an integer $t \in \mathbb{Z}^{n-1}$
 (a rational point of $S^{n-1}$, reduced mod $p$); $M$ has random integer entries. A point is
 dropped when $D$, $2+a+b$ or a pivot vanishes mod $p$ (dropping rows only weakens the conditions,
-see symbolic/first_integrals.py).
+see symbolic/search/integral_search.py).
 """
 
 from __future__ import annotations

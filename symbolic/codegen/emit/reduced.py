@@ -1,10 +1,10 @@
 r"""Kernels of the $SO(3)$-reduced 4D sphere on $r = (A, B, E, G, F_1, x, \delta) \in \mathbb{R}^7$.
 
-Sources (derived): :mod:`symbolic.reduced` — the reduced field (eq:red-system, derived from
+Sources (derived): :mod:`symbolic.reduction.reduced_n4` — the reduced field (eq:red-system, derived from
 scratch), the integrals $F_1, F_2, F_3, H$ (S5:red-integrals), the measure densities
 (S5:red-measure), $A$ on $\mathcal{H}/SO(3)$ (eq:A-on-J) and the horizontal solution
 (S5:H-linear, corrected; for every n, S5:H-linear-nD, with the blocks $A, B$ of
-:func:`symbolic.reduced.horizontal_blocks`). Rational quantities are numerators over $D = 2(2+a+b)\Delta(x)$ with
+:func:`symbolic.reduction.reduced_n4.horizontal_blocks`). Rational quantities are numerators over $D = 2(2+a+b)\Delta(x)$ with
 $\Delta$ in the stable form of row K:Delta. The horizontal solution uses
 $\sin(\nu t)/\nu = t\,\operatorname{sinc}(\nu t)$ (row K:horizontal-sinc): no $0/0$ as $\nu \to 0$.
 """
@@ -12,20 +12,20 @@ $\sin(\nu t)/\nu = t\,\operatorname{sinc}(\nu t)$ (row K:horizontal-sinc): no $0
 from __future__ import annotations
 
 import sympy as sp
-from chaplygin_nd.symbolic import reduced
-from chaplygin_nd.symbolic.codegen import Argument, Kernel
-from chaplygin_nd.symbolic.emit.axisym import stable_Delta
-from chaplygin_nd.symbolic.emit.fourd import stable_D
-from chaplygin_nd.symbolic.reduced_invariants import F1, A, B, E, G, delta
+from chaplygin_nd.symbolic.codegen.emit.axisym import stable_Delta
+from chaplygin_nd.symbolic.codegen.emit.fourd import stable_D
+from chaplygin_nd.symbolic.codegen.kernels import Argument, Kernel
+from chaplygin_nd.symbolic.reduction import reduced_n4
+from chaplygin_nd.symbolic.reduction.invariants_n4 import F1, A, B, E, G, delta
 
 __all__ = ["kernels", "horizontal_solution_stable"]
 
-a, b, x = reduced.a, reduced.b, reduced.x
+a, b, x = reduced_n4.a, reduced_n4.b, reduced_n4.x
 t, x0, G0, F2s, Hs, h = sp.symbols("t x0 G0 F2 H h", real=True)
 
 
 def horizontal_solution_stable(t_, x0_, G0_, nu2):
-    r"""$(x(t), G(t))$ of S5:H-linear (corrected, :func:`symbolic.reduced.horizontal_solution`) with
+    r"""$(x(t), G(t))$ of S5:H-linear (corrected, :func:`symbolic.reduction.reduced_n4.horizontal_solution`) with
     $\sin(\nu t)/\nu = t\,\operatorname{sinc}(\nu t)$ and $\nu\sin\nu t = \nu^2 t\,\operatorname{sinc}(\nu t)$,
     $\nu = \sqrt{\nu^2}$ (row K:horizontal-sinc); $\nu^2 \ge 0$."""
     S = 2 + a + b
@@ -35,21 +35,21 @@ def horizontal_solution_stable(t_, x0_, G0_, nu2):
 
 
 def kernels() -> list[Kernel]:
-    """The kernel list of ``generated/reduced.py``."""
+    """The kernel list of ``generated/reduced_n4.py``."""
     R = Argument("r", (A, B, E, G, F1, x, delta))
     A_, B_ = Argument("a", (a,), True), Argument("b", (b,), True)
     D = stable_D()
-    N = reduced.field_numerators()
-    F3n, H2D = reduced._integral_numerators()
-    nu2 = reduced.horizontal_frequency_squared(Hs, F2s)
+    N = reduced_n4.field_numerators()
+    F3n, H2D = reduced_n4._integral_numerators()
+    nu2 = reduced_n4.horizontal_frequency_squared(Hs, F2s)
     xt, Gt = horizontal_solution_stable(t, x0, G0, nu2)
-    A_level = reduced.horizontal_level_A(h)
+    A_level = reduced_n4.horizontal_level_A(h)
     A_level = sp.numer(A_level) / sp.factor(sp.denom(A_level))
     return [
         Kernel("reduced_field", ("eq:red-system", "K:Delta"),
                "dr/dt of the reduced field on R^7, r = (A, B, E, G, F1, x, delta) (eq:red-system, derived\n"
-               "    in symbolic.reduced); shape (..., 7). Domain: the reduced space delta^2 = det Lambda.",
-               (R, A_, B_), sp.Matrix([N[c].as_expr() / D for c in reduced.COORDS]), (7,)),
+               "    in symbolic.reduction.reduced_n4); shape (..., 7). Domain: the reduced space delta^2 = det Lambda.",
+               (R, A_, B_), sp.Matrix([N[c].as_expr() / D for c in reduced_n4.COORDS]), (7,)),
         Kernel("reduced_integrals", ("S5:red-integrals", "K:Delta"),
                "(F1, F2, F3, H) in the invariants (S5:red-integrals, derived); shape (..., 4).",
                (R, A_, B_), sp.Matrix([F1, A + B, F3n.as_expr(), H2D.as_expr() / (2 * D)]), (4,)),
@@ -72,5 +72,5 @@ def kernels() -> list[Kernel]:
                "(A, B) on H for every n >= 3 (S5:H-linear-nD): A = ||M - (M E_n) ^ E_n||_kappa^2,\n"
                "    B = ||M E_n||^2 from x = gamma_n, G = <M E_n, gamma>, F2 = ||M||_kappa^2 (n = 4: A, B of Section 5).",
                (Argument("x", (x,), True), Argument("G", (G,), True), Argument("F2", (F2s,), True)),
-               sp.Matrix(list(reduced.horizontal_blocks(x, G, F2s))), (2,)),
+               sp.Matrix(list(reduced_n4.horizontal_blocks(x, G, F2s))), (2,)),
     ]

@@ -9,10 +9,10 @@ SymPy's generic ``Rational`` arithmetic (which dominates such checks at large $n
 $H$ on all $n(n-1)/2$ basis elements of $\mathfrak{so}(24)$ is ~1 s in SymPy, ~0.03 s here).
 
 :func:`formula_matrix` gives a rational matrix in the *current engine's* formula type
-(:func:`symbolic.flint_engine.use_engine`): a SymPy ``Matrix`` for SymPy, a :class:`FlintMatrix`
+(:func:`symbolic.exact.flint_engine.use_engine`): a SymPy ``Matrix`` for SymPy, a :class:`FlintMatrix`
 for FLINT. A residual built from it is evaluated by each engine in its own arithmetic (it counts
-as an engine-dispatched step), and :func:`symbolic.exact.zero_at_points` compares the two values.
-Domain: rational entries; anything else raises as :func:`symbolic.flint_engine.to_fmpq` does.
+as an engine-dispatched step), and :func:`symbolic.exact.identity.zero_at_points` compares the two values.
+Domain: rational entries; anything else raises as :func:`symbolic.exact.flint_engine.to_fmpq` does.
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ from collections.abc import Sequence
 
 import flint
 import sympy as sp
-from chaplygin_nd.symbolic.flint_engine import current_engine, note_call, to_fmpq
+from chaplygin_nd.symbolic.exact.flint_engine import current_engine, note_call, to_fmpq
 
 __all__ = ["FlintMatrix", "formula_matrix", "from_columns", "entries"]
 

@@ -1,7 +1,7 @@
 r"""The $SO(3)$-reduced 4D axisymmetric Chaplygin sphere (Section 5), derived from scratch.
 
 **The reduced field (derives eq:red-system).** Each invariant $f \in \{A, B, E, G, F_1, x, \delta\}$
-(:mod:`symbolic.reduced_invariants`) is differentiated along the explicit 4D field of
+(:mod:`symbolic.reduction.invariants_n4`) is differentiated along the explicit 4D field of
 :mod:`symbolic.fourd` (itself derived from $\dot M = [M,\Omega]$, $\dot\gamma = -\Omega\gamma$ and the
 solved inverse of $L_\gamma$):
 
@@ -13,7 +13,7 @@ solved inverse of $L_\gamma$):
     \dot\delta = \langle\dot q, k\times u\rangle + \langle q, \dot k\times u\rangle + \langle q, k\times\dot u\rangle.
 
 Times the common denominator $D = 2(2+a+b)\Delta(x)$ each is an $SO(3)$-invariant polynomial, which
-:func:`symbolic.reduced_invariants.in_invariants` writes in its unique normal form, linear in
+:func:`symbolic.reduction.invariants_n4.in_invariants` writes in its unique normal form, linear in
 $\delta$ with $\lVert q\rVert^2 = 1 - x^2$ (invariant theory + exact linear algebra). The result is a
 vector field on $\mathbb{R}^7 \ni (A, B, E, G, F_1, x, \delta)$ whose restriction to the reduced space
 $\mathcal{R}$ is the reduced dynamics.
@@ -31,8 +31,8 @@ from functools import cache
 
 import sympy as sp
 from chaplygin_nd.symbolic import fourd
-from chaplygin_nd.symbolic import reduced_invariants as ri
-from chaplygin_nd.symbolic.reduced_invariants import F1, A, B, E, G, delta
+from chaplygin_nd.symbolic.reduction import invariants_n4 as ri
+from chaplygin_nd.symbolic.reduction.invariants_n4 import F1, A, B, E, G, delta
 
 __all__ = [
     "COORDS", "field_numerators", "field", "integrals", "horizontal_set", "vertical_set",
@@ -52,7 +52,7 @@ D = 2 * S * Delta
 @cache
 def field_numerators():
     r"""$D\cdot\dot f$ for $f$ in :data:`COORDS`, derived, as elements of
-    :data:`symbolic.reduced_invariants.INV_RING` (normal form, linear in $\delta$). eq:red-system."""
+    :data:`symbolic.reduction.invariants_n4.INV_RING` (normal form, linear in $\delta$). eq:red-system."""
     dot, cross = fourd.dot, fourd.cross
     k, u, q = fourd._k, fourd._u, fourd._q
     Nk, Nu, Nq, Nx = fourd.field_numerators()
@@ -79,7 +79,7 @@ def _integral_numerators():
 
 def integrals():
     r"""The integrals in the invariants (S5:red-integrals, derived from the 4D integrals
-    $F_1, F_2, F_3, H$ by :func:`symbolic.reduced_invariants.in_invariants`): dict
+    $F_1, F_2, F_3, H$ by :func:`symbolic.reduction.invariants_n4.in_invariants`): dict
     ``F1, F2, F3, H`` -> SymPy expression in $a, b, A, B, E, G, F_1, x, \delta$."""
     F3, H2D = _integral_numerators()
     return {"F1": F1, "F2": A + B, "F3": F3.as_expr(), "H": H2D.as_expr() / (2 * D)}

@@ -1,6 +1,6 @@
 r"""The second exact engine: FLINT (python-flint), independent of SymPy's polynomial code.
 
-Every exact zero test of :mod:`symbolic.exact` is decided twice: by SymPy (its sparse
+Every exact zero test of :mod:`symbolic.exact.identity` is decided twice: by SymPy (its sparse
 polynomials, as before) and here, by FLINT. The expression itself is *built by SymPy* (the
 derivations are SymPy code); this module reads it by walking the expression tree directly —
 ``Add``, ``Mul``, ``Pow`` with an integer exponent, ``Symbol``, ``Integer``, ``Rational`` — into
@@ -22,7 +22,7 @@ Exact linear algebra at rational points (the heavy steps of the point checks for
 :func:`solve`, :func:`det`, :func:`rank`, :func:`inverse` take SymPy matrices of rationals and
 run in the engine selected by :func:`use_engine` — SymPy's ``DomainMatrix`` over ``QQ`` or FLINT's
 ``fmpq_mat`` — so one residual function is evaluated by each engine in turn
-(:func:`symbolic.exact.zero_at_points`).
+(:func:`symbolic.exact.identity.zero_at_points`).
 
 Which engines run: both, unless the environment variable ``CHAPLYGIN_ND_ENGINES`` says
 ``flint`` (SymPy abstains: ``chaplygin mutate --engines flint``) or ``sympy`` (FLINT abstains; a

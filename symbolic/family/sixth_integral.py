@@ -2,7 +2,7 @@ r"""A sixth first integral of the axisymmetric $n = 5$ sphere (row S6:sixth-inte
 
 Found by the numerical guide of issue 23 (:mod:`simulate.analysis.integral_guide`: an orbit-constant
 combination of $M$-degree 4 over $\Delta$ beyond the products of the known integrals), then fixed by
-exact linear algebra over $\mathbb{Q}(a, b)$ in the reduced coordinates of :mod:`symbolic.reduced5` and
+exact linear algebra over $\mathbb{Q}(a, b)$ in the reduced coordinates of :mod:`symbolic.reduction.reduced_n5` and
 written with $\mathfrak{so}(5)$ operations:
 
 .. math::
@@ -25,7 +25,7 @@ from __future__ import annotations
 from functools import cache
 
 import sympy as sp
-from chaplygin_nd.symbolic import reduced5_invariants as ri5
+from chaplygin_nd.symbolic.reduction import invariants_n5 as ri5
 
 __all__ = ["pfaffian_vector", "numerator_ring", "Delta_ring", "numerator_expr", "integral_text",
            "numerator_in_invariants"]
@@ -51,7 +51,7 @@ def _numerator(M, gamma, a, b, x):
 
 @cache
 def numerator_ring():
-    r"""$N_F = \Delta F$ as an element of :data:`symbolic.reduced5_invariants.RING` (S6:sixth-integral-n5)."""
+    r"""$N_F = \Delta F$ as an element of :data:`symbolic.reduction.invariants_n5.RING` (S6:sixth-integral-n5)."""
     R = ri5.RING
     g = R.gens
     M = [[R(0)] * 5 for _ in range(5)]
@@ -62,7 +62,7 @@ def numerator_ring():
 
 
 def Delta_ring():
-    r"""$\Delta(x) = (2+a)(2+b) - abx^2$ (eq:Delta) in :data:`symbolic.reduced5_invariants.RING`."""
+    r"""$\Delta(x) = (2+a)(2+b) - abx^2$ (eq:Delta) in :data:`symbolic.reduction.invariants_n5.RING`."""
     a, b, x = ri5.RING.gens[:3]
     return (2 + a) * (2 + b) - a * b * x**2
 
@@ -88,6 +88,6 @@ def integral_text() -> str:
 
 @cache
 def numerator_in_invariants():
-    r"""$N_F$ in the reduced coordinates of :mod:`symbolic.reduced5` ($s \to 1 - x^2$), element of
-    :data:`symbolic.reduced5_invariants.INV_RING` (S6:sixth-integral-n5)."""
+    r"""$N_F$ in the reduced coordinates of :mod:`symbolic.reduction.reduced_n5` ($s \to 1 - x^2$), element of
+    :data:`symbolic.reduction.invariants_n5.INV_RING` (S6:sixth-integral-n5)."""
     return ri5.on_sphere(ri5.in_generators(numerator_ring()))

@@ -18,7 +18,7 @@ from collections.abc import Sequence
 import flint
 import sympy as sp
 from chaplygin_nd.symbolic.algebra import column, unvec
-from chaplygin_nd.symbolic.flint_engine import to_fmpq, to_sympy_matrix
+from chaplygin_nd.symbolic.exact.flint_engine import to_fmpq, to_sympy_matrix
 
 __all__ = [
     "DEFAULT_SEED", "ledger_seed", "set_ledger_seed", "generator", "rational", "rationals", "sphere_point", "skew_matrix",
@@ -26,7 +26,7 @@ __all__ = [
 ]
 
 #: The largest n of the seeded exact point checks of the rows about every n (DESIGN.md, "All n,
-#: honestly"); above ``symbolic.exact.SYMPY_POINT_MAX_N`` FLINT alone decides them.
+#: honestly"); above ``symbolic.exact.identity.SYMPY_POINT_MAX_N`` FLINT alone decides them.
 ALL_N_MAX = 24
 
 

@@ -33,7 +33,7 @@ import sympy as sp
 from chaplygin_nd.symbolic.algebra import killing, skew_symbols, vec
 from chaplygin_nd.symbolic.axisym_inverse import ansatz_terms, inverse_coefficients
 from chaplygin_nd.symbolic.axisymmetric import Delta, L_matrix_axisym, a, b, x
-from chaplygin_nd.symbolic.codegen import Argument, Kernel
+from chaplygin_nd.symbolic.codegen.kernels import Argument, Kernel
 from chaplygin_nd.symbolic.model import motion
 from chaplygin_nd.symbolic.structured_field import PAIRS, VECTORS, g, s, structured_weights
 from chaplygin_nd.symbolic.vertical import chi, chi_coefficient, inertia_tilde, zeta_coefficient

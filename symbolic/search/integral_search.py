@@ -3,7 +3,7 @@ S6:first-integrals, beyond the paper; issue 23).
 
 **The question.** Which $F = P/D^k$, $P$ polynomial in $(M, \gamma)$, are first integrals of the
 field $X$ of eq:motion-general on $P = \mathfrak{so}(n)\times S^{n-1}$? Here $D$ is the denominator
-of $\Omega = L_\gamma^{-1}(M)$ (symbolic/fi_field.py: $\Delta$ of eq:Delta for the axisymmetric
+of $\Omega = L_\gamma^{-1}(M)$ (symbolic/search/sampled_field.py: $\Delta$ of eq:Delta for the axisymmetric
 sphere, $\det L_\gamma$ otherwise). $X(P/D^k) = (D\,X(P) - kP\,X(D))/D^{k+1}$, and $D\,X(P)$ is a
 polynomial, so $F$ is an integral iff $D\,X(P) - kP\,X(D) \equiv 0$ modulo $\|\gamma\|^2 - 1$.
 
@@ -11,7 +11,7 @@ polynomial, so $F$ is an integral iff $D\,X(P) - kP\,X(D) \equiv 0$ modulo $\|\g
 (i) $X$ raises the $M$-degree by exactly one ($\Omega$ is linear in $M$, $D$ depends on $\gamma$
 only), so every $M$-homogeneous part of an integral is an integral: the search is per $M$-degree
 $d$. (ii) The box $S(d, d_\gamma, k)$: $P$ of $M$-degree $d$ and $\gamma$-degree $\le d_\gamma$ on the
-sphere, in the standard-monomial basis (symbolic/fi_basis.py). (iii) For the axisymmetric
+sphere, in the standard-monomial basis (symbolic/search/candidate_basis.py). (iii) For the axisymmetric
 sphere $X$ is $SO(n-1)$-equivariant (eq:action); a torus $T$ acts on integrals, and the
 projection onto weight zero (the $T$-average) of an integral is an integral. We search **weight
 zero** only: we find every $T$-invariant integral, in particular every $SO(n-1)$-invariant one —
@@ -30,7 +30,7 @@ its reduction modulo a prime over $p$ stays linearly independent, and satisfies 
 (the identity $D\,X(P) - kP\,X(D) = (\|\gamma\|^2 - 1)Q$ has $p$-integral coefficients, as
 $\|\gamma\|^2 - 1$ is monic in $\gamma_n$). Hence **nullity$_p(A_p) \ge \dim V_\chi$**, for any
 number of rows. On the other side, the known integrals whose products lie in the box
-(symbolic/fi_known.py) span $K_\chi \subset V_\chi$, and the rank mod $p$ of their values at points
+(symbolic/search/known_integrals.py) span $K_\chi \subset V_\chi$, and the rank mod $p$ of their values at points
 is **$\le \dim K_\chi$**. So $\mathrm{rank}_p(\text{known}) \le \dim K_\chi \le \dim V_\chi \le
 \mathrm{nullity}_p(A_p)$; when the two ends agree, **$V_\chi = K_\chi$ exactly**: no integral in the
 box beyond the algebra of the known ones. If they do not agree, the excess is a *candidate*, never
@@ -47,8 +47,8 @@ from dataclasses import asdict, dataclass, field
 
 import flint
 import numpy as np
-from chaplygin_nd.symbolic import fi_basis, fi_field, fi_known
-from chaplygin_nd.symbolic.fi_field import Model
+from chaplygin_nd.symbolic.search import candidate_basis, known_integrals, sampled_field
+from chaplygin_nd.symbolic.search.sampled_field import Model
 
 __all__ = ["BlockResult", "DegreeResult", "search_degree", "search", "MARGIN", "RECOVERY_MAX"]
 
@@ -89,7 +89,7 @@ class DegreeResult:
         return asdict(self)
 
 
-def _coordinate_values(co: fi_basis.Coordinates, z: np.ndarray, p: int, i_p: int) -> np.ndarray:
+def _coordinate_values(co: candidate_basis.Coordinates, z: np.ndarray, p: int, i_p: int) -> np.ndarray:
     return (z % p) @ ((co.re + i_p * co.im) % p).T % p
 
 
@@ -115,7 +115,7 @@ def _monomial_values(E: np.ndarray, cv: np.ndarray, p: int) -> np.ndarray:
     return out
 
 
-def _block_apply(Y: np.ndarray, blk: fi_basis.Block, p: int) -> np.ndarray:
+def _block_apply(Y: np.ndarray, blk: candidate_basis.Block, p: int) -> np.ndarray:
     """Columns of a block from monomial columns: sum of sign * Y[:, monomial] per column."""
     order = np.argsort(blk.column, kind="stable")
     cols = blk.column[order]
@@ -131,7 +131,7 @@ def _flipped_values(model: Model, zq: np.ndarray, p: int, include_new: bool) -> 
     for mask in range(1 << n):
         s = np.array([-1 if mask >> i & 1 else 1 for i in range(n)])
         real = np.array([s[i] * s[j] for i in range(n) for j in range(i + 1, n)] + list(s))
-        out.append(fi_known.values(model, zq * real[None, :] % p, p, include_new))
+        out.append(known_integrals.values(model, zq * real[None, :] % p, p, include_new))
     return out
 
 
@@ -153,16 +153,16 @@ def known_ranks(model: Model, d: int, d_gamma: int, k: int, include_new: bool, *
                 prime_index: int = 0, seed: int = 0) -> dict[int, int]:
     """Per character: the rank mod p of the known products in the box (a lower bound of the
     dimension of their span over Q), without the search matrix."""
-    p = fi_field.PRIMES[prime_index]
-    B = fi_basis.basis(model.n, d, d_gamma, model.planes)
-    prods = fi_known.products(model, d, d_gamma, k, include_new)
+    p = sampled_field.PRIMES[prime_index]
+    B = candidate_basis.basis(model.n, d, d_gamma, model.planes)
+    prods = known_integrals.products(model, d, d_gamma, k, include_new)
     if not prods:
         return {b.character: 0 for b in B.blocks}
-    zq = fi_field.sample(model, len(prods) + MARGIN, p, np.random.default_rng([seed, 7, d, k]))["z"]
+    zq = sampled_field.sample(model, len(prods) + MARGIN, p, np.random.default_rng([seed, 7, d, k]))["z"]
     flipped = _flipped_values(model, zq, p, include_new)
     Dk = np.ones(len(zq), dtype=np.int64)
     for _ in range(k):
-        Dk = Dk * fi_field.field_at(model, zq, p)["D"] % p
+        Dk = Dk * sampled_field.field_at(model, zq, p)["D"] % p
     return {b.character: _nmod(_known_matrix(prods, b.character, flipped, Dk, p), p).rank()
             for b in B.blocks}
 
@@ -175,26 +175,26 @@ def search_degree(model: Model, d: int, d_gamma: int, k: int = 0, *, prime_index
                   seed: int = 0, include_new: bool = True,
                   progress: Callable[[str], None] | None = None) -> DegreeResult:
     r"""The integrals $P/D^k$ in the box $S(d, d_\gamma)$ of ``model`` (module docstring), one
-    prime (``fi_field.PRIMES[prime_index]``). $d \ge 1$, $d_\gamma \ge 0$, $k \ge 0$.
-    ``include_new``: count the integral found by the search (fi_new) among the known ones;
+    prime (``sampled_field.PRIMES[prime_index]``). $d \ge 1$, $d_\gamma \ge 0$, $k \ge 0$.
+    ``include_new``: count the integral found by the search (search.found_integral) among the known ones;
     ``False`` counts only the paper's (the search then reports it as the excess)."""
     if d < 1 or d_gamma < 0 or k < 0:
         raise ValueError("need d >= 1, d_gamma >= 0, k >= 0")
     t0 = time.perf_counter()
-    p = fi_field.PRIMES[prime_index]
+    p = sampled_field.PRIMES[prime_index]
     i_p = _sqrt_minus_one(p)
-    B = fi_basis.basis(model.n, d, d_gamma, model.planes)
+    B = candidate_basis.basis(model.n, d, d_gamma, model.planes)
     co = B.coords
     rng = np.random.default_rng([seed, model.n, d, d_gamma, k, prime_index])
     rows = max(b.columns for b in B.blocks) + MARGIN
-    s = fi_field.sample(model, rows + rows // 8 + 8, p, rng)
+    s = sampled_field.sample(model, rows + rows // 8 + 8, p, rng)
     cv = _coordinate_values(co, s["z"], p, i_p)
     cd = _coordinate_values(co, s["zdot"], p, i_p)
     good = (cv != 0).all(axis=1)            # the log-derivative needs non-zero coordinates
     cv, cd, dlog = cv[good][:rows], cd[good][:rows], s["dlogD"][good][:rows]
     if len(cv) < rows:
         raise ArithmeticError("too few admissible points")
-    ratio = cd * fi_field.inv_mod(cv, p) % p
+    ratio = cd * sampled_field.inv_mod(cv, p) % p
     blocks_A: dict[int, list] = {b.character: [] for b in B.blocks}
     chunk = max(1, CHUNK_ENTRIES // max(1, B.size))
     for r0 in range(0, rows, chunk):
@@ -205,12 +205,12 @@ def search_degree(model: Model, d: int, d_gamma: int, k: int = 0, *, prime_index
             need = b.columns + MARGIN
             if r0 < need:
                 blocks_A[b.character].append(_block_apply(Y[: need - r0], b, p))
-    prods = fi_known.products(model, d, d_gamma, k, include_new)
-    zq = fi_field.sample(model, len(prods) + MARGIN, p, np.random.default_rng([seed, 7, d, k]))["z"]
+    prods = known_integrals.products(model, d, d_gamma, k, include_new)
+    zq = sampled_field.sample(model, len(prods) + MARGIN, p, np.random.default_rng([seed, 7, d, k]))["z"]
     flipped = _flipped_values(model, zq, p, include_new) if prods else []
     Dk = np.ones(len(zq), dtype=np.int64)
     for _ in range(k):
-        Dk = Dk * fi_field.field_at(model, zq, p)["D"] % p
+        Dk = Dk * sampled_field.field_at(model, zq, p)["D"] % p
     results = []
     for b in B.blocks:
         A = np.concatenate(blocks_A.pop(b.character), axis=0)

@@ -1,20 +1,20 @@
 r"""Kernels of the $SO(4)$-reduced $n = 5$ sphere on $r = (x, A_+, A_-, B, G, E_+, E_-, S_{uu}, S_{uq}, S_{qq})$.
 
-Sources (derived): :mod:`symbolic.reduced5` (the reduced field and the known integrals, row
-S6:reduced-n5), :mod:`symbolic.sixth_integral` (row S6:sixth-integral-n5) and
-:mod:`symbolic.reduced5_invariants` (the generators and the relations $R_1, R_2$). The field is a
+Sources (derived): :mod:`symbolic.reduction.reduced_n5` (the reduced field and the known integrals, row
+S6:reduced-n5), :mod:`symbolic.family.sixth_integral` (row S6:sixth-integral-n5) and
+:mod:`symbolic.reduction.invariants_n5` (the generators and the relations $R_1, R_2$). The field is a
 polynomial numerator over $D = 2(2+a+b)\Delta(x)$ with $\Delta$ in the stable form of row K:Delta.
 """
 
 from __future__ import annotations
 
 import sympy as sp
-from chaplygin_nd.symbolic import reduced5 as r5
-from chaplygin_nd.symbolic import reduced5_invariants as ri5
-from chaplygin_nd.symbolic import sixth_integral as si
-from chaplygin_nd.symbolic.codegen import Argument, Kernel
-from chaplygin_nd.symbolic.emit.axisym import stable_Delta
-from chaplygin_nd.symbolic.emit.fourd import stable_D
+from chaplygin_nd.symbolic.codegen.emit.axisym import stable_Delta
+from chaplygin_nd.symbolic.codegen.emit.fourd import stable_D
+from chaplygin_nd.symbolic.codegen.kernels import Argument, Kernel
+from chaplygin_nd.symbolic.family import sixth_integral as si
+from chaplygin_nd.symbolic.reduction import invariants_n5 as ri5
+from chaplygin_nd.symbolic.reduction import reduced_n5 as r5
 
 __all__ = ["kernels"]
 
@@ -40,7 +40,7 @@ def kernels() -> list[Kernel]:
     return [
         Kernel("reduced5_field", ("S6:reduced-n5", "K:Delta"),
                "dr/dt of the SO(4)-reduced n = 5 field on R^10, r = (x, Ap, Am, B, G, Ep, Em, Suu, Suq,\n"
-               "    Sqq) (S6:reduced-n5, derived in symbolic.reduced5); shape (..., 10). Domain: the reduced\n"
+               "    Sqq) (S6:reduced-n5, derived in symbolic.reduction.reduced_n5); shape (..., 10). Domain: the reduced\n"
                "    space (relations R1 = R2 = 0 of reduced5_relations).",
                (R, A_, B_), sp.Matrix([N[c].as_expr() / D for c in r5.COORDS]), (10,)),
         Kernel("reduced5_invariants", ("S6:reduced-n5",),

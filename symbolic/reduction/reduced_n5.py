@@ -1,7 +1,7 @@
 r"""The $SO(4)$-reduced axisymmetric $n = 5$ sphere (row S6:reduced-n5, the paper's open problem, first half).
 
-Derived as :mod:`symbolic.reduced` derives eq:red-system for $n = 4$: each generator
-$f \in \{x, A_\pm, B, G, E_\pm, S_{uu}, S_{uq}, S_{qq}\}$ of :mod:`symbolic.reduced5_invariants` is
+Derived as :mod:`symbolic.reduction.reduced_n4` derives eq:red-system for $n = 4$: each generator
+$f \in \{x, A_\pm, B, G, E_\pm, S_{uu}, S_{uq}, S_{qq}\}$ of :mod:`symbolic.reduction.invariants_n5` is
 differentiated along the field on $P = \mathfrak{so}(5)\times S^4$,
 
 .. math::
@@ -10,11 +10,11 @@ differentiated along the field on $P = \mathfrak{so}(5)\times S^4$,
 
 with $D = 2(2+a+b)\Delta(x)$ (eq:Delta): $D\dot f = \sum_z \partial_z f\, D\dot z$ is an $SO(4)$-invariant
 polynomial in $(K, u, q)$ with coefficients in $\mathbb{Q}[a, b, x]$, written in the generators by
-:func:`symbolic.reduced5_invariants.in_generators` (ansatz over all products of the tridegree, exact
+:func:`symbolic.reduction.invariants_n5.in_generators` (ansatz over all products of the tridegree, exact
 rref over $\mathbb{Q}$), then $s = \lVert q\rVert^2 \to 1 - x^2$. The result is a polynomial vector field
 on $\mathbb{R}^{10} \ni r = (x, A_+, A_-, B, G, E_+, E_-, S_{uu}, S_{uq}, S_{qq})$ over $D$; its restriction
 to the reduced space (the image of $P$, cut out by the relations $R_1, R_2$ of
-:func:`symbolic.reduced5_invariants.relations`, with $s = 1 - x^2$) is the reduced dynamics.
+:func:`symbolic.reduction.invariants_n5.relations`, with $s = 1 - x^2$) is the reduced dynamics.
 """
 
 from __future__ import annotations
@@ -22,9 +22,9 @@ from __future__ import annotations
 from functools import cache
 
 import sympy as sp
-from chaplygin_nd.symbolic import reduced5_invariants as ri5
 from chaplygin_nd.symbolic.axisym_inverse import inverse_numerator
 from chaplygin_nd.symbolic.axisymmetric import a, b, x
+from chaplygin_nd.symbolic.reduction import invariants_n5 as ri5
 
 __all__ = ["COORDS", "SYMBOLS", "D", "phase_field_numerators", "raw_derivatives",
            "field_numerators", "field", "relations_on_P"]
@@ -39,7 +39,7 @@ D = 2 * (2 + a + b) * Delta
 
 @cache
 def phase_field_numerators():
-    r"""$(D\dot M_{ij})_{i<j}$ and $D\dot\gamma$ as elements of :data:`symbolic.reduced5_invariants.RING`
+    r"""$(D\dot M_{ij})_{i<j}$ and $D\dot\gamma$ as elements of :data:`symbolic.reduction.invariants_n5.RING`
     (eq:motion-general with the derived inverse, $n = 5$; valid on $S^4$)."""
     R = ri5.RING
     DO = inverse_numerator(ri5.M, ri5.gamma)          # expanded entries
@@ -80,7 +80,7 @@ def raw_derivatives() -> dict:
 @cache
 def field_numerators() -> dict:
     r"""$D\dot f$ for $f$ in :data:`COORDS` in the generators, $s = 1 - x^2$: elements of
-    :data:`symbolic.reduced5_invariants.INV_RING` (S6:reduced-n5, derived)."""
+    :data:`symbolic.reduction.invariants_n5.INV_RING` (S6:reduced-n5, derived)."""
     return {n: ri5.on_sphere(ri5.in_generators(N)) for n, N in raw_derivatives().items()}
 
 

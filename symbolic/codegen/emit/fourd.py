@@ -14,8 +14,8 @@ from __future__ import annotations
 
 import sympy as sp
 from chaplygin_nd.symbolic import fourd
-from chaplygin_nd.symbolic.codegen import Argument, Kernel
-from chaplygin_nd.symbolic.emit.axisym import stable_Delta
+from chaplygin_nd.symbolic.codegen.emit.axisym import stable_Delta
+from chaplygin_nd.symbolic.codegen.kernels import Argument, Kernel
 
 __all__ = ["kernels", "stable_D"]
 

@@ -1,6 +1,6 @@
 r"""From an $\mathbb{F}_p$ kernel to integrals over $\mathbb{Q}$, proved (row S6:first-integrals).
 
-A candidate of the search (symbolic/first_integrals.py) is only a candidate. Here:
+A candidate of the search (symbolic/search/integral_search.py) is only a candidate. Here:
 
 1. The block's unknowns are re-expressed in a **real** basis: complex conjugation maps each
    orbit column to $\pm$ an orbit column ($\mathrm{conj}\,c = s\,c'$), and the columns
@@ -12,7 +12,7 @@ A candidate of the search (symbolic/first_integrals.py) is only a candidate. Her
    Chinese remainder theorem and rational reconstruction, and accepted only if one more prime
    reproduces them.
 3. Each reconstructed $P$ is proved: $D\,X(P) - kP\,X(D) \equiv 0$ modulo $\|\gamma\|^2 - 1$ as an
-   exact polynomial identity, SymPy and FLINT (symbolic/exact.py ``rational_identity``), with
+   exact polynomial identity, SymPy and FLINT (symbolic/exact/identity.py ``rational_identity``), with
    the project's derived numerator of $L_\gamma^{-1}$ (P:inversion). Axisymmetric model only.
 """
 
@@ -21,15 +21,15 @@ from __future__ import annotations
 import flint
 import numpy as np
 import sympy as sp
-from chaplygin_nd.symbolic import fi_basis, fi_field
-from chaplygin_nd.symbolic import first_integrals as fi
-from chaplygin_nd.symbolic.fi_field import Model
+from chaplygin_nd.symbolic.search import candidate_basis, sampled_field
+from chaplygin_nd.symbolic.search import integral_search as fi
+from chaplygin_nd.symbolic.search.sampled_field import Model
 
 __all__ = ["real_columns", "kernel_rref", "reconstruct", "real_symbols", "to_expression",
            "prove_integral"]
 
 
-def _conjugation(co: fi_basis.Coordinates):
+def _conjugation(co: candidate_basis.Coordinates):
     perm, sign = [], []
     C = co.re + 1j * co.im
     for r in range(len(C)):
@@ -48,7 +48,7 @@ def _conjugation(co: fi_basis.Coordinates):
     return np.array(perm), np.array(sign)
 
 
-def real_columns(B: fi_basis.Basis, blk: fi_basis.Block) -> list[list[tuple[int, int, int]]]:
+def real_columns(B: candidate_basis.Basis, blk: candidate_basis.Block) -> list[list[tuple[int, int, int]]]:
     """Real basis of the block: each entry a list of (complex column, coefficient, power of i);
     every column is mapped to +- itself by conjugation (see the loop), so each entry is one column,
     real (power 0) or i times an imaginary one (power 1)."""
@@ -93,19 +93,19 @@ def _real_matrix(A: np.ndarray, cols, p: int, i_p: int) -> np.ndarray:
 def kernel_rref(model: Model, d: int, d_gamma: int, k: int, character: int, prime_index: int,
                 seed: int = 0):
     """The RREF (rows) of the kernel of the block ``character`` in the real basis, mod p."""
-    p = fi_field.PRIMES[prime_index]
+    p = sampled_field.PRIMES[prime_index]
     i_p = fi._sqrt_minus_one(p)
-    B = fi_basis.basis(model.n, d, d_gamma, model.planes)
+    B = candidate_basis.basis(model.n, d, d_gamma, model.planes)
     blk = next(b for b in B.blocks if b.character == character)
     cols = real_columns(B, blk)
     rng = np.random.default_rng([seed, 99, model.n, d, d_gamma, k, prime_index])
     rows = blk.columns + fi.MARGIN
-    s = fi_field.sample(model, rows + rows // 8 + 8, p, rng)
+    s = sampled_field.sample(model, rows + rows // 8 + 8, p, rng)
     cv = fi._coordinate_values(B.coords, s["z"], p, i_p)
     cd = fi._coordinate_values(B.coords, s["zdot"], p, i_p)
     good = (cv != 0).all(axis=1)
     cv, cd, dlog = cv[good][:rows], cd[good][:rows], s["dlogD"][good][:rows]
-    ratio = cd * fi_field.inv_mod(cv, p) % p
+    ratio = cd * sampled_field.inv_mod(cv, p) % p
     Y = fi._monomial_values(B.exponents, cv, p) * ((ratio @ B.exponents.T - k * dlog[:, None]) % p) % p
     A = _real_matrix(fi._block_apply(Y, blk, p), cols, p, i_p)
     X, nullity = fi._nmod(A, p).nullspace()
@@ -136,7 +136,7 @@ def reconstruct(model: Model, d: int, d_gamma: int, k: int, character: int, prim
         mats.append(R)
     if len({m.shape for m in mats}) != 1:
         raise ArithmeticError("the kernel dimension differs between primes")
-    ps = [fi_field.PRIMES[i] for i in range(primes)]
+    ps = [sampled_field.PRIMES[i] for i in range(primes)]
     modulus = 1
     for q in ps[:-1]:
         modulus *= q
@@ -171,7 +171,7 @@ def real_symbols(n: int):
     return Ms, gs
 
 
-def to_expression(B: fi_basis.Basis, blk: fi_basis.Block, cols, coeffs) -> sp.Expr:
+def to_expression(B: candidate_basis.Basis, blk: candidate_basis.Block, cols, coeffs) -> sp.Expr:
     """The real polynomial sum_j coeffs[j] * (real column j), as a SymPy expression in
     :func:`real_symbols` (built with FLINT fmpq_mpoly complex arithmetic)."""
     co = B.coords
@@ -233,7 +233,7 @@ def prove_integral(expr: sp.Expr, model: Model, k: int, a=None, b=None):
     rationals (default the model's) or SymPy symbols."""
     from chaplygin_nd.symbolic.algebra import commutator, unvec
     from chaplygin_nd.symbolic.axisym_inverse import inverse_numerator
-    from chaplygin_nd.symbolic.exact import rational_identity
+    from chaplygin_nd.symbolic.exact.identity import rational_identity
 
     n = model.n
     a = model.a if a is None else a

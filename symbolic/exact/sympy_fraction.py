@@ -1,5 +1,5 @@
 r"""SymPy's reading of an expression into $\mathbb{Q}(x_1,\dots,x_m)$, in lowest terms (route 1 of
-:mod:`symbolic.exact`, the SymPy engine).
+:mod:`symbolic.exact.identity`, the SymPy engine).
 
 ``FracField.from_expr`` builds the fraction node by node and cancels (a polynomial gcd) after
 every addition and multiplication; on the residuals of the ledger's identities that was most of
@@ -11,7 +11,7 @@ and cancels once at the end with the field's own constructor. A fraction in lowe
 unique up to a unit and ``FracField.new`` normalises that unit, so the result is the element
 ``from_expr`` returns (the same numerator and denominator: compared on every call of every ledger
 row when this was introduced; tests/test_sympy_fraction.py checks it on its own cases). The
-arithmetic stays SymPy's; the FLINT engine (:mod:`symbolic.flint_engine`) still decides
+arithmetic stays SymPy's; the FLINT engine (:mod:`symbolic.exact.flint_engine`) still decides
 independently.
 """
 

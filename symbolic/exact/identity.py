@@ -14,7 +14,7 @@ Two routes, both exact (no floating point anywhere):
 
 2. :func:`zero_at_points` — *evidence at seeded exact points* (Schwartz–Zippel). A residual
    function is evaluated with exact rationals at ``count`` points drawn from
-   :mod:`symbolic.points`; a non-zero rational polynomial of degree $d$ vanishes at a random point
+   :mod:`symbolic.exact.points`; a non-zero rational polynomial of degree $d$ vanishes at a random point
    of $S^m$ with probability $\le d/|S|$. Used where the symbolic object is too large (general
    $n$ up to 12, where $\Omega = L_\gamma^{-1} M$ is an exact linear solve at the point).
 
@@ -22,10 +22,10 @@ A false identity always comes back with an exact :class:`Counterexample`: a rati
 inside the stated domain (on the sphere where asked) and the exact non-zero value there.
 
 Two engines. Every zero test above is decided by SymPy (its sparse polynomials / ``DomainMatrix``)
-and, independently, by FLINT (:mod:`symbolic.flint_engine`: the SymPy-built expression read by a
+and, independently, by FLINT (:mod:`symbolic.exact.flint_engine`: the SymPy-built expression read by a
 tree walk into ``fmpq_mpoly``, ``divmod`` by the sphere polynomial, ``fmpq_mat`` at points). The
 two must agree — on the verdict, and at a counterexample on its exact value — or
-:class:`~symbolic.flint_engine.EngineDisagreement` is raised (an ``error`` row). Each check records
+:class:`~symbolic.exact.flint_engine.EngineDisagreement` is raised (an ``error`` row). Each check records
 which engines decided it (:func:`engine_tally`); the ledger prints it in the row's method.
 ``CHAPLYGIN_ND_ENGINES=flint`` makes SymPy abstain (the FLINT-only mutation run).
 """
@@ -40,9 +40,9 @@ from random import Random
 
 import flint
 import sympy as sp
-from chaplygin_nd.symbolic import points
-from chaplygin_nd.symbolic.counterexample import Counterexample
-from chaplygin_nd.symbolic.flint_engine import (
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.counterexample import Counterexample
+from chaplygin_nd.symbolic.exact.flint_engine import (
     EngineDisagreement,
     FlintRing,
     active_engines,
@@ -51,7 +51,7 @@ from chaplygin_nd.symbolic.flint_engine import (
     to_fmpq,
     use_engine,
 )
-from chaplygin_nd.symbolic.sympy_fraction import reduced_fraction
+from chaplygin_nd.symbolic.exact.sympy_fraction import reduced_fraction
 from sympy.polys.fields import field as fraction_field
 from sympy.polys.orderings import lex
 from sympy.polys.rings import PolyElement
@@ -147,7 +147,7 @@ def reset_engine_tally() -> None:
 def engine_note(tally: Mapping[tuple[str, str], int]) -> str:
     """The sentence a row's method ends with: which engines decided its zero tests."""
     if not tally:
-        return ("engines: no zero test through symbolic.exact (exact values computed in the "
+        return ("engines: no zero test through symbolic.exact.identity (exact values computed in the "
                 "proof's own SymPy code; one engine)")
     kinds = {"identity": "identities", "points": "points"}
     parts = []
@@ -221,7 +221,7 @@ def rational_identity(residual, *, sphere: Sequence[sp.Symbol] | None = None,
     ``sphere``: symbols $\gamma_1..\gamma_n$ with the identity claimed on $\lVert\gamma\rVert = 1$.
     ``samplers``: for the counterexample search only, how to draw each parameter (e.g. $a \in
     [-1,1]$, $b > 0$); other symbols are drawn from small rationals, sphere symbols on $S^{n-1}$.
-    ``seed``: of the counterexample search; default :func:`symbolic.points.ledger_seed`.
+    ``seed``: of the counterexample search; default :func:`symbolic.exact.points.ledger_seed`.
     """
     start = time.perf_counter()
     seed = points.ledger_seed() if seed is None else seed
@@ -410,11 +410,11 @@ def zero_at_points(residual: Callable[[dict], object], sample: Callable[[Random]
     ``sample`` returns a dict name -> exact value (numbers, vectors, matrices); ``residual``
     returns an exact number, matrix or list. ``describe`` names the space sampled (for the
     method string). A non-zero value stops the check and becomes the counterexample. ``seed``:
-    default :func:`symbolic.points.ledger_seed` (the seed of the ledger run).
+    default :func:`symbolic.exact.points.ledger_seed` (the seed of the ledger run).
 
     ``engines``: who evaluates. The residual runs once per engine inside
-    :func:`~symbolic.flint_engine.use_engine`, so its exact linear algebra (``solve``, ``det``,
-    ``rank``, ``inverse`` of :mod:`symbolic.flint_engine`) is SymPy's ``DomainMatrix`` in one run
+    :func:`~symbolic.exact.flint_engine.use_engine`, so its exact linear algebra (``solve``, ``det``,
+    ``rank``, ``inverse`` of :mod:`symbolic.exact.flint_engine`) is SymPy's ``DomainMatrix`` in one run
     and FLINT's ``fmpq_mat`` in the other; SymPy tests its value with ``expand``, FLINT converts
     it to ``fmpq``; the two values must be equal. A residual that makes no such call is evaluated
     once (the value is the same SymPy arithmetic) and tested by both. Engines not active in this
