@@ -92,7 +92,7 @@ class Simulation:
 
     def summary(self) -> str:
         """The one-screen summary ``chaplygin simulate`` prints (scene, model, cost, drift)."""
-        from chaplygin_nd.simulate.scene.cli import summary
+        from chaplygin_nd.simulate.scene.report import summary
 
         return summary(self.scene, self.plan, self.trajectory, self.outputs,
                        self.trajectory.seconds + self.trajectory.compile_seconds)

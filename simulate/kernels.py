@@ -27,6 +27,12 @@ Binding (:func:`from_generated`): :mod:`generated.axisym` holds component kernel
 matrices by :mod:`runtime.axisym`; where neither exists, a kernel raises :class:`KernelMissing`
 naming what is missing. Nothing here computes a derived formula: it only reshapes arguments and
 results.
+
+Beside the matrix interface, the generated code that is not a kernel of this interface comes through
+here too, so that this module stays the one place :mod:`simulate` reaches :mod:`generated`
+(``tests/test_simulate_layers.py``): :func:`p_coefficients` (the coefficients of
+$p(\lambda, \sigma)$ at any $n$), :func:`reduced5` (the $n = 5$ reduced invariants and integrals)
+and :func:`expression_builders` (the expression graphs heyoka compiles).
 """
 
 from __future__ import annotations
@@ -40,7 +46,7 @@ import numpy as np
 from chaplygin_nd.simulate.dynamics import so
 
 __all__ = ["Kernels", "KernelMissing", "OPTIONAL", "active", "use", "from_generated",
-           "RUNTIME_MODULES"]
+           "RUNTIME_MODULES", "p_coefficients", "reduced5", "expression_builders"]
 
 OPTIONAL = ("zeta", "reduced_field", "reduced_integrals", "horizontal", "horizontal_A",
             "horizontal_blocks")
@@ -221,3 +227,28 @@ def from_generated() -> Kernels:
                    horizontal_blocks=getattr(red, "horizontal_blocks", None) if red is not None else None,
                    note="generated/axisym.py" + (f" + {runtime.__name__}" if runtime else "")
                    + (" + generated/reduced.py" if red is not None else ""))
+
+
+# -- the other generated code simulate/ evaluates ------------------------------------------------
+
+
+def p_coefficients(M, gamma) -> np.ndarray:
+    r"""Coefficients of $p(\lambda,\sigma) = \det(M + \sigma\gamma\gamma^T - \lambda\,\mathrm{Id})$
+    (eq:pol-first-integrals), ``out[..., i, j]`` multiplying $\lambda^i\sigma^j$, any $n$:
+    :func:`runtime.axisym.p_coefficients` (the generated closed form for $n = 3, 4$, batched
+    eigenvalues otherwise)."""
+    from chaplygin_nd.runtime.axisym import p_coefficients as kernel
+
+    return kernel(M, gamma)
+
+
+def reduced5():
+    r"""The module :mod:`generated.reduced5`: the ten $SO(4)$-invariants of $n = 5$ and the reduced
+    integrals in them (S6:reduced-n5), as emitted by ``make generate``."""
+    return importlib.import_module("chaplygin_nd.generated.reduced5")
+
+
+def expression_builders():
+    r"""The module :mod:`generated.expression_builders`: the derived fields written over an
+    arithmetic object (NumPy, heyoka expressions), from which the heyoka systems are built."""
+    return importlib.import_module("chaplygin_nd.generated.expression_builders")

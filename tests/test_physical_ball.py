@@ -129,7 +129,7 @@ def test_no_ball_for_a_b_is_in_the_report_file_not_on_the_terminal():
     """b < n + a (tr J > m r^2) is the paper's system but no ball: summary.txt says so, the plan
     printed before the run does not (most built-in scenes are such); the caveat of a > 1,
     outside the paper's stated range, is still printed."""
-    from chaplygin_nd.simulate.scene.cli import heading
+    from chaplygin_nd.simulate.scene.report import heading
 
     abstract = loads(ab_scene(a=0.5, b=1.0))
     p = plan(abstract)

@@ -1,6 +1,9 @@
 """The layers of simulate/ (DESIGN: arrows go one way): scene -> analysis -> integrators -> dynamics
 -> kernels -> generated/. Read from the source (every import, lazy ones included), so a new module
-that imports against the arrows, or closes a circle, fails here with the offending edge."""
+that imports against the arrows, or closes a circle, fails here with the offending edge; and
+simulate/kernels.py is the one module of simulate/ that reaches generated/ and the kernels'
+assembly in runtime/ (the heyoka integrator modules use runtime's expression graphs and JIT cache,
+which are not kernels but the machinery that compiles them)."""
 
 from __future__ import annotations
 
@@ -111,3 +114,36 @@ def _imports_any(path: Path) -> set[str]:
             out.add(node.module)
             out.update(f"{node.module}.{a.name}" for a in node.names)
     return out
+
+
+#: The one binding of simulate/ to generated/ and to runtime's assembly of the kernels.
+BINDING = "simulate/kernels.py"
+#: runtime/ modules that are heyoka machinery, not kernels, and the modules of simulate/ that use it.
+HEYOKA_RUNTIME = ("chaplygin_nd.runtime.expressions", "chaplygin_nd.runtime.jit_cache")
+HEYOKA_MODULES = ("simulate/integrators/heyoka_taylor.py", "simulate/integrators/heyoka_systems.py")
+
+
+def _reaches(path: Path) -> set[str]:
+    """The modules of generated/ and runtime/ that ``path`` imports, at any depth of the code."""
+    return {m for m in _imports_any(path)
+            if m.startswith(("chaplygin_nd.generated", "chaplygin_nd.runtime"))
+            and m not in ("chaplygin_nd.generated", "chaplygin_nd.runtime")}
+
+
+def test_generated_and_runtime_only_through_the_binding():
+    around = {}
+    for p in SIMULATE.rglob("*.py"):
+        rel = str(p.relative_to(ROOT))
+        if rel == BINDING:
+            continue
+        allowed = HEYOKA_RUNTIME if rel in HEYOKA_MODULES else ()
+        bad = sorted(m for m in _reaches(p) if not m.startswith(allowed or ("\0",)))
+        if bad:
+            around[rel] = bad
+    assert around == {}, f"imports of generated/ or runtime/ that go around {BINDING}: {around}"
+
+
+def test_the_binding_reaches_generated():
+    """The rule above is not vacuous: the binding itself imports generated/ and runtime/."""
+    text = (ROOT / BINDING).read_text(encoding="utf-8")
+    assert "chaplygin_nd.generated." in text and "chaplygin_nd.runtime." in text

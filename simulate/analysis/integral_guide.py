@@ -31,7 +31,7 @@ import itertools
 from dataclasses import dataclass
 
 import numpy as np
-from chaplygin_nd.generated import reduced5 as g5
+from chaplygin_nd.simulate.kernels import reduced5
 
 __all__ = ["WEIGHTS", "basis", "orbits", "guide", "GuideRow"]
 
@@ -74,7 +74,7 @@ def basis(R: np.ndarray, k: int, E: int, J: int, a: float, b: float) -> np.ndarr
 
 def known_products(R: np.ndarray, k: int, J: int, a: float, b: float) -> np.ndarray:
     """Products of the known integrals of $M$-degree ``k`` with at most ``J`` factors $H$."""
-    F = g5.reduced5_integrals(R, a, b)
+    F = reduced5().reduced5_integrals(R, a, b)
     x, Ap, Am, Ep, Em = R[:, 0], R[:, 1], R[:, 2], R[:, 5], R[:, 6]
     L = (Ep - Em) / 2 - x * (Ap - Am) / 4
     known = [(F[:, 0], 2, 0), (F[:, 1], 4, 0), (F[:, 2], 2, 0), (L, 2, 0), (F[:, 4], 2, 1)]
@@ -102,7 +102,7 @@ def orbits(a: float, b: float, count: int, seed: int, T: float = 600.0, dt: floa
     ta, _, _ = heyoka_taylor.compiled_integrator(heyoka_systems.reduced5(), "double", 1e-15)
     out = []
     for k in range(count):
-        r0 = g5.reduced5_invariants(ens.M0[k][iu], ens.gamma0[k])
+        r0 = reduced5().reduced5_invariants(ens.M0[k][iu], ens.gamma0[k])
         ta.state[:] = r0
         ta.pars[:] = [a, b]
         ta.time = 0.0
@@ -113,7 +113,7 @@ def orbits(a: float, b: float, count: int, seed: int, T: float = 600.0, dt: floa
     M = M - np.swapaxes(M, 1, 2)
     g = rng.normal(size=(4000, 5))
     g /= np.linalg.norm(g, axis=1)[:, None]
-    return out, g5.reduced5_invariants(M[:, iu[0], iu[1]], g)
+    return out, reduced5().reduced5_invariants(M[:, iu[0], iu[1]], g)
 
 
 def _svals(A: np.ndarray) -> np.ndarray:

@@ -23,7 +23,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cache
 
-from chaplygin_nd.generated import expression_builders as eb
+from chaplygin_nd.simulate.kernels import expression_builders
 
 __all__ = ["System", "full", "reduced", "reduced5", "sphere3d", "for_field"]
 
@@ -88,7 +88,7 @@ def full(n: int, reconstruct: bool = False) -> System:
 def reduced() -> System:
     r"""eq:red-system on $r = (A, B, E, G, F_1, x, \delta)$ ($n = 4$); parameters $(a, b)$."""
     def build(v, p, ops):
-        return eb.reduced_field(v, p[0], p[1], ops)
+        return expression_builders().reduced_field(v, p[0], p[1], ops)
 
     return System("reduced 7D", ("A", "B", "E", "G", "F1", "x", "delta"), ("a", "b"), build)
 
@@ -98,7 +98,7 @@ def reduced5() -> System:
     r"""The $SO(4)$-reduced $n = 5$ field (S6:reduced-n5) on
     $r = (x, A_+, A_-, B, G, E_+, E_-, S_{uu}, S_{uq}, S_{qq})$; parameters $(a, b)$."""
     def build(v, p, ops):
-        return eb.reduced5_field(v, p[0], p[1], ops)
+        return expression_builders().reduced5_field(v, p[0], p[1], ops)
 
     return System("reduced5 10D", ("x", "Ap", "Am", "B", "G", "Ep", "Em", "Suu", "Suq", "Sqq"),
                   ("a", "b"), build)
@@ -109,7 +109,7 @@ def sphere3d() -> System:
     r"""eq:motion3D, $(\dot M, \dot\gamma) = (M\times\Omega, \gamma\times\Omega)$ with the derived
     $\Omega = L_\gamma^{-1}M$ of eq:mom3D; parameters $(I_1, I_2, I_3, b)$."""
     def build(v, p, ops):
-        return eb.vector_field_3d(v[:3], v[3:], p[:3], p[3], ops)
+        return expression_builders().vector_field_3d(v[:3], v[3:], p[:3], p[3], ops)
 
     return System("sphere3d general inertia", ("M1", "M2", "M3", "gamma1", "gamma2", "gamma3"),
                   ("I1", "I2", "I3", "b"), build)

@@ -110,6 +110,12 @@ def cache_key(system, precision, tol: float, compact: bool, batch: int) -> dict:
             "batch": int(batch), "heyoka": version("heyoka")}
 
 
+def cache_state(system, precision, tol: float, compact: bool, batch: int) -> str:
+    """Where the compiled integrator of :func:`cache_key` is now: ``in memory``, ``on disk`` or
+    ``cold`` (:func:`runtime.jit_cache.cache_state`; what the cost model charges for it)."""
+    return jit_cache.cache_state(cache_key(system, precision, tol, compact, batch))
+
+
 def compiled_integrator(system, precision="double", tol=None, compact=None, batch: int = 1,
                         cache: bool = True):
     r"""``(integrator, seconds, how)``: a heyoka Taylor integrator of ``system``

@@ -21,8 +21,9 @@ from chaplygin_nd.simulate.kernels import KernelMissing
 from chaplygin_nd.simulate.scene import tori as tori_scene
 from chaplygin_nd.simulate.scene.frequency_map import FrequencyMapScene
 from chaplygin_nd.simulate.scene.outdir import OutputError, claim
-from chaplygin_nd.simulate.scene.outputs import collect, max_drift, without_figures, write
+from chaplygin_nd.simulate.scene.outputs import collect, without_figures, write
 from chaplygin_nd.simulate.scene.planner import plan
+from chaplygin_nd.simulate.scene.report import heading, summary
 from chaplygin_nd.simulate.scene.run import execute
 from chaplygin_nd.simulate.scene.spec import SceneError, builtin_scenes, find
 
@@ -37,40 +38,7 @@ from chaplygin_nd.console import (
     usable_backend,
 )
 
-__all__ = ["main", "summary", "heading"]
-
-
-def heading(scene, p, report: bool = False) -> str:
-    """The summary's first lines, the scene and the plan (model and why), which ``chaplygin
-    simulate`` prints before the run; with ``report`` (summary.txt) also the scene's remarks
-    (``body:`` lines, e.g. that no ball of matter has its (a, b): see ``spec._body``)."""
-    return "\n".join([f"scene   {scene.title}  (n = {scene.n}, a = {scene.a:g}, b = {scene.b:g}, "
-                      f"{scene.count} initial condition{'s' if scene.count > 1 else ''}, "
-                      f"t in [{scene.t[0]:g}, {scene.t[-1]:g}], {len(scene.t)} samples)",
-                      p.describe(),
-                      *([f"  body: {r}" for r in scene.remarks] if report else [])])
-
-
-def summary(scene, p, traj, arrays, seconds, check=None, out=None, *, with_heading=True) -> str:
-    """The one-screen summary: scene, model and why (:func:`heading`; left out when
-    ``with_heading`` is false), cost, integral drift, cross-check."""
-    lines = ([heading(scene, p)] if with_heading else []) + [
-             (f"cost    closed form: {traj.calls} kernel evaluation(s) and matrix exponentials "
-              f"at {len(scene.t)} samples, {traj.seconds:.3f} s; {seconds:.3f} s in all"
-              if traj.method == "closed form" else
-              f"cost    {traj.steps} steps, {traj.calls} right-hand-side calls, "
-              f"{traj.seconds:.3g} s integrating"
-              + (f" + {traj.compile_seconds:.3g} s compiling or loading the compiled integrator"
-                 if traj.compile_seconds else "") + f", {seconds:.3f} s in all"),
-             f"outputs {', '.join(scene.outputs)}"]
-    drift = max_drift(arrays)
-    if drift:
-        lines.append("drift   " + ", ".join(f"{k} {v:.2e}" for k, v in drift.items()))
-    if check is not None:
-        lines.append(check.describe())
-    if out is not None:
-        lines.append(f"written {out}")
-    return "\n".join(lines)
+__all__ = ["main"]
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -2,7 +2,7 @@ r"""What each integrator would cost for a scene, predicted before the run: the p
 
 For each candidate the scene may use — heyoka compact, heyoka unrolled (Taylor + LLVM), DOP853 —
 the predicted total is *start-up* (compile, or load from the compile cache, and heyoka's import;
-the cache state is known: in memory / on disk / cold, :func:`runtime.jit_cache.cache_state`) plus
+the cache state is known: in memory / on disk / cold, :func:`simulate.integrators.heyoka_taylor.cache_state`) plus
 *run* (the integration). The outputs cost the same for every candidate (they are computed from
 the samples), so they do not enter the choice. The cheapest candidate wins; the plan line prints
 every prediction.
@@ -142,7 +142,6 @@ def predict(field, y0: np.ndarray, t: np.ndarray, system, n: int, heyoka_tol: fl
             dop_rtol: float, methods=("heyoka", "dop853"), simd: int = 4) -> list[Candidate]:
     """The candidates of ``methods`` with their predicted costs (see the module docstring);
     ``system``: the :class:`heyoka_systems.System` of ``field``; ``y0`` ``(count, dim)``."""
-    from chaplygin_nd.runtime import jit_cache
     from chaplygin_nd.simulate.integrators import heyoka_taylor as ht
 
     span = float(t[-1] - t[0])
@@ -160,7 +159,7 @@ def predict(field, y0: np.ndarray, t: np.ndarray, system, n: int, heyoka_tol: fl
         order = ht.order_for(heyoka_tol)
         D = decomposition_size(system.name, n)
         for compact in (True, False):
-            state = jit_cache.cache_state(ht.cache_key(system, "double", heyoka_tol, compact, width))
+            state = ht.cache_state(system, "double", heyoka_tol, compact, width)
             step = KAPPA[compact] * D * order**2 * (BATCH_STEP if width > 1 else 1.0)
             out.append(Candidate("heyoka", compact, _startup(system.name, n, compact, state),
                                  batches * taylor_steps * step, state))

@@ -26,6 +26,7 @@ from typing import Any
 
 import numpy as np
 from chaplygin_nd.simulate.dynamics import so
+from chaplygin_nd.simulate import kernels
 from chaplygin_nd.simulate.kernels import active
 from chaplygin_nd.simulate.scene.figures import plot
 from chaplygin_nd.simulate.scene.outdir import OutputFolder
@@ -47,11 +48,9 @@ def without_figures(files: dict[str, Callable[[Path], Any]]) -> dict[str, Callab
 def p_coefficients(M: np.ndarray, gamma: np.ndarray) -> np.ndarray:
     r"""Coefficients of $p(\lambda,\sigma) = \det(M + \sigma\gamma\gamma^T - \lambda\,\mathrm{Id})$
     (eq:pol-first-integrals), ``out[..., i, j]`` multiplying $\lambda^i\sigma^j$, for all samples and
-    members at once (:func:`runtime.axisym.p_coefficients`: the generated closed form for
+    members at once (:func:`simulate.kernels.p_coefficients`: the generated closed form for
     $n = 3, 4$, batched eigenvalues otherwise); any $n$."""
-    from chaplygin_nd.runtime.axisym import p_coefficients as kernel
-
-    return kernel(M, gamma)
+    return kernels.p_coefficients(M, gamma)
 
 
 def integrals(M, gamma, Omega) -> dict[str, np.ndarray]:
