@@ -34,7 +34,7 @@ from chaplygin_nd.runtime.expressions import HeyokaArithmetic
 from chaplygin_nd.simulate.integrators import heyoka_systems, settings
 from chaplygin_nd.simulate.integrators.base import Solution
 from chaplygin_nd.simulate.integrators.registry import Integrator, register
-from chaplygin_nd.simulate.integrators.settings import Tolerance
+from chaplygin_nd.simulate.integrators.settings import Calibration, Tolerance
 
 __all__ = ["available", "integrate", "order_for", "bits_for_digits", "compiled_integrator",
            "default_tol", "default_compact", "cache_key"]
@@ -316,9 +316,14 @@ def _describe(s) -> str:
     return f"heyoka Taylor, tol {s.tol:.3g}" + ("" if s.precision == "double" else f", {s.precision}")
 
 
+#: Measured by ``chaplygin bench calibration`` against heyoka in real128 (rounded up); in real128
+#: the same ratio K, the rounding scaled by 2^-60, the floor that of quadruple precision.
+CALIBRATION = (("heyoka", Calibration(measured=12.0, rounding=1.4e-13, floor=2.0 ** -52)),
+               ("real128", Calibration(measured=12.0, rounding=1.4e-13 * 2.0 ** -60,
+                                       floor=2.0 ** -112)))
 HEYOKA = register(Integrator(
     "heyoka", Tolerance, _run,
     calibrate=lambda target, span, step=0.01, dps=30, precision="double":
         settings.tolerance("heyoka", target, precision, span),
     error=settings.tolerance_error, describe=_describe, available=usable,
-    auto=0, reference=1, costed=True))
+    auto=0, reference=1, costed=True, calibration=CALIBRATION))

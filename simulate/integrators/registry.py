@@ -5,9 +5,12 @@ An entry (:class:`Integrator`) says what its settings are (a class of
 :mod:`simulate.integrators.settings`), how the target becomes settings (``calibrate``) and how
 accurate those settings are (``error``), how to run it (``run``), what the plan line says
 (``describe``), whether it can integrate the reduced 7D field, whether it is usable here, and
-the order in which ``accuracy.method = "auto"`` and ``--cross-check`` try it. Each integrator
-module of this folder registers itself at import (:func:`register`); :data:`MODULES` lists them.
-A new integrator is one module that calls :func:`register`, and its name in :data:`MODULES`.
+the order in which ``accuracy.method = "auto"`` and ``--cross-check`` try it, whether a scene may
+name it, and its calibration (the measured error model of
+:class:`simulate.integrators.settings.Calibration`; the tables of that module are read from here).
+Each integrator module of this folder registers itself at import (:func:`register`); :data:`MODULES`
+lists them. A new integrator is one module that calls :func:`register`, and its name in
+:data:`MODULES`.
 """
 
 from __future__ import annotations
@@ -19,7 +22,7 @@ from typing import Any
 
 from chaplygin_nd.simulate.integrators.base import Solution
 
-__all__ = ["Integrator", "register", "get", "names", "MODULES"]
+__all__ = ["Integrator", "register", "get", "names", "named", "entries", "MODULES"]
 
 #: The integrator modules, each registering one or more entries at import.
 MODULES = ("dop853", "heyoka_taylor", "lie", "taylor")
@@ -33,7 +36,9 @@ class Integrator:
     ``calibrate(target, span, step, dps, precision) -> settings``; ``error(settings, span)``: the
     calibrated relative error (no safety factor). ``auto`` / ``reference``: rank among the
     methods ``accuracy.method = "auto"`` / the cross-check reference try, lowest first (``None``:
-    never). ``costed``: the cost model (:mod:`simulate.scene.cost`) predicts its run time."""
+    never). ``costed``: the cost model (:mod:`simulate.scene.cost`) predicts its run time.
+    ``scene``: a scene may name it in ``accuracy.method``. ``calibration``: ``((key, Calibration),
+    ...)``, one per precision it calibrates (the key is its name, or e.g. ``real128``)."""
 
     name: str
     settings: type  # a class of simulate.integrators.settings (which imports this module)
@@ -46,6 +51,8 @@ class Integrator:
     auto: int | None = None
     reference: int | None = None
     costed: bool = False
+    scene: bool = True
+    calibration: tuple[tuple[str, Any], ...] = ()
 
 
 _REGISTRY: dict[str, Integrator] = {}
@@ -80,3 +87,15 @@ def names(order: str | None = None) -> list[str]:
         return sorted(_REGISTRY)
     ranked = [(getattr(e, order), e.name) for e in _REGISTRY.values() if getattr(e, order) is not None]
     return [name for _, name in sorted(ranked)]
+
+
+def named() -> list[str]:
+    """The names a scene may give in ``accuracy.method`` (besides ``auto``), sorted."""
+    _load()
+    return sorted(e.name for e in _REGISTRY.values() if e.scene)
+
+
+def entries() -> list[Integrator]:
+    """Every registered entry, in the order of :data:`MODULES` (and of registration within one)."""
+    _load()
+    return list(_REGISTRY.values())

@@ -1,7 +1,9 @@
 r"""What an integrator runs with, typed by what its number means, and the calibration of each
 integrator: the measured error model that turns ``accuracy.target`` into a setting.
 
-Three kinds of settings, one class each (a setting never means rtol, a step or digits by
+Each integrator states its own :class:`Calibration` on its registry entry
+(:mod:`simulate.integrators.registry`); the tables :data:`MEASURED`, :data:`ROUNDING` and
+:data:`FLOORS` are read from those entries. Three kinds of settings, one class each (a setting never means rtol, a step or digits by
 convention): :class:`Tolerance` (``tol``: rtol = atol of SciPy, heyoka's tolerance),
 :class:`Step` (``h``: a fixed step) and :class:`Digits` (``dps``: working decimal digits).
 Every one carries the relative error the run ``promised`` and whether that ``honoured`` the
@@ -17,23 +19,94 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Settings", "Tolerance", "Step", "Digits", "SAFETY", "MEASURED", "ROUNDING", "FLOORS",
-           "CALIBRATED_SPAN", "tolerance", "step", "digits"]
+__all__ = ["Settings", "Tolerance", "Step", "Digits", "Calibration", "SAFETY", "MEASURED",
+           "ROUNDING", "FLOORS", "CALIBRATED_SPAN", "tolerance", "step", "digits"]
 
 #: Factor between the measured worst ratio and the ratio a run assumes.
 SAFETY = 4.0
-#: Worst measured error/setting ratio K per method above its floor (bench/out/calibration.json;
-#: for ``lie`` the constant C of C h^4 span), rounded up.
-MEASURED = {"dop853": 650.0, "rk45": 650.0, "heyoka": 12.0, "real128": 12.0, "lie": 0.02}
-#: Worst measured error E at the floor setting (rounding), rounded up; real128: heyoka's x 2^-60.
-ROUNDING = {"dop853": 3.5e-12, "rk45": 3.5e-12, "heyoka": 1.4e-13, "real128": 1.4e-13 * 2.0 ** -60,
-            "lie": 0.0}
-#: Smallest setting each tolerance method accepts.
-FLOORS = {"dop853": 100 * float(np.finfo(float).eps), "rk45": 100 * float(np.finfo(float).eps),
-          "heyoka": 2.0 ** -52, "real128": 2.0 ** -112}
 #: Longest horizon of the calibration (tori4d cut to T = 128); beyond it K grows linearly with the
 #: span (measured: tori4d, DOP853 at the T = 128 calibration missed by 1.9x at T = 2048).
 CALIBRATED_SPAN = 128.0
+
+
+@dataclass(frozen=True)
+class Calibration:
+    """What one integrator (at one precision) was measured to deliver (bench/out/calibration.json),
+    rounded up: ``measured`` = the worst error/setting ratio K above the floor (for a fixed step
+    the constant C of C h^4 span), ``rounding`` = the worst error E at the floor setting, ``floor``
+    = the smallest setting it accepts (tolerance methods). Each integrator module states its own
+    on its registry entry."""
+
+    measured: float
+    rounding: float = 0.0
+    floor: float | None = None
+
+
+class _ByMethod(dict):
+    """One column of the calibrations (``measured``, ``rounding`` or ``floor``) keyed by method
+    (or precision: ``real128``), read from the registered integrators on first use. A dict, so a
+    test may patch one entry."""
+
+    def __init__(self, column: str):
+        super().__init__()
+        self._column, self._filled = column, False
+
+    def _fill(self) -> None:
+        if self._filled:
+            return
+        self._filled = True
+        from chaplygin_nd.simulate.integrators import registry
+
+        for entry in registry.entries():
+            for key, calibration in entry.calibration:
+                value = getattr(calibration, self._column)
+                if value is not None:
+                    super().setdefault(key, value)
+
+    def __getitem__(self, key):
+        self._fill()
+        return super().__getitem__(key)
+
+    def get(self, key, default=None):
+        self._fill()
+        return super().get(key, default)
+
+    def __contains__(self, key):
+        self._fill()
+        return super().__contains__(key)
+
+    def __iter__(self):
+        self._fill()
+        return super().__iter__()
+
+    def __len__(self):
+        self._fill()
+        return super().__len__()
+
+    def __repr__(self):
+        self._fill()
+        return super().__repr__()
+
+    def keys(self):
+        self._fill()
+        return super().keys()
+
+    def items(self):
+        self._fill()
+        return super().items()
+
+    def values(self):
+        self._fill()
+        return super().values()
+
+
+#: Worst measured error/setting ratio K per method above its floor (for ``lie`` the constant C of
+#: C h^4 span), from each integrator's :class:`Calibration`.
+MEASURED = _ByMethod("measured")
+#: Worst measured error E at the floor setting (rounding); real128: heyoka's x 2^-60.
+ROUNDING = _ByMethod("rounding")
+#: Smallest setting each tolerance method accepts.
+FLOORS = _ByMethod("floor")
 
 
 @dataclass(frozen=True)

@@ -28,7 +28,8 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["figure", "plot", "REDUCED_NAMES", "INTEGRAL_NAMES"]
+__all__ = ["figure", "plot", "series", "drift", "contact_path", "orientation", "zeta",
+           "REDUCED_NAMES", "INTEGRAL_NAMES"]
 
 #: The reduced invariants of Section 5 (Reduction by SO(3)), in the order of ``reduced``.
 REDUCED_NAMES = (r"$A = \|k\|^2$", r"$B = \|u\|^2$", r"$E = \langle k, q\rangle$",
@@ -350,20 +351,45 @@ def _zeta_figure(plt, arr):
     return fig
 
 
+# -- the drawings an output registers (simulate.scene.output_registry): draw(plt, key, t, arr) --
+
+
+def series(plt, key: str, t: np.ndarray, arr: np.ndarray):
+    """A time series (the default drawing of an output array)."""
+    return _series_figure(plt, key, t, arr)
+
+
+def drift(plt, key: str, t: np.ndarray, arr: np.ndarray):
+    """The drift of a first integral, ``key`` = ``drift.<name>``."""
+    return _drift_figure(plt, key[6:], t, arr)
+
+
+def contact_path(plt, key: str, t: np.ndarray, arr: np.ndarray):
+    """The contact path."""
+    return _contact_figure(plt, t, arr)
+
+
+def orientation(plt, key: str, t: np.ndarray, arr: np.ndarray):
+    """The orientation grid."""
+    return _orientation_figure(plt, t, arr)
+
+
+def zeta(plt, key: str, t: np.ndarray, arr: np.ndarray):
+    """The matrix zeta."""
+    return _zeta_figure(plt, arr)
+
+
 def figure(name: str, t: np.ndarray, arr: np.ndarray):
     r"""The figure of output ``name`` (a key of :func:`simulate.scene.outputs.collect`) with samples ``t``
-    and values ``arr`` (shapes as in :mod:`simulate.scene.outputs`); see the module docstring. Returns a
+    and values ``arr`` (shapes as in :mod:`simulate.scene.outputs`), drawn as its output registered
+    (:mod:`simulate.scene.output_registry`); see the module docstring. Returns a
     :class:`matplotlib.figure.Figure`; the caller closes it."""
-    plt = _pyplot()
-    if name.startswith("drift."):
-        return _drift_figure(plt, name[6:], t, arr)
-    if name == "contact_path":
-        return _contact_figure(plt, t, arr)
-    if name == "orientation":
-        return _orientation_figure(plt, t, arr)
-    if name == "zeta":
-        return _zeta_figure(plt, arr)
-    return _series_figure(plt, name, t, arr)
+    from chaplygin_nd.simulate.scene import output_registry
+
+    draw = output_registry.drawing(name, series)
+    if draw is None:
+        raise ValueError(f"the output array {name!r} has no figure")
+    return draw(_pyplot(), name, t, arr)
 
 
 def plot(path: str | Path, t: np.ndarray, arr: np.ndarray, name: str) -> None:

@@ -28,8 +28,10 @@ import numpy as np
 from chaplygin_nd.simulate.dynamics import so
 from chaplygin_nd.simulate import kernels
 from chaplygin_nd.simulate.kernels import active
+from chaplygin_nd.simulate.scene import figures, output_registry
 from chaplygin_nd.simulate.scene.figures import plot
 from chaplygin_nd.simulate.scene.outdir import OutputFolder
+from chaplygin_nd.simulate.scene.output_registry import Output, register
 
 __all__ = ["collect", "integrals", "p_coefficients", "write", "FIGURE_SUFFIX", "without_figures"]
 
@@ -61,46 +63,80 @@ def integrals(M, gamma, Omega) -> dict[str, np.ndarray]:
 
 def collect(scene, traj) -> dict[str, np.ndarray]:
     """The arrays of the outputs ``scene.outputs`` (names as in the module docstring), plus
-    ``t`` and, for ``integrals``, ``integrals.<name>`` and ``drift.<name>`` arrays."""
+    ``t`` and, for ``integrals``, ``integrals.<name>`` and ``drift.<name>`` arrays: each output's
+    registered ``collect`` (:mod:`simulate.scene.output_registry`), in the scene's order."""
     d = traj.data
     out = {"t": traj.t}
-    need_omega = {"Omega", "integrals"} & set(scene.outputs) and "reduced" not in d
+    wanted = [output_registry.get(name) for name in scene.outputs]
+    need_omega = any(e.omega for e in wanted) and "reduced" not in d
     if need_omega and "Omega" not in d:
         d["Omega"] = active().require("angular_velocity")(d["M"], d["gamma"], scene.a, scene.b)
-    for name in scene.outputs:
-        if name == "zeta" and "zeta" not in d:
-            continue  # only the vertical closed form computes zeta (a full run does not)
-        if name in ("M", "Omega", "gamma", "zeta"):
-            out[name] = d[name]
-        elif name == "x":
-            out["x"] = (d["gamma"][..., -1] if "gamma" in d else d["horizontal"][..., 0]
-                        if "horizontal" in d else d["reduced"][..., 5])
-        elif name == "horizontal":
-            if "horizontal" in d:
-                out["horizontal"] = d["horizontal"]
-            else:
-                from chaplygin_nd.simulate.dynamics.closed_forms import horizontal_invariants
-                out["horizontal"] = horizontal_invariants(d["M"], d["gamma"])
-        elif name == "reduced":
-            if "reduced" in d:
-                out["reduced"] = d["reduced"]
-            else:
-                from chaplygin_nd.simulate.dynamics.so import reduced_invariants
-                out["reduced"] = reduced_invariants(d["M"], d["gamma"])
-        elif name == "orientation":
-            out["orientation"] = d["g"]
-        elif name == "contact_path":
-            out["contact_path"] = d["c"][..., :-1]
-        elif name == "integrals":
-            if "M" in d:
-                vals = integrals(d["M"], d["gamma"], d["Omega"])
-            else:
-                F = active().require("reduced_integrals")(d["reduced"], scene.a, scene.b)
-                vals = {"F1": F[..., 0], "F2": F[..., 1], "F3": F[..., 2], "energy": F[..., 3]}
-            for key, v in vals.items():
-                out[f"integrals.{key}"] = v
-                out[f"drift.{key}"] = v - v[:1]
+    for entry in wanted:
+        if entry.collect is not None:
+            out.update(entry.collect(scene, d))
     return out
+
+
+# -- the outputs of a trajectory, one entry each -----------------------------------------------
+
+
+def _state(name: str) -> Output:
+    """An output that is one array of the trajectory as it stands (``M``, ``Omega``, ``gamma``)."""
+    return register(Output(name, lambda scene, d: {name: d[name]}, omega=name == "Omega"))
+
+
+def _x(scene, d) -> dict[str, np.ndarray]:
+    return {"x": d["gamma"][..., -1] if "gamma" in d else d["horizontal"][..., 0]
+            if "horizontal" in d else d["reduced"][..., 5]}
+
+
+def _integrals(scene, d) -> dict[str, np.ndarray]:
+    if "M" in d:
+        vals = integrals(d["M"], d["gamma"], d["Omega"])
+    else:
+        F = active().require("reduced_integrals")(d["reduced"], scene.a, scene.b)
+        vals = {"F1": F[..., 0], "F2": F[..., 1], "F3": F[..., 2], "energy": F[..., 3]}
+    out = {}
+    for key, v in vals.items():
+        out[f"integrals.{key}"] = v
+        out[f"drift.{key}"] = v - v[:1]
+    return out
+
+
+def _horizontal(scene, d) -> dict[str, np.ndarray]:
+    if "horizontal" in d:
+        return {"horizontal": d["horizontal"]}
+    from chaplygin_nd.simulate.dynamics.closed_forms import horizontal_invariants
+    return {"horizontal": horizontal_invariants(d["M"], d["gamma"])}
+
+
+def _reduced(scene, d) -> dict[str, np.ndarray]:
+    if "reduced" in d:
+        return {"reduced": d["reduced"]}
+    from chaplygin_nd.simulate.dynamics.so import reduced_invariants
+    return {"reduced": reduced_invariants(d["M"], d["gamma"])}
+
+
+def _zeta_csv(path: Path, t: np.ndarray, arr: np.ndarray, name: str) -> None:
+    np.savetxt(path, arr.reshape(arr.shape[0], -1), delimiter=",")
+
+
+M_OUTPUT, OMEGA_OUTPUT, GAMMA_OUTPUT = _state("M"), _state("Omega"), _state("gamma")
+X_OUTPUT = register(Output("x", _x, reduced=True, horizontal=True))
+INTEGRALS_OUTPUT = register(Output(
+    "integrals", _integrals, figures={"integrals.": None, "drift.": figures.drift},
+    reduced=True, omega=True, reduced_kernels=("reduced_integrals",)))
+ZETA_OUTPUT = register(Output(  # only the vertical closed form computes zeta (a full run does not)
+    "zeta", lambda scene, d: {"zeta": d["zeta"]} if "zeta" in d else {},
+    figures={"zeta": figures.zeta}, csv=_zeta_csv, vertical=True))
+REDUCED_OUTPUT = register(Output("reduced", _reduced, reduced=True, only_n=4))
+HORIZONTAL_OUTPUT = register(Output("horizontal", _horizontal, horizontal=True))
+ORIENTATION_OUTPUT = register(Output(
+    "orientation", lambda scene, d: {"orientation": d["g"]},
+    figures={"orientation": figures.orientation}, reconstruct=True))
+CONTACT_PATH_OUTPUT = register(Output(
+    "contact_path", lambda scene, d: {"contact_path": d["c"][..., :-1]},
+    figures={"contact_path": figures.contact_path}, reconstruct=True))
 
 
 def max_drift(arrays: dict[str, np.ndarray]) -> dict[str, float]:
@@ -137,11 +173,10 @@ def write(folder: OutputFolder, arrays: dict[str, np.ndarray], summary: str,
     for name, arr in arrays.items():
         if name == "t":
             continue
-        if name != "zeta":
-            files[f"{name}.csv"] = partial(_csv, t=t, arr=arr, name=name.replace(".", "_"))
-        else:
-            files["zeta.csv"] = partial(np.savetxt, X=arr.reshape(arr.shape[0], -1), delimiter=",")
-        if not name.startswith("integrals."):
+        found = output_registry.owner(name)
+        table = (found[0].csv if found else None) or _csv
+        files[f"{name}.csv"] = partial(table, t=t, arr=arr, name=name.replace(".", "_"))
+        if output_registry.drawing(name, figures.series) is not None:
             files[f"{name}{FIGURE_SUFFIX}"] = partial(plot, t=t, arr=arr, name=name)
     files.update(extra or {})
     files["summary.txt"] = lambda p: p.write_text(summary + "\n", encoding="utf-8")

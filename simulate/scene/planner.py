@@ -43,17 +43,12 @@ from chaplygin_nd.simulate.dynamics import families
 from chaplygin_nd.simulate.integrators import registry
 from chaplygin_nd.simulate.integrators.stops import check_finite
 from chaplygin_nd.simulate.kernels import Kernels, active
-from chaplygin_nd.simulate.scene import accuracy
+from chaplygin_nd.simulate.scene import accuracy, output_registry
 from chaplygin_nd.simulate.scene.spec import Scene
 
-__all__ = ["Plan", "plan", "REDUCED_OUTPUTS", "MODELS"]
+__all__ = ["Plan", "plan", "MODELS"]
 
 MODELS = ("constant-Omega", "vertical", "horizontal-4D", "horizontal", "reduced-7D", "full")
-#: Outputs a reduced (SO(3)-invariant) model can produce.
-REDUCED_OUTPUTS = frozenset({"reduced", "x", "integrals", "poincare"})
-#: Outputs the horizontal closed form for any n determines (S5:H-linear-nD).
-HORIZONTAL_OUTPUTS = frozenset({"x", "horizontal"})
-RECONSTRUCTION = frozenset({"orientation", "contact_path"})
 #: Largest relative residual at which a point counts as on a family with a closed form (about
 #: 4500 ulp: the rounding of a point built in float64, e.g. M0 = P A P or L_gamma(Omega0)).
 APPLIES = 1e-12
@@ -131,47 +126,61 @@ def method_detail(scene: Scene, method: str, model: str = "full") -> str:
     return method if s is None else s.describe()
 
 
-def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False) -> Plan:
-    r"""Choose the model for ``scene`` (rules in the module docstring). ``force_full`` skips the
-    cheaper models (used by ``--cross-check``)."""
-    k = kernels or active()
+def _make(scene: Scene, model: str, reason: str, reconstruct: bool, Omega0: np.ndarray,
+          skipped: list[str]) -> Plan:
+    """The :class:`Plan` of ``model``: its calibrated settings and, for an integrated model of a
+    method the cost model knows, the method of least predicted cost (compile + run)."""
+    method = _method(scene, model)
+    chosen = settings(scene, method, model)  # calibrated; "auto": the first that honours it
+    compact, costs, predicted = None, "", None
+    if model in ("full", "reduced-7D") and chosen is not None \
+            and registry.get(chosen.method).costed:
+        from chaplygin_nd.simulate.scene import (
+            cost,  # the method by predicted cost (compile + run)
+        )
+
+        dop = settings(scene, "dop853", model)
+        hey = settings(scene, "heyoka", model)
+        assert isinstance(dop, accuracy.Tolerance) and isinstance(hey, accuracy.Tolerance)
+        allowed = ("auto" if scene.method == "auto" and chosen.method == "heyoka" and dop.honoured
+                   else chosen.method)  # only methods that honour the target compete
+        picked = cost.for_scene(scene, model, reconstruct, allowed,
+                                hey.tol, dop.tol)
+        if picked is not None:
+            (best, costs) = picked
+            compact, predicted = best.compact, best.total
+            if best.method != chosen.method:
+                chosen = settings(scene, best.method, model)
+    method = chosen.method if chosen else "closed form"
+    return Plan(model, reason, reconstruct, method, Omega0, skipped, list(scene.notes),
+                detail=chosen.describe() if chosen else method, accuracy=chosen,
+                compact=compact, costs=costs, predicted_seconds=predicted)
+
+
+def _omega0(scene: Scene, k: Kernels) -> np.ndarray:
+    r"""$\Omega_0 = L_\gamma^{-1}(M_0)$ of every initial condition (the scene's own when it gave
+    one), checked finite."""
     omega = k.require("angular_velocity")
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # checked below
         Omega0 = scene.Omega0 if scene.Omega0 is not None else omega(scene.M0, scene.gamma0,
                                                                       scene.a, scene.b)
     check_finite("Omega0 = L_gamma^-1 M0", Omega0, float(scene.t[0]),
                  "a, b or the scale of M0 too large for float64")
+    return Omega0
+
+
+def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False) -> Plan:
+    r"""Choose the model for ``scene`` (rules in the module docstring). ``force_full`` skips the
+    cheaper models (used by ``--cross-check``)."""
+    k = kernels or active()
+    Omega0 = _omega0(scene, k)
     wants = set(scene.outputs)
-    reconstruct = bool(wants & RECONSTRUCTION)
+    reconstruct = bool(wants & output_registry.where("reconstruct"))
     tol = min(scene.tolerance, APPLIES)
     skipped: list[str] = []
 
     def make(model, reason):
-        method = _method(scene, model)
-        chosen = settings(scene, method, model)  # calibrated; "auto": the first that honours it
-        compact, costs, predicted = None, "", None
-        if model in ("full", "reduced-7D") and chosen is not None \
-                and registry.get(chosen.method).costed:
-            from chaplygin_nd.simulate.scene import (
-                cost,  # the method by predicted cost (compile + run)
-            )
-
-            dop = settings(scene, "dop853", model)
-            hey = settings(scene, "heyoka", model)
-            assert isinstance(dop, accuracy.Tolerance) and isinstance(hey, accuracy.Tolerance)
-            allowed = ("auto" if scene.method == "auto" and chosen.method == "heyoka" and dop.honoured
-                       else chosen.method)  # only methods that honour the target compete
-            picked = cost.for_scene(scene, model, reconstruct, allowed,
-                                    hey.tol, dop.tol)
-            if picked is not None:
-                (best, costs) = picked
-                compact, predicted = best.compact, best.total
-                if best.method != chosen.method:
-                    chosen = settings(scene, best.method, model)
-        method = chosen.method if chosen else "closed form"
-        return Plan(model, reason, reconstruct, method, Omega0, skipped, list(scene.notes),
-                    detail=chosen.describe() if chosen else method, accuracy=chosen,
-                    compact=compact, costs=costs, predicted_seconds=predicted)
+        return _make(scene, model, reason, reconstruct, Omega0, skipped)
 
     if force_full:
         return make("full", "forced (cross-check)")
@@ -201,8 +210,8 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
         skipped.append("vertical closed form (Th:Re): the zeta kernel is not in generated/")
     else:
         skipped.append(f"vertical closed form (Th:Re): {v_text}")
-    reduced_only = wants <= REDUCED_OUTPUTS and scene.n == 4
-    needs = ["reduced_integrals"] if "integrals" in wants else []
+    reduced_only = wants <= output_registry.where("reduced") and scene.n == 4
+    needs = [x for name in sorted(wants) for x in output_registry.get(name).reduced_kernels]
     is_horizontal, h_text = _residual_test(
         "max |M0 - (M0 gamma0) ^ gamma0|/|M0|",
         [families.claim_residual("horizontal", M, g) for M, g in zip(scene.M0, scene.gamma0)],
@@ -215,7 +224,7 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
                         "reduced outputs: the linear system for (x, G) (S5:H-linear)")
         else:
             skipped.append("horizontal closed form (S5:H-linear): its kernels are not in generated/")
-    if wants <= HORIZONTAL_OUTPUTS:
+    if wants <= output_registry.where("horizontal"):
         if not is_horizontal:
             skipped.append(f"horizontal closed form (S5:H-linear-nD): {h_text}")
         elif all(k.has(x) for x in ("horizontal", "horizontal_blocks")):
@@ -232,11 +241,10 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
         skipped.append(f"reduced 7D system (eq:red-system): kernel(s) {', '.join(missing)} "
                        "not in generated/")
     elif scene.n == 4:
-        other = sorted(wants - REDUCED_OUTPUTS)
+        other = sorted(wants - output_registry.where("reduced"))
         skipped.append(f"reduced 7D system: outputs {', '.join(other)} are not SO(3)-invariant")
-        if "frequencies" in wants:
-            return make("full", "frequencies on P (the reconstruction) need the full system "
-                        "eq:motion-general; the 'reduced' frequencies come from eq:red-system and "
-                        "the 'control' from the generic-J sphere (simulate/scene/tori.py)")
+        for name in sorted(wants):
+            if output_registry.get(name).full_reason:
+                return make("full", output_registry.get(name).full_reason)
     return make("full", "no closed form or reduction applies to these initial conditions "
                 "and outputs: the full system eq:motion-general")

@@ -1,4 +1,5 @@
-r"""The scene outputs ``frequencies`` and ``poincare`` ($n = 4$; issue 11).
+r"""The scene outputs ``frequencies`` and ``poincare`` ($n = 4$), registered here
+(:mod:`simulate.scene.output_registry`) and written by :func:`files`, not collected as arrays.
 
 ``frequencies`` writes ``frequencies.json`` with three entries, each with ``"frequencies"`` (the
 independent frequencies of the first orbit, rad per unit time), ``"diffusion"`` (its frequency
@@ -33,7 +34,17 @@ from chaplygin_nd.simulate.dynamics.field import FullField, ReducedField
 from chaplygin_nd.simulate.dynamics.so import reduced_invariants
 from chaplygin_nd.simulate.integrators import dop853
 from chaplygin_nd.simulate.kernels import active
+from chaplygin_nd.simulate.scene.output_registry import Output, register
 from chaplygin_nd.simulate.scene.spec import SceneError
+
+#: Both use the reduced invariants of $n = 4$ and NAFF's uniformly spaced samples; frequencies on
+#: $P$ need the full system, the Poincaré section only the reduced one.
+FREQUENCIES_OUTPUT = register(Output(
+    "frequencies", None, only_n=4, spectral=True,
+    full_reason="frequencies on P (the reconstruction) need the full system eq:motion-general; "
+                "the 'reduced' frequencies come from eq:red-system and the 'control' from the "
+                "generic-J sphere (simulate/scene/tori.py)"))
+POINCARE_OUTPUT = register(Output("poincare", None, reduced=True, only_n=4, spectral=True))
 
 __all__ = ["wants", "files"]
 
