@@ -1,5 +1,7 @@
-r"""The verdict rule of the drawn evidence rows (issues 16, 24), shared by proofs/s5_tori_evidence.py and
-proofs/s6_open_reduced_n5.py.
+r"""How the drawn evidence rows word their verdicts, shared by proofs/s5_tori_evidence.py and
+proofs/s6_open_reduced_n5.py: the rules themselves (what each reads of an orbit, its thresholds,
+what contradicts, how the control separates) are registered in :mod:`simulate.analysis.rules`,
+fixed before the runs; here are the verdict's texts, records and the rule's one-line statement.
 
 Per orbit (simulate/analysis/drawn_evidence.py): frequency class ``predicted`` / ``resonant`` / ``excess`` /
 ``unresolved`` (``excess`` only for a line no integer combination with $|c| \le 12$ explains,
@@ -7,16 +9,7 @@ simulate/analysis/combinations.py), the chaos class over the horizon ladder ``re
 ``undecided`` (simulate/analysis/chaos.py ``ladder_class``: $\langle Y\rangle$ grew by $\ge 1$ over the last doubling
 $T/2 \to T$ and is $\ge 4$: chaos; moved by $\le 0.75$: bounded, regular — 0, 2 or $2p$ alike), and the
 drift of the proved integrals (simulate/analysis/kept.py; kept iff $\le 10^{-6}$ at energy scale 1).
-
-* **contradicting** orbit: chaotic by the ladder, or frequency class ``excess``.
-* the statement is **supported** iff (integrals) at least ``KEPT_MIN`` = 98 % of the orbits keep the
-  proved integrals; (chaos) at most ``CONTRADICTING_MAX`` = 2 % contradict and at least
-  ``MEGNO_REGULAR_MIN`` = 90 % are regular by the ladder; (frequencies) at least ``PREDICTED_MIN``
-  = 20 % show exactly the predicted count (so the prediction is observed, not merely not refuted).
-  Unresolved orbits get the horizon ladder (again at $2T$, then $4T$) before they are counted.
-* the control **separates on the chaos indicator** iff at least ``CONTROL_CHAOTIC_MIN`` = 90 % of
-  its orbits are chaotic by the ladder while at most 2 % of the row's are; **on the frequencies**
-  iff its median diffusion is at least ``SEPARATION`` = 100 times the row's. The row needs both.
+Unresolved orbits get the horizon ladder (again at $2T$, then $4T$) before they are counted.
 
 **Validation** (bench/bench_evidence.py, ``chaplygin bench evidence``; the numbers are
 :data:`STUDY`): the ladder rule on systems with known answers — false alarms (chaotic on an
@@ -26,14 +19,19 @@ integrable system) and misses (regular on a chaotic one).
 from __future__ import annotations
 
 import numpy as np
-from chaplygin_nd.simulate.analysis import chaos
-
-CONTRADICTING_MAX = 0.02
-MEGNO_REGULAR_MIN = 0.90
-PREDICTED_MIN = 0.20
-CONTROL_CHAOTIC_MIN = 0.90
-SEPARATION = 100.0
-KEPT_MIN = 0.98
+from chaplygin_nd.simulate.analysis import chaos, rules
+from chaplygin_nd.simulate.analysis.rules import (  # noqa: F401  (the rule's thresholds, for the rows)
+    CONTRADICTING_MAX,
+    CONTROL_CHAOTIC_MIN,
+    KEPT_MIN,
+    MEGNO_REGULAR_MIN,
+    PREDICTED_MIN,
+    SEPARATION,
+    contradicting,
+    fraction,
+    separates,
+    unmet,
+)
 
 #: the validation study's numbers (bench/out/evidence.md of the run named there): the rule's own
 #: record, :data:`simulate.analysis.chaos.STUDY`
@@ -73,21 +71,9 @@ PLANTED = {
 }
 
 
-def fraction(results, test) -> float:
-    """The fraction of ``results`` for which ``test(r)`` holds."""
-    return sum(bool(test(r)) for r in results) / len(results) if results else 0.0
-
-
-def contradicting(r) -> bool:
-    """An orbit that contradicts a torus statement (module docstring)."""
-    return r.megno_cls == "chaotic" or r.cls == "excess"
-
-
 def keeps(r) -> bool:
     """The orbit keeps the proved integrals (simulate/analysis/kept.py)."""
-    from chaplygin_nd.simulate.analysis.kept import KEPT
-
-    return bool(r.drift <= KEPT)
+    return rules.get("integrals").criteria[0].counts(r)
 
 
 def supported(results) -> bool:
@@ -96,48 +82,10 @@ def supported(results) -> bool:
 
 
 def parts(results) -> dict:
-    """Which parts of the rule hold: ``{"integrals": ..., "chaos": ..., "frequencies": ...}``
-    (what a planted defect was caught by, bench/planted.py)."""
+    """Which parts of the rule hold, one per registered rule: ``{"integrals": ..., "chaos": ...,
+    "frequencies": ...}`` (what a planted defect was caught by, bench/planted.py)."""
     labels = [u.split(":", 1)[0] for u in unmet(results)]
-    return {k: not any(k in label for label in labels) for k in ("integrals", "chaos", "frequencies")}
-
-
-def unmet(results) -> list[str]:
-    """The parts of the support rule (module docstring) that ``results`` fail, each with its
-    numbers (``[]`` iff :func:`supported`): what an ``open`` row names as its reason."""
-    n = len(results)
-    if not n:
-        return ["no drawn orbits"]
-    chaotic = sum(r.megno_cls == "chaotic" for r in results)
-    excess = sum(r.cls == "excess" for r in results)
-    counts = [("integrals", sum(keeps(r) for r in results), "keep the proved integrals",
-               lambda k: k / n >= KEPT_MIN, "fewer than", KEPT_MIN),
-              ("chaos", chaotic, "are chaotic by the MEGNO ladder (contradict)",
-               lambda k: k / n <= CONTRADICTING_MAX, "more than", CONTRADICTING_MAX),
-              ("chaos", sum(r.megno_cls == "regular" for r in results),
-               "are regular by the MEGNO ladder",
-               lambda k: k / n >= MEGNO_REGULAR_MIN, "fewer than", MEGNO_REGULAR_MIN),
-              ("frequencies", excess, "have a line no combination |c| <= 12 explains (excess, "
-               "contradict)", lambda k: k / n <= CONTRADICTING_MAX, "more than", CONTRADICTING_MAX),
-              ("frequencies", sum(r.cls == "predicted" for r in results),
-               "show exactly the predicted count",
-               lambda k: k / n >= PREDICTED_MIN, "fewer than", PREDICTED_MIN)]
-    if chaotic / n <= CONTRADICTING_MAX and excess / n <= CONTRADICTING_MAX:
-        counts.append(("chaos and frequencies", sum(contradicting(r) for r in results),
-                       "are chaotic or excess (contradict)",
-                       lambda k: k / n <= CONTRADICTING_MAX, "more than", CONTRADICTING_MAX))
-    return [f"{part}: {k} of {n} orbits {what}: {100 * k / n:g} %, {side} the rule's {100 * bound:g} %"
-            for part, k, what, ok, side, bound in counts if not ok(k)]
-
-
-def separates(results, control) -> tuple[bool, bool]:
-    """(on MEGNO, on the frequency diffusion): the separation rule of the module docstring."""
-    chaotic = lambda r: r.megno_cls == "chaotic"  # noqa: E731
-    megno = (fraction(control, chaotic) >= CONTROL_CHAOTIC_MIN
-             and fraction(results, chaotic) <= CONTRADICTING_MAX)
-    d_row = float(np.median([r.diffusion for r in results]))
-    d_ctl = float(np.median([r.diffusion for r in control]))
-    return megno, bool(d_ctl >= SEPARATION * max(d_row, 1e-300))
+    return {k: not any(k in label for label in labels) for k in (r.part for r in rules.rules())}
 
 
 def tally(results, key: str = "cls") -> str:

@@ -42,6 +42,7 @@ import sympy as sp
 from chaplygin_nd.ledger.registry import Verdict, claim
 from chaplygin_nd.proofs import drawn_common as dc
 from chaplygin_nd.simulate.analysis import evidence_rows as er
+from chaplygin_nd.simulate.analysis import rules
 from chaplygin_nd.simulate.analysis.control import CHAOTIC_J
 from chaplygin_nd.simulate.analysis.drawn_evidence import BATCH
 from chaplygin_nd.simulate.analysis.frequencies import REGULAR
@@ -190,16 +191,12 @@ def open_problem_verdict(n: int) -> Verdict:
     out = er.open_row(n, ledger_seed())
     res, rerun, ctl5 = out["symmetric"]["results"], out["symmetric"]["rerun"], out["control"]
     ctl4 = er.full4_row(ledger_seed())["results"]
-    chaotic = lambda r: r.megno_cls == "chaotic"  # noqa: E731
-    regular = lambda r: r.megno_cls == "regular"  # noqa: E731
     over = dc.fraction(res, lambda r: _over(r, reduced_bound, full_bound))
-    no_chaos = (dc.fraction(res, chaotic) <= dc.CONTRADICTING_MAX
-                and dc.fraction(res, regular) >= dc.MEGNO_REGULAR_MIN)
-    ctl4_ok = (dc.fraction(ctl4, chaotic) <= dc.CONTRADICTING_MAX
-               and dc.fraction(ctl4, regular) >= dc.MEGNO_REGULAR_MIN)
+    no_chaos, ctl4_ok = rules.holds("chaos", res), rules.holds("chaos", ctl4)  # the MEGNO ladder
     d_sym = float(np.median([r.diffusion for r in res]))
     d_ctl = float(np.median([r.diffusion for r in ctl5]))
-    ctl5_ok = dc.fraction(ctl5, chaotic) >= dc.CONTROL_CHAOTIC_MIN and d_ctl >= dc.SEPARATION * d_sym
+    ctl5_ok = (dc.fraction(ctl5, rules.get("chaos").contradicts) >= dc.CONTROL_CHAOTIC_MIN
+               and d_ctl >= dc.SEPARATION * d_sym)
     inv: dict = {}
     for r in res:
         if r.invariant_diffusion < REGULAR:
