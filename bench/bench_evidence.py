@@ -1,4 +1,4 @@
-r"""The validation study of the evidence rows' chaos rule (issue 24): systems whose answer is known,
+r"""The validation study of the evidence rows' chaos rule: systems whose answer is known,
 drawn orbits of each, every indicator the rows use, and the confusion table of each candidate rule.
 
 Systems (drawn by :func:`simulate.analysis.draws.draw` with the ledger's default seed; the rows'
@@ -76,7 +76,7 @@ def _systems(count: int):
     out.append(("Manakov top so(4) (b = 0)", "integrable",
                 Setting("study-manakov", "control", 4, 4096.0, 0.5, observables="four",
                         J=CHAOTIC_J[4], b_override=0.0), ens, y0))
-    for n in (4, 6):   # even n: in the whole space the tangent grows like t^p, p ~ 2 (issue 24)
+    for n in (4, 6):   # even n: in the whole space the tangent grows like t^p, p ~ 2
         ens, y0 = gen(f"vertical{n}", n, "vertical", a_values=er.VERTICAL_A)   # a = 0: equilibria
         v = er.vertical_setting(n)
         out.append((f"V, n={n}, tangent in TV", "integrable", replace(v, name=f"study-v{n}"),

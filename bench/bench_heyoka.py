@@ -1,4 +1,4 @@
-r"""heyoka against our integrators (issue 9): cold compile, warm load and run time, at measured error.
+r"""heyoka against our integrators: cold compile, warm load and run time, at measured error.
 
 Every function returns rows (dicts) for ``bench/out/work_precision.json`` — keys ``scene, T, method,
 setting, error, seconds, compile_seconds`` (``compile_seconds``: the cold JIT compile, or the warm
@@ -265,7 +265,7 @@ def throughput_rows(points=(10**3, 10**4, 10**5, 10**6), n: int = 4) -> list[dic
 
 
 def targets(wp: list[dict], tp: list[dict]) -> list[str]:
-    """The targets of issue 9, each with its measured ratio and MET / NOT MET."""
+    """The targets, each with its measured ratio and MET / NOT MET."""
     def pick(scene, method, setting_has):
         return [r for r in wp if r["scene"] == scene and r["method"] == method
                 and setting_has in r["setting"]]

@@ -1,4 +1,4 @@
-"""Scaling in n and time to first result (issue 18): ``chaplygin bench scaling``.
+"""Scaling in n and time to first result: ``chaplygin bench scaling``.
 
 Writes ``bench/out/scaling.json`` (rows: n, method, setting, error, seconds = CPU seconds of the
 integration, wall, compile_seconds, ops), ``scaling.png`` (log-log: CPU seconds, decomposition size
@@ -242,7 +242,7 @@ def _figure(rows, path: Path) -> dict:
                        label=f"decomposition of the O(n^2) field (~n^{fits['ops']:.2f})")
             ax2.loglog(ns, [30 * n * n for n in ns], "k:", label="target 30 n^2")
     ax2.loglog([12, 32], [4015, 69535], "x", color="C3", ms=8,
-               label="old O(n^3) field (issue 18: 4 015, 69 535)")
+               label="old O(n^3) field (before: 4 015, 69 535)")
     ax.set_xlabel("n")
     ax.set_ylabel("seconds")
     ax.set_title(f"full field, T = {T_END:g}, error <= {ERROR:g} (both)")

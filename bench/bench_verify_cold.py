@@ -1,4 +1,4 @@
-"""Wall and CPU time of a cold ``chaplygin verify`` (issue 25: ``make verify`` cold <= 45 s wall).
+"""Wall and CPU time of a cold ``chaplygin verify`` (the target: ``make verify`` cold <= 45 s wall).
 
 ``python -m chaplygin_nd.bench.bench_verify_cold [ARGS...]`` runs ``chaplygin verify ARGS`` (default
 ``--check-generated``) with empty caches (``$CHAPLYGIN_ND_CACHE`` and ``$XDG_CACHE_HOME`` pointed at a

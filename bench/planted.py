@@ -1,4 +1,4 @@
-r"""Power of the evidence rows on planted defects (issue 24): the rows run on a *wrong* field must
+r"""Power of the evidence rows on planted defects: the rows run on a *wrong* field must
 not say ``evidence``.
 
 Each defect is one textual edit of ``generated/expression_builders.py`` in a temporary copy of the

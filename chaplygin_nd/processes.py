@@ -1,4 +1,4 @@
-"""Every process the project starts ends when the process that started it ends (issue 25).
+"""Every process the project starts ends when the process that started it ends.
 
 One mechanism for every pool (the ledger's ``verify --jobs``, the frequency-map workers, the Dask
 local cluster, the mutation runs, the benchmarks' subprocesses): the first thing a worker does is

@@ -1,4 +1,4 @@
-"""How the ``chaplygin`` program takes Ctrl-C and SIGTERM (issue 25). Imported first, before
+"""How the ``chaplygin`` program takes Ctrl-C and SIGTERM. Imported first, before
 anything heavy, so it imports nothing but built-in modules: an interrupt is one line from the
 moment :func:`take_signals` has run (the ``chaplygin`` program's first statement).
 

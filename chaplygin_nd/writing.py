@@ -1,5 +1,5 @@
 """How the project writes a file: whole or not at all, with the mode a plain ``open()`` gives; and
-how a command checks, before any work, that it will be able to (issue 25; beyond the paper).
+how a command checks, before any work, that it will be able to (beyond the paper).
 
 * :func:`write_atomic` writes through a temporary file beside the target and ``os.replace``: a
   reader never sees half a file, and an interrupted write leaves the old file and no temporary.

@@ -117,6 +117,7 @@ MANUAL = (("pages/verdicts", "Verdicts, kinds and reports"),
           ("pages/accuracy", "Accuracy, cross-check and output folders"),
           ("pages/caches", "Caches"),
           ("pages/benchmarks", "Kernels and benchmarks"),
+          ("pages/decisions", "Decisions that shape the code"),
           ("pages/site", "About this site"),
           ("tutorials/scene-to-figure", None), ("tutorials/p-inversion", None),
           ("pages/api", None))

@@ -145,7 +145,7 @@ def _main(argv: list[str] | None, command: str) -> int:
 
         missing = unreached({r.row.id: list(r.printed) for r in results})
         problems += [f"printed function {f} is reached by no ledger row" for f in missing]
-        # every derivation emitted into generated/ must be checked by some row (issue 17)
+        # every derivation emitted into generated/ must be checked by some row
         problems += [f"derivation {f} is emitted into generated/ but reached by no ledger row"
                      for f in unreached_emitted({r.row.id: list(r.derived) for r in results})]
     unknown = unknown_registrations()

@@ -271,7 +271,7 @@ def kept_seconds(measured: dict[str, float], path: Path = MAP_PATH) -> dict[str,
     """Each row's stored seconds where the map has them, else ``measured``: what a run that maps
     reach with a warm cache (``make mutate``'s baseline) writes back. The stored seconds were taken
     cold (:mod:`ledger.remap`) and order a cold ``verify --jobs``; warm, the evidence rows take
-    0.2-0.8 s instead of 30-130 s, and ``make mutate`` had undone the order (round 24)."""
+    0.2-0.8 s instead of 30-130 s, and ``make mutate`` had undone the order."""
     stored = load(path)[1] if path.is_file() else {}
     return {row: stored.get(row, t) for row, t in measured.items()}
 

@@ -188,7 +188,7 @@ def _velocity_residuals(n, values=None):
     velocity = printed.motion_velocity_nd_residual(
         Om, Omd, gamma, lambda X: inertia_operator(X, J), bb)
     # not expanded here: the exact engines read the residual as polynomials (symbolic/exact/identity.py);
-    # SymPy's expand of the symbolic n = 3..6 residual was 60 % of the row (issue 25), and at a
+    # SymPy's expand of the symbolic n = 3..6 residual was 60 % of the row, and at a
     # point the entries are already numbers
     return momentum - velocity, J
 

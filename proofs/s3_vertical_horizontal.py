@@ -229,7 +229,7 @@ def _nd_invariance(n, p=None):
     V_dot = Mdot * g + Mv * gdot
     MgDot = V_dot
     H_dot = Mdot - wedge(MgDot, g) - wedge(Mv * g, gdot)
-    # not expanded: the exact engines read the residual as polynomials (issue 25: SymPy's expand
+    # not expanded: the exact engines read the residual as polynomials (SymPy's expand
     # of the symbolic n = 3..6 residual was most of the row; at a point the entries are numbers)
     return sp.Matrix(list(V_dot + Om * V) + list(H_dot - commutator(H, Om)))
 

@@ -98,7 +98,7 @@ def _L_infinitesimal(n: int):
     Omega, g = skew_symbols("w", n), gamma_symbols(n)
     t = sp.Symbol("t")
     moved = L_gamma_axisym(Omega + t * commutator(S, Omega), g + t * S * g)
-    # not expanded: the exact engines read the residual as polynomials (issue 25)
+    # not expanded: the exact engines read the residual as polynomials
     return moved.diff(t).subs(t, 0) - commutator(S, L_gamma_axisym(Omega, g))
 
 

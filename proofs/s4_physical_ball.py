@@ -13,7 +13,7 @@ orthogonal to it (for $n = 3$: the principal moments $(I_1, I_1, I_3)$). Then, f
     a = \frac{2(I_1 - I_n)}{I_n},\quad b = \frac{2mr^2}{I_n},
 
 so $M_{\text{ball}} = sM$, $H_{\text{ball}} = sH$, and $\Omega$, $\gamma$, $t$ are those of the paper.
-For $n = 3$ this is the classical map (Borisov–Mamaev's Chaplygin ball, as stated in issue 12)
+For $n = 3$ this is the classical map (Borisov–Mamaev's Chaplygin ball)
 with $M_{\text{lit}} = I\omega + mr^2\gamma\times(\omega\times\gamma) = s\,M$ through the hat map.
 A ball with these moments exists iff $a \ge -1$ (that is $2I_1 \ge I_n$, the triangle inequality
 of the moments) and $b \ge n + a$ (that is $I_1 + (n-2)I_n/2 \le mr^2$, i.e.
@@ -86,7 +86,7 @@ ALL_N = tuple(range(3, 9))
 
 
 def classical_map() -> dict[str, sp.Expr]:
-    """The map of the literature, as stated in issue 12 (Borisov–Mamaev, n = 3): s = I_n/2,
+    """The map of the literature (Borisov–Mamaev, n = 3): s = I_n/2,
     a = 2(I_1 - I_n)/I_n, b = 2 m r^2/I_n. Compared with :func:`paper_parameters`, never used by it."""
     return {"s": In / 2, "a": 2 * (I1 - In) / In, "b": 2 * m * r**2 / In}
 

@@ -1,4 +1,4 @@
-r"""Section 5's qualitative dynamics as numerical evidence (issues 11, 16): S5:EJ-tori,
+r"""Section 5's qualitative dynamics as numerical evidence: S5:EJ-tori,
 S5:reconstruction and Th:Re-tori:frequencies, each on at least 200 drawn orbits.
 
 No identity can decide these statements; a measurement can support them, and a control shows
@@ -179,7 +179,7 @@ def s5_reconstruction() -> Verdict:
         n_values=(4,),
         notes=("the paper leaves the reconstruction open; this row reports what was measured on "
                "drawn orbits; an 'excess' orbit has a line that no integer combination of its "
-               "basis with |c| <= 12 explains (issue 24: with |c| <= 4 the bound, not the dynamics, "
+               "basis with |c| <= 12 explains (with |c| <= 4 the bound, not the dynamics, "
                "made 3 of 5 orbits 'excess')"),
         data={"invariant_counts": inv})
 

@@ -1,5 +1,5 @@
 r"""Beyond the paper: an exact search for first integrals, and a sixth integral for $n = 5$ (rows
-S6:first-integrals and S6:euler-jacobi-n5; issue 23).
+S6:first-integrals and S6:euler-jacobi-n5).
 
 **The search** (symbolic/search/integral_search.py, one mechanism for every $n$ and every diagonal mass
 tensor): the integrals $P/D^k$ of eq:motion-general with $P$ of $M$-degree $d$ and $\gamma$-degree

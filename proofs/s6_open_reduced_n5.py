@@ -1,8 +1,11 @@
-r"""Beyond the paper: its second open problem, measured for $n = 5$ (row S6:open-reduced-n5, issue 16).
+r"""Beyond the paper: its second open problem, measured for $n = 5$ (row S6:open-reduced-n5).
 
 The paper ends: "Obtain the reduced equations on $P/\mathrm{SO}(n-1)$ for $n \ge 5$ and determine if they
-are integrable." We do not obtain the reduced equations; we measure the flow on $P$ and on
-$SO(4)$-invariant observables (which see exactly the reduced motion) for $n = 5$.
+are integrable." The reduced equations for $n = 5$ are derived in row S6:reduced-n5 and a sixth
+integral is proved in row S6:sixth-integral-n5 (integrable with the measure, S6:euler-jacobi-n5);
+this row is the measurement beside them: the flow on $P$ and on $SO(4)$-invariant observables
+(which see exactly the reduced motion) for $n = 5$, with a rule fixed before the sixth integral
+was known.
 
 **What integrability would predict (derived here, exactly, at a seeded rational point).**
 $P = \mathfrak{so}(5)\times S^4$ has dimension 14. (i) The $SO(4)$ action eq:action
@@ -25,13 +28,14 @@ Chaos (a positive Lyapunov exponent on a set of positive measure) would show tha
 ``n5_row``; $a \in \{-0.9, -0.5, 0.5, 2\}$, $b \in \{0.5, 2\}$, three energies): the count on the two
 $SO(4)$-invariant observables (reduced frequencies) and on $P$, the frequency diffusion, MEGNO.
 
-**Rule (fixed before the 100-orbit run; an 8-orbit timing pilot had been seen, docs/design-notes/i16b.md).**
+**Rule (fixed before the 100-orbit run; only an 8-orbit timing pilot had been seen).**
 Verdict ``evidence`` that no chaos is resolved and the counts respect the bounds of integrability
 iff: at most 2 % of the orbits are MEGNO-chaotic, at least 90 % MEGNO-regular, and at most 2 % of
 the orbits that are resolved (D < 1e-5) have more than 3 reduced or more than 5 frequencies on $P$;
 controls: the $n = 4$ sphere (integrable, proved; the 200 orbits of S5:reconstruction) must pass
 the same MEGNO test, and the non-symmetric $n = 5$ sphere (``CHAOTIC_J[5]``, 24 orbits) must have
-at least 50 % MEGNO-chaotic orbits and a median diffusion at least 100 times that of the symmetric
+at least 90 % MEGNO-chaotic orbits (``CONTROL_CHAOTIC_MIN`` of :mod:`simulate.analysis.rules`)
+and a median diffusion at least 100 times that of the symmetric
 $n = 5$ orbits. Otherwise ``open`` with the numbers. Never ``holds``: this is a measurement.
 """
 
@@ -70,7 +74,7 @@ def _integral_gradients(M, gamma, a, b):
     $(\lambda, \sigma)$. $H$: $\partial_M H = \Omega$, $\partial_{\gamma_k} H = -\frac12\omega^T(\partial L/\partial\gamma_k)\omega$
     ($\omega = L^{-1}m$). The adjugate, determinant and products are exact polynomial matrices
     (``DomainMatrix`` over $\mathbb{Q}[\lambda, \sigma]$): the same polynomials as SymPy ``Matrix``
-    arithmetic on expressions, which took 7 s of the row (issue 20; checked equal entry by entry).
+    arithmetic on expressions, which took 7 s of the row (checked equal entry by entry).
     Domain: rational $M$, $\gamma$, $a$, $b$."""
     from sympy.polys.matrices import DomainMatrix
 

@@ -1,4 +1,4 @@
-r"""Beyond the paper: its second open problem, measured for $n = 6$ (row S6:open-reduced-n6, issue 23).
+r"""Beyond the paper: its second open problem, measured for $n = 6$ (row S6:open-reduced-n6).
 
 The same measurement and the same rule as row S6:open-reduced-n5 (:func:`proofs.s6_open_reduced_n5.open_problem_verdict`,
 one mechanism for every $n$), in dimension 6.

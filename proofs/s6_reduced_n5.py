@@ -1,4 +1,4 @@
-r"""Beyond the paper: the reduced equations on $P/SO(4)$ for $n = 5$ (row S6:reduced-n5, issue 23).
+r"""Beyond the paper: the reduced equations on $P/SO(4)$ for $n = 5$ (row S6:reduced-n5).
 
 The paper's conclusion leaves open: "Obtain the reduced equations on $P/SO(n-1)$ for $n \ge 5$ and
 determine if they are integrable." This row derives them for $n = 5$ (the first half), as eq:red-system

@@ -1,5 +1,5 @@
 r"""Beyond the paper: a sixth integral for $n = 5$, and with it the paper's open problem for $n = 5$
-(row S6:sixth-integral-n5, issue 23).
+(row S6:sixth-integral-n5).
 
 **Claim.** For the axisymmetric sphere in dimension $n = 5$ (any $a$, $b$ with $\Delta \ne 0$), with
 $w = \star(M\wedge M)/2$ (the Pfaffians of the $4\times4$ principal minors of $M$, signed so that $Mw = 0$)

@@ -1,4 +1,4 @@
-r"""Beyond the paper: a family of first integrals for every $n$, and the count of issue 23 (row S6:wedge-integrals).
+r"""Beyond the paper: a family of first integrals for every $n$, and the count of the tori (row S6:wedge-integrals).
 
 **Claim.** For the axisymmetric sphere with $B = aE_nE_n^T + b\gamma\gamma^T$ (so $L_\gamma = 2 + D_B$ on
 $\Lambda^2 = \mathfrak{so}(n)$) and $D_B$ the derivation extension of $B$ to $\Lambda^{2k}$,
@@ -10,7 +10,7 @@ are first integrals of eq:motion-general ($H_1 = 2H$; $H_{n/2} = \operatorname{P
 With the $n$ known integrals (the non-constant coefficients of $p(\lambda, \sigma)$ and $H$), the new
 ones $H_2, \dots, H_{\lceil n/2\rceil - 1}$ (that is $\lceil n/2\rceil - 2$ of them) give
 $2n - 2 - \lfloor n/2\rfloor$ independent $SO(n-1)$-invariant integrals: exactly the number a flow on
-$\lfloor n/2\rfloor$-tori in the $(2n-2)$-dimensional $P/SO(n-1)$ needs (issue 23, item 8).
+$\lfloor n/2\rfloor$-tori in the $(2n-2)$-dimensional $P/SO(n-1)$ needs.
 
 **Checked here.** (1) $\dot H_k = 0$ exactly at a seeded rational point of $P$ with random rational
 $a \in [-1, 1]\setminus\{0\}$, $b \in [1, 3]$, for every $k$ and $n = 4, \dots, 9$ ($\Omega$ by an exact solve of the

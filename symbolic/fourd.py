@@ -274,7 +274,7 @@ def energy():
 def integrals():
     r"""The polynomial first integrals of the 4D field as SymPy expressions in $k, u$ (S5:F123,
     derived): ``F1``, ``F2``, ``F3`` ($= -[\lambda\sigma]p$). (The energy is :func:`energy`, over
-    $2D$; an ``H`` entry here was read by nothing, so nothing checked it: round 23's mutants.)"""
+    $2D$; an ``H`` entry here was read by nothing, so nothing checked it: mutation testing found it.)"""
     return {"F1": F1().as_expr(), "F2": F2().as_expr(), "F3": F3().as_expr()}
 
 

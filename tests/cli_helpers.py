@@ -1,4 +1,4 @@
-"""Helpers shared by the command-line tests (tests/test_cli_ux.py, tests/test_trial_r20.py)."""
+"""Helpers shared by the command-line tests (tests/test_cli_ux.py, tests/test_user_inputs.py)."""
 
 from __future__ import annotations
 

@@ -67,7 +67,7 @@ def _reset_mpmath_precision():
 @pytest.fixture(autouse=True)
 def _restore_signal_handlers():
     """A test that runs the program in-process leaves this process's handlers as it found them
-    (cli.main does so itself since round 23; the program's entry takes them; a scene's own
+    (cli.main does so itself; the program's entry takes them; a scene's own
     handlers may not): else
     a Ctrl-C of the test run, or a SIGTERM of a mutation run whose tests run in-process, was
     ignored for the rest of the session (seen: make mutate-derivations ran to the end after a
@@ -103,7 +103,7 @@ def pytest_terminal_summary(terminalreporter):
             terminalreporter.write_line(row)
 
 
-#: the modules of `make test` whose tests take longest (seconds of a run on 2 cores, round 22):
+#: the modules of `make test` whose tests take longest (seconds of a run on 2 cores):
 #: run first, so that pytest-xdist's work stealing (make test: --dist worksteal) shares out the
 #: many short tests after them instead of waiting at the end for one long test
 LONGEST_FIRST = ("test_simulate_accuracy", "test_mutate", "test_section4_mutations",

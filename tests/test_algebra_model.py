@@ -78,7 +78,7 @@ def test_divergence_at_point_detects_a_wrong_density():
 def test_measure_residual_is_div_of_rho_x_over_rho():
     """symbolic.measure.measure_residual: div(rho X)/rho for rho = prod D_i^p_i, computed here by
     differentiating rho X directly. Its rows test only whether it is zero, so a negated residual
-    survived them (round 25's mutation run)."""
+    survived them (a mutation run)."""
     from chaplygin_nd.symbolic.measure import measure_residual
 
     x, y = sp.symbols("x y", positive=True)
@@ -90,7 +90,7 @@ def test_measure_residual_is_div_of_rho_x_over_rho():
 
 def test_angular_velocity_with_symbolic_entries_is_the_rational_solve_put_together():
     """model.angular_velocity's SymPy branch (symbolic entries: no row takes it, all rows solve
-    at rational points; round 25's run: a negated result survived) against its rational branch
+    at rational points; a mutation run: a negated result survived) against its rational branch
     at a value of the symbol, and eq:M-O itself."""
     s = sp.Symbol("s", positive=True)
     M = sp.Matrix([[0, 1, -2], [-1, 0, 3], [2, -3, 0]])
@@ -107,7 +107,7 @@ def test_symbol_helpers_are_their_docstrings():
     """algebra.skew_symbols ({name}{i}{j} above the diagonal, 1-based, '_' between indices from
     n = 10), algebra.basis_vector (its error message names the range 0..n-1) and
     model.mass_tensor_symbols (diag(J_1, ..., J_n), positive). Their mutants changed no row
-    (generic symbols under other names, a message, a sign of J no row fixes): round 25's run."""
+    (generic symbols under other names, a message, a sign of J no row fixes): a mutation run."""
     from chaplygin_nd.symbolic.algebra import basis_vector
 
     S = skew_symbols("m", 4)

@@ -1,4 +1,4 @@
-"""Bad input gets one line, never a traceback (issue 25): each case as a user meets it — an
+"""Bad input gets one line, never a traceback: each case as a user meets it — an
 explicit family without its point, a damaged evidence cache entry, gamma off the unit sphere in
 the notebook API, more workers than cores, --workers/--scheduler on a scene that is not a
 frequency map, escape sequences in a title, a UTF-8 byte-order mark."""

@@ -1,5 +1,5 @@
 """The chaos indicator (simulate/analysis/chaos.py), the general-J heyoka control, the drawn initial
-conditions and the vectorised NAFF (issue 16).
+conditions and the vectorised NAFF.
 
 MEGNO is checked where it is known in closed form (a shear flow: <Y> -> 2; a saddle:
 <Y> ~ lambda T / 2, Lyapunov exponent lambda), then on the sphere: an orbit of the integrable
@@ -154,7 +154,7 @@ def test_classes_follow_the_rule():
     assert classify(reg, None) == "regular"
 
 
-# -- the horizon ladder and the rest of issue 24 ----------------------------------------------
+# -- the horizon ladder, the tangent growth, the controls ----------------------------------------------
 
 def _ladder_of(system, y0, pars, T, dt=0.5):
     """<Y> at T/8, T/4, T/2, T of one orbit (heyoka, the module's tangent system)."""

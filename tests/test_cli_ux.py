@@ -1,4 +1,4 @@
-"""Small defects a new user met (task r20-ux), each as the user sees it: the usage line of
+"""Small defects a new user met , each as the user sees it: the usage line of
 ``chaplygin prove``, empty path options, ``--report-dir`` with ids, the plan printed once, cache
 warnings in one line, ``mutate --function`` validated, the notebook API's domain checks, and a
 clean ``dir(chaplygin_nd)``. Every error is one line on stderr and exit 2, with nothing written."""
@@ -160,7 +160,7 @@ def test_mutate_derivations_never_replaces_a_foreign_file_and_reads_rerun_first(
 
 def test_main_in_process_leaves_the_signal_handlers_as_it_found_them(capsys):
     """cli.main called in-process (a test, a mutant's test run) must not ignore SIGINT/SIGTERM
-    after its command: a SIGTERM to a mutation worker running such a test was lost (round 22)."""
+    after its command: a SIGTERM to a mutation worker running such a test was lost."""
     import signal
 
     before = {sig: signal.getsignal(sig) for sig in (signal.SIGINT, signal.SIGTERM)}
@@ -180,7 +180,7 @@ def test_mutate_derivations_is_a_chaplygin_command(capsys):
 
 def test_mutate_derivations_checks_the_out_folder_before_the_run(tmp_path, capsys):
     """An --out in a folder that does not exist is refused before any mutant runs (the trial of
-    round 22: the whole run ran, then the atomic write failed with a traceback)."""
+    once, the whole run ran, then the atomic write failed with a traceback)."""
     out = tmp_path / "missing" / "m.json"
     argv = ["--target", "runtime", "--function", "runtime.axisym.vec", "--out", str(out)]
     assert mutate_derivations.main(argv) == 2

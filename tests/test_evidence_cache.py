@@ -1,6 +1,6 @@
 """The evidence cache (simulate/analysis/result_cache.py, simulate/analysis/evidence.py, simulate/analysis/frequencies.py):
-a cached orbit is keyed by the code that computed it (issue 16), and the cache is an
-optimisation, never a failure and never a way in (issue 19, item 5).
+a cached orbit is keyed by the code that computed it, and the cache is an
+optimisation, never a failure and never a way in.
 
 The first test copies the project's packages into a temporary folder (laid out as the installed
 package ``chaplygin_nd``, following pyproject's ``package-dir``), runs a short evidence
@@ -248,7 +248,7 @@ def test_the_folders_created_are_private(cache):
     assert ((cache / "evidence").stat().st_mode & 0o077) == 0
 
 
-# -- the drawn ensembles: the same mechanism (issue 24) ----------------------------------------
+# -- the drawn ensembles: the same mechanism ----------------------------------------
 
 _DRAWN = """
 import json, sys

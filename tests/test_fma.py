@@ -1,4 +1,4 @@
-"""Frequency maps (simulate/analysis/fma.py, simulate/scene/frequency_map.py; issue 16): the control's compiled field
+"""Frequency maps (simulate/analysis/fma.py, simulate/scene/frequency_map.py): the control's compiled field
 solves the definition, the axisymmetric case of it is the derived field, the vectorised NAFF
 finds the lines PyNAFF finds, a 2-worker local Dask cluster gives the same map as one process,
 and the scene runs end to end (small grids, short orbits: seconds)."""
@@ -82,7 +82,7 @@ def _hold_port(port: int):
 
 def test_a_local_dask_cluster_gives_the_map_of_one_process():
     """Also with Dask's default HTTP port taken (by another cluster, a test beside this one on
-    the other xdist worker, any program): CI failed on that in round 24."""
+    the other xdist worker, any program): CI failed on that once."""
     pytest.importorskip("distributed")
     here = fma.run_map(SMALL, workers=1)
     held = _hold_port(8787)
@@ -138,7 +138,7 @@ def test_the_scene_validates_and_runs(tmp_path):
 
 
 def test_no_plots_writes_no_map_figure(tmp_path):
-    """--no-plots covers the frequency-map scenes too (the new-user trial of round 22 found
+    """--no-plots covers the frequency-map scenes too (a new user's trial found
     fma_*.png written under --no-plots): the arrays and the summary, no PNG."""
     from chaplygin_nd.simulate.scene.cli import main
 

@@ -1,4 +1,4 @@
-"""The frequency evidence of Section 5 (issue 11): NAFF wrapper, integer-relation counter,
+"""The frequency evidence of Section 5: NAFF wrapper, integer-relation counter,
 control kernel, level-set points, control separation on short orbits, the `evidence` verdict."""
 
 from __future__ import annotations

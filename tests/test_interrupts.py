@@ -1,4 +1,4 @@
-"""Whole or marked incomplete, never mixed (issue 19, item 4): runs into one output folder are
+"""Whole or marked incomplete, never mixed: runs into one output folder are
 interrupted (8 times) at seeded random moments by SIGINT, SIGTERM or SIGKILL, the scene is edited between
 runs, and after every run the folder holds either nothing, or the complete result of exactly one
 run (every file of its manifest, no other, the CSV equal to the NPZ, the summary naming that run),
@@ -151,7 +151,7 @@ def test_a_second_run_into_a_locked_folder_is_refused(tmp_path):
 @pytest.mark.slow
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
 def test_seeded_interrupts_at_0_to_2_s_are_one_line(tmp_path, sig):
-    """A handful of seeded trials (issue 25; the 300-trial runs are in docs/design-notes/r21-loop.md): a run
+    """A handful of seeded trials (300-trial runs of the same loop passed): a run
     of a long scene, from an empty cache, is sent ``sig`` at a seeded moment 0-2 s after the
     program has taken the signals (observed in /proc) — during the imports, the planning, the
     compile or the integration. Every trial ends with the one line ``interrupted`` and exit 130

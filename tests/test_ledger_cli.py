@@ -1,4 +1,4 @@
-"""`chaplygin verify/prove` as a user meets it (issue 19, items 5 and 6; issue 15 --report-dir):
+"""`chaplygin verify/prove` as a user meets it (--report-dir too):
 ids checked before any proof is imported, with "did you mean"; one-line option errors; the two
 reports written as one result naming the run; report paths that cannot be written named in one
 line; Ctrl-C one line, exit 130."""
@@ -74,7 +74,7 @@ def test_an_unwritable_report_is_named(tmp_path, capsys):
 def test_ctrl_c_is_one_line_and_exit_130(sig, moment):
     """Ctrl-C (130) or SIGTERM (143) at an observed moment of ``prove --jobs 2``: once the program
     has taken the signals (imports still running), while its pool starts (the fork server is
-    there: issue 25's traceback of a starting worker), while the rows run (two workers)."""
+    there: a starting worker's traceback was once seen), while the rows run (two workers)."""
     from process_helpers import cmdline, descendants, takes_signals, wait_for
 
     proc = subprocess.Popen([sys.executable, "-m", "chaplygin_nd", "prove", "eq:invL3D",

@@ -1,8 +1,7 @@
 """``make mutate-derivations``: the mutants of the derivations and the runtime are drawn
 deterministically, and a mutant of an emitted derivation is killed by a row that checks it.
 
-The seeded sample (150 derivation and 40 runtime mutants) and its outcomes are in docs/design-notes/i17b.md;
-here: the selection, and the mutant the issue describes (the frequency of the horizontal closed
+Here: the selection of the seeded sample (150 derivation and 40 runtime mutants), and the mutant the issue describes (the frequency of the horizontal closed
 form changed) killed by S5:H-linear.
 """
 

@@ -1,4 +1,4 @@
-"""Properties of derivations that the rows only use through zero tests (issue 25: every mutant
+"""Properties of derivations that the rows only use through zero tests (every mutant
 of ``make mutate-derivations`` that no check killed gets a test or an equivalence argument).
 
 Each test asserts a correct property of the function on inputs where it is not zero, so that a

@@ -9,7 +9,7 @@ from chaplygin_nd.simulate.analysis import naff
 
 
 def _einsum_projections(X, nu, dt, L, derivatives):
-    """The earlier formulation of ``naff._projections`` (issue 16), kept as the reference."""
+    """The earlier formulation of ``naff._projections``, kept as the reference."""
     K, P, _ = X.shape
     p = np.arange(P) * (L * dt)
     l_ = np.arange(L) * dt
@@ -28,7 +28,7 @@ def _einsum_projections(X, nu, dt, L, derivatives):
 
 
 def _einsum_lines(Z, dt, terms, newton=4):
-    """The earlier loop of ``naff.spectral_lines_batch`` (issue 16) on the einsum projections:
+    """The earlier loop of ``naff.spectral_lines_batch`` on the einsum projections:
     ``(omega, amplitude)`` of every row, in the order found (no sorting, no floor)."""
     Z = np.asarray(Z, dtype=complex)
     K, N = Z.shape
@@ -121,8 +121,8 @@ def test_the_batch_schedule_and_width_change_no_orbit(tmp_path, monkeypatch):
     assert sorted(order) == list(range(11)) and not np.array_equal(order, np.arange(11))
     Z, megno, lyap, extra = de._integrate(s, ens, y0, 5)
     monkeypatch.setattr(de, "schedule", lambda e: np.arange(e.count))
-    monkeypatch.setattr(de, "BATCH", 4)            # and the SIMD width of issue 16
+    monkeypatch.setattr(de, "BATCH", 4)            # and the SIMD width
     Z0, megno0, lyap0, extra0 = de._integrate(s, ens, y0, 5)
     assert np.array_equal(Z, Z0) and np.array_equal(megno, megno0) and np.array_equal(lyap, lyap0)
-    for key in ("ladder", "power", "drift"):          # the ladder and the integrals too (issue 24)
+    for key in ("ladder", "power", "drift"):          # the ladder and the integrals too
         assert np.array_equal(extra[key], extra0[key]), key

@@ -45,7 +45,7 @@ def test_measure4d_controls_decide_the_row(monkeypatch):
 
 def test_argued_steps_are_marked():
     discover()
-    v = registry()["Th:Re-tori"].run()  # (ii), the measure facts, is argued (issue 17)
+    v = registry()["Th:Re-tori"].run()  # (ii), the measure facts, is argued
     argued = [p for p in v.parts if p.argued]
     assert argued and all(p.method.startswith("argued, not machine-checked") for p in argued)
     assert v.verdict == "corrected"

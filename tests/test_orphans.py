@@ -1,4 +1,4 @@
-"""No orphans (issue 25): every kind of pool the project starts loses its workers when its parent
+"""No orphans: every kind of pool the project starts loses its workers when its parent
 is killed with SIGKILL (no ``finally``, no shutdown), within 5 s. Each test waits until the
 workers are observed at work (a file a worker wrote, or the worker processes present), kills the
 parent, and polls the recorded workers with a deadline.

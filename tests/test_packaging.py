@@ -1,4 +1,4 @@
-"""One import namespace (issue 15): every folder of Python code is a subpackage of
+"""One import namespace: every folder of Python code is a subpackage of
 ``chaplygin_nd`` in pyproject.toml, and no module imports a project folder by its bare name (which
 would work in a checkout by accident and break in a wheel, or clobber another distribution)."""
 

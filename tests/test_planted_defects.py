@@ -1,4 +1,4 @@
-"""Power of the evidence rows on a planted defect (issue 24), the cheapest case: the sign of one
+"""Power of the evidence rows on a planted defect, the cheapest case: the sign of one
 term of the full field flipped (bench/planted.py ``sign``) in a temporary copy of the package,
 never in the tree. The defect must first break the proved integrals (else it is no defect); then
 the rows' rule (proofs/drawn_common.py) on those orbits must not support the statement, and must

@@ -1,4 +1,4 @@
-"""Progress that can be trusted (issue 25): the progress line of a long run is monotone (an
+"""Progress that can be trusted: the progress line of a long run is monotone (an
 integrator's probe, a rejected step or the next pass of an ensemble never makes it go back),
 shows an ETA, and a frequency map counts its orbits done out of the total. On a terminal it is
 rewritten in place; in a log file or CI it is whole lines, at most one every 30 s."""
@@ -38,7 +38,7 @@ def _shown(text: str) -> list[float]:
 def test_the_progress_line_never_goes_back(ticking):
     stream = Terminal()
     bar = run_module.Progress(1.0, "full dop853", after=0.0, stream=stream)
-    for t in (0.01, 0.081, 0.008, 0.02, 0.89, 0.243, 0.5, 0.95, 1.0):  # issue 25's jumps
+    for t in (0.01, 0.081, 0.008, 0.02, 0.89, 0.243, 0.5, 0.95, 1.0):  # the jumps once seen
         bar(t)
     shown = _shown(stream.getvalue())
     assert shown == sorted(shown) and shown[-1] == 100.0, shown

@@ -1,4 +1,4 @@
-"""The README stays a screen or two (issue 26: at most 12 KB) and every manual page it links to
+"""The README stays a screen or two (at most 12 KB) and every manual page it links to
 exists and is built into the site (docs/build_pages.py MANUAL): one copy of each text, no dead link."""
 
 from __future__ import annotations

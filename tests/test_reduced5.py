@@ -340,7 +340,7 @@ def test_reduced5_builder_equals_numpy_kernel():
 @pytest.mark.parametrize("deg", [(2, 2, 2), (4, 2, 2), (2, 3, 1)])
 def test_generator_products_are_every_exponent_vector_once_in_the_documented_order(deg):
     """reduced5_invariants.products against a brute-force enumeration: the exponent vectors
-    whose tridegree is ``deg``, in decreasing lexicographic order (round 25's mutation run: a
+    whose tridegree is ``deg``, in decreasing lexicographic order (a mutation run: a
     mutant listing them in increasing order changed no row, as no verdict depends on the order;
     the order is documented, and fixes how the published coefficients are listed)."""
     import itertools
@@ -374,7 +374,7 @@ def test_generation_check_reports_the_counts_of_its_definition():
 
 def test_the_reduced_field_and_integrals_are_their_numerators_over_their_denominators():
     """reduced5.field and reduced5.integrals (their docstrings: numerator / D, H over 2D, the
-    others polynomials), which no row and no test called (round 25's run: a field times D and
+    others polynomials), which no row and no test called (a mutation run: a field times D and
     other changes survived)."""
     import sympy as sp
     from chaplygin_nd.symbolic.reduction import reduced_n5 as r5

@@ -1,4 +1,4 @@
-r"""The runtime on batches: every batch entry against its own 50-digit mpmath reference (issue 17).
+r"""The runtime on batches: every batch entry against its own 50-digit mpmath reference.
 
 ``runtime.axisym.vertical_solution`` is promised for batches (``(..., n, n)``, ``t`` and ``a``
 broadcast) but was tested on one matrix only, so a transpose that is right for one matrix and

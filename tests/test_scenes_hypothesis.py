@@ -1,5 +1,5 @@
 """Property: any scene file gives exit 0 with outputs, or exit 2 with one line and nothing written —
-never a traceback, a hang or a write outside ``--out`` (issue 19, item 7).
+never a traceback, a hang or a write outside ``--out``.
 
 Scene files are generated from a small valid scene by replacing, deleting or adding keys with wrong
 types, NaN/inf, extreme magnitudes, empty or mismatched arrays, deep nesting and unicode. The CLI

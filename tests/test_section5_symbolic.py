@@ -127,7 +127,7 @@ def test_reduce_delta_replaces_delta_squared_by_det_lambda():
     """reduced_invariants.reduce_delta (eq:PrincMinors: delta^2 = det Lambda): delta^2 -> det
     Lambda, delta^3 -> det Lambda * delta, delta and delta-free terms unchanged. S5:red-measure
     reduces a residual that is zero either way, so wrong powers and a negated result survived it
-    (round 25's mutation run)."""
+    (a mutation run)."""
     from chaplygin_nd.symbolic.reduction import invariants_n4 as ri
 
     d, A, E = ri._delta, ri._A, ri._E
@@ -141,7 +141,7 @@ def test_reduce_delta_replaces_delta_squared_by_det_lambda():
 def test_block_is_a_matrix_over_the_ring_of_its_entries():
     """fourd.block: every entry, the zeros on the diagonal included, is an element of the ring
     of v and w (or a SymPy expression for SymPy entries), so that the matrix can be used as one
-    (.ring, as_expr). A Python int zero survived the rows (round 25's mutation run)."""
+    (.ring, as_expr). A Python int zero survived the rows (a mutation run)."""
     from chaplygin_nd.symbolic import fourd
 
     v, w = fourd._k, fourd._u

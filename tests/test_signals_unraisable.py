@@ -1,7 +1,7 @@
 """A signal whose exception cannot propagate (raised inside a weakref callback during garbage
 collection: CI printed "Exception ignored in: <function WeakSet.__init__.<locals>._remove>" with a
 traceback before ``interrupted``) is not printed and still interrupts the main thread
-(chaplygin_nd.signals, issue 25)."""
+(chaplygin_nd.signals)."""
 
 from __future__ import annotations
 

@@ -28,7 +28,7 @@ LONG_ON_BASE = {"horizontal6d", "ensemble3d", "vertical5d", "spherical6d"}
 #: with heyoka the reference of these is the mpmath Taylor method on 64 members or in n = 5
 #: (2-6 minutes under load): in the bench
 LONG_ON_FAST = {"ensemble3d", "vertical5d"}
-#: with heyoka these take 20-50 s each with both cores busy (round 25, pytest --durations): in
+#: with heyoka these take 20-50 s each with both cores busy (pytest --durations): in
 #: make test-slow (CI runs it), so that make test stays within its time
 SLOW_ON_FAST = {"generic4d", "prolate_ball3d", "explicit4d"}
 #: a frequency map is a grid of orbits, not one trajectory: tests/test_fma.py checks it

@@ -1,4 +1,4 @@
-"""Bounded before it starts, and the smaller cases of issue 19 (items 3 and 7): each is one line
+"""Bounded before it starts, and smaller cases: each is one line
 and exit 2 before any computation (or the fix), never a traceback or a hang."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""``--out`` writes only files it owns (issue 12, item 1): every refusal is one line, exit 2,
+"""``--out`` writes only files it owns: every refusal is one line, exit 2,
 before any computation, and leaves everything as it was."""
 
 from __future__ import annotations

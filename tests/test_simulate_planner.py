@@ -30,7 +30,7 @@ def _expected(stem: str) -> str:
         "explicit4d": "full",
         "reference4d": "full",
         "prolate_ball3d": "full",       # a physical ball (S4:physical-ball), a = 4
-        "tori4d": "full",               # frequencies on P need the full system (issue 11)
+        "tori4d": "full",               # frequencies on P need the full system
     }[stem]
 
 

@@ -1,5 +1,5 @@
 """Runs that cannot be right stop at once with one line and exit 2; costly runs say so and are
-refused unless --force; bad inputs get a message, not a traceback (issue 12, items 6-7)."""
+refused unless --force; bad inputs get a message, not a traceback."""
 
 from __future__ import annotations
 

@@ -1,5 +1,5 @@
 """Every model starts at the scene's t[0] and agrees there; the planner's membership tests cannot
-be loosened by a scene; --cross-check judges (issue 12, items 3-5)."""
+be loosened by a scene; --cross-check judges."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Nothing is written under the installation (issue 15, item 6): from an installed wheel, a proof,
+"""Nothing is written under the installation: from an installed wheel, a proof,
 a built-in scene (``--out`` elsewhere) and an evidence row (in its own test, marked ``slow``: it
 integrates its orbits) run with ``CHAPLYGIN_ND_CACHE`` pointed at a temporary folder, and the
 installed tree is byte-for-byte what pip wrote (every file's bytes and mtime, every folder's

@@ -1,4 +1,4 @@
-"""The derived 3D field in (Omega, gamma) is checked where it can fail (issue 17).
+"""The derived 3D field in (Omega, gamma) is checked where it can fail.
 
 ``symbolic.sphere3d.velocity_field_3d`` was used only for dH/dt in S2.1:integrals3D, which is blind
 to both of its terms (<M x Omega, Omega> = 0); row eq:motion3D now compares it with the equations

@@ -3,7 +3,7 @@
 The row checks dH_k/dt = 0 and a Jacobian rank. Both are blind to some errors: each of the two
 terms of the rate vanishes on its own at the points checked, so a wrong factor on either term
 (or on B-dot) leaves the rate zero, and a rank is the same for almost any perturbed gradient
-(round 23's mutation run: such mutants survived the row). These tests compare the pieces with
+(a mutation run: such mutants survived the row). These tests compare the pieces with
 independent computations: B and B-dot with SymPy's differentiation of the definition, M-dot and
 gamma-dot with the exact angular velocity of symbolic.model, the M-gradient with the exact
 derivative of the value (a polynomial of degree 2k in M along a line, so 2k + 1 values give it
@@ -73,7 +73,7 @@ def test_value_is_the_energy_for_k_1():
 @pytest.mark.parametrize("size", [2, 4, 6])
 def test_pfaffian_is_the_definition(size):
     """wedge_integrals.pfaffian against the permutation sum, its sign included: H_k is quadratic
-    in the wedge power, so S6:wedge-integrals cannot see a Pfaffian's sign (round 25's mutation
+    in the wedge power, so S6:wedge-integrals cannot see a Pfaffian's sign (a mutation
     run: every term's sign flipped survived the row). On a principal submatrix too."""
     rng = points.generator(size, "tests/test_wedge_integrals pfaffian")
     A = points.skew_matrix(rng, size + 1)

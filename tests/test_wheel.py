@@ -1,4 +1,4 @@
-"""The wheel works outside the repository (issue 12, item 2): the paper, CLAIMS.md and the
+"""The wheel works outside the repository: the paper, CLAIMS.md and the
 example scenes ship as package data, a proof and a built-in scene run from another folder.
 
 To stay cheap the wheel is installed with ``--no-deps --target DIR`` and run by this
@@ -51,7 +51,7 @@ def test_wheel_contents(installed):
 
 
 def test_the_build_warns_of_nothing_and_the_tree_has_no_link(installed):
-    """The package data are real folders mapped as packages (issue 26): setuptools has no
+    """The package data are real folders mapped as packages: setuptools has no
     "Package would be ignored" (nor any other of its warnings) to say about the layout."""
     _, _, base = installed
     log = (base / "build.log").read_text()

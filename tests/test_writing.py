@@ -95,7 +95,7 @@ def test_forced_mode_and_no_temporary_left_on_error(tmp_path):
     assert tmp.parent == tmp_path and tmp.read_text() == "new" and mode(tmp) == 0o600
 
 
-# --- an output folder is checked by creating what the program would create (issue 25, item 2) ---
+# --- an output folder is checked by creating what the program would create ---
 def _really_writable(folder) -> bool:
     """The oracle: can a file be opened for writing in ``folder`` right now (removed again)?"""
     probe = folder / "oracle-probe"
@@ -169,7 +169,7 @@ def test_every_output_option_uses_the_same_check(tmp_path, capsys, path):
     assert not os.path.exists(path)
 
 
-# --- every atomic writer of the package goes through chaplygin_nd.writing (issue 25, item 4) ---
+# --- every atomic writer of the package goes through chaplygin_nd.writing ---
 ROOT = Path(__file__).resolve().parent.parent
 PACKAGE = ("chaplygin_nd", "ledger", "symbolic", "runtime", "proofs", "simulate", "bench", "docs")
 

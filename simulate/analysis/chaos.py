@@ -100,7 +100,7 @@ def for_field_tangent(field) -> tuple[System, list[float]]:
     return tangent_system(system), values
 
 
-# -- the horizon ladder (issue 24) -----------------------------------------------------------------
+# -- the horizon ladder -----------------------------------------------------------------
 #: the horizons of the ladder, as fractions of the orbit length T: T/8, T/4, T/2, T (one run:
 #: <Y> at horizon t is the running mean up to t, so a prefix of the samples is the shorter run)
 LADDER = (0.125, 0.25, 0.5, 1.0)

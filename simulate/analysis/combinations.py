@@ -1,5 +1,5 @@
 r"""NAFF lines explained by integer combinations of an orbit's fundamental frequencies, with the
-chance of a false match (issue 24).
+chance of a false match.
 
 The count of independent frequencies (:func:`simulate.analysis.naff.independent_frequencies`) searches
 relations with coefficients $|c| \le 4$; a line that is a combination with larger coefficients (5 to

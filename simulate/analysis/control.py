@@ -26,24 +26,24 @@ from chaplygin_nd.simulate.kernels import Kernels
 __all__ = ["general_inertia_kernels", "L_gamma_general", "general_system", "CHAOTIC_J",
            "CANDIDATE_J"]
 
-#: Candidate mass tensors, least asymmetric first, and the rule that chose the control (issue 16),
+#: Candidate mass tensors, least asymmetric first, and the rule that chose the control,
 #: fixed before any frequency result of the drawn ensembles was seen: the first candidate for which
 #: at least 7 of 8 pilot orbits (``simulate.analysis.draws.draw("pilot-control", "generic", n, 8, seed=777)``,
 #: a draw of its own, not the ledger's) have MEGNO <Y>(4096) >= 4 (:mod:`simulate.analysis.chaos`). Measured
-#: (MEGNO only; heyoka tol 1e-10): n = 4 — diag(1, 1.3, 0.75, 0.5), the control of issue 11: 5 of
+#: (MEGNO only; heyoka tol 1e-10): n = 4 — diag(1, 1.3, 0.75, 0.5), the first control of the frequency experiment: 5 of
 #: 8 (1.97 11.1 1.98 1.99 13.6 13.8 13.8 17.9); diag(1, 2, 0.5, 0.25): 7 of 8 (9.5 20.4 1.96 7.0
 #: 32.3 32.6 32.9 29.1) -> chosen then. n = 5 — diag(1, 1.3, 0.75, 0.5, 1.1): 3 of 8; diag(1, 2, 0.5,
-#: 0.25, 1.5): 8 of 8 (4.5 5.6 22.5 12.1 35.7 25.4 27.1 40.9) -> chosen. n = 6 (issue 23, the
+#: 0.25, 1.5): 8 of 8 (4.5 5.6 22.5 12.1 35.7 25.4 27.1 40.9) -> chosen. n = 6 (the
 #: same rule; the n = 5 choice extended by 0.75): diag(1, 2, 0.5, 0.25, 1.5, 0.75): 8 of 8 (24.2 27.0
 #: 29.3 16.9 36.2 30.1 21.9 39.5) -> chosen.
 #:
-#: Issue 24 asks more of a control: chaotic by the MEGNO horizon ladder on >= 90 % of its orbits.
+#: The drawn rows ask more of a control: chaotic by the MEGNO horizon ladder on >= 90 % of its orbits.
 #: The validation study (bench/bench_evidence.py) found diag(1, 2, 0.5, 0.25) a mixed system: 23 of
 #: 32 drawn orbits chaotic at T = 4096 (8 regular, <Y> ~ 2), 26 of 32 at T = 8192. Pilot (32 orbits,
 #: ``draw("pilot-control-24", "generic", 4, 32, 777)``, T = 4096, the ladder rule): diag(1, 4, 0.25,
 #: 0.1): 27 of 32; diag(1, 8, 0.125, 0.05): 21; diag(1, 16, 0.1, 0.02): 15; diag(0.5, 2, 0.125,
 #: 0.05) (the second one halved, i.e. b doubled relative to J): 31 of 32 (1 undecided) -> the n = 4
-#: control of the drawn rows since issue 24. n = 5 kept: 29 of 32 chaotic in the study.
+#: control of the drawn rows. n = 5 kept: 29 of 32 chaotic in the study.
 CANDIDATE_J = {4: ((1.0, 1.3, 0.75, 0.5), (1.0, 2.0, 0.5, 0.25), (1.0, 4.0, 0.25, 0.1),
                    (1.0, 8.0, 0.125, 0.05), (1.0, 16.0, 0.1, 0.02), (0.5, 2.0, 0.125, 0.05)),
                5: ((1.0, 1.3, 0.75, 0.5, 1.1), (1.0, 2.0, 0.5, 0.25, 1.5)),

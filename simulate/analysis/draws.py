@@ -1,4 +1,4 @@
-r"""Initial conditions of the evidence rows, drawn by the ledger's seed — never picked (issue 16).
+r"""Initial conditions of the evidence rows, drawn by the ledger's seed — never picked.
 
 An :class:`Ensemble` is ``count`` initial conditions $(M_0, \gamma_0)$ of one family
 (:mod:`simulate.dynamics.families`: ``generic`` or ``vertical``) in dimension $n$, each with its own

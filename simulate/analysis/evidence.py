@@ -1,4 +1,4 @@
-r"""Orbits for the numerical evidence of Section 5 (issue 11), integrated once and cached on disk.
+r"""Orbits for the numerical evidence of Section 5, integrated once and cached on disk.
 
 An :class:`Experiment` names a vector field (the reduced field eq:red-system, the full field
 eq:motion-general with the generated $L_\gamma^{-1}$, or the general-$\mathbb{J}$ control of

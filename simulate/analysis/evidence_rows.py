@@ -1,4 +1,4 @@
-r"""The drawn experiments behind the evidence rows (issue 16): which ensembles, which settings,
+r"""The drawn experiments behind the evidence rows: which ensembles, which settings,
 the re-run of unresolved orbits at a longer $T$, and the rules, all fixed before the runs.
 
 Ensembles (:mod:`simulate.analysis.draws`, the ledger's seed; $(a, b)$ over $\{-0.9, -0.5, 0.5, 2\}\times\{0.5, 2\}$,
@@ -35,7 +35,7 @@ __all__ = ["LEVEL_SETS", "SHIFTS", "RERUN", "LONGER", "reduced_row", "full4_row"
 LEVEL_SETS = 50
 SHIFTS = (0.04, 0.08, 0.12)     # times the energy scale: distances across the flow on a level set
 RERUN, LONGER = 4, 4.0
-#: the horizon ladder of the frequencies: unresolved orbits again at 2T, then 4T (issue 24)
+#: the horizon ladder of the frequencies: unresolved orbits again at 2T, then 4T
 LADDER_FACTORS = (2.0, 4.0)
 VERTICAL_A = (-0.9, -0.5, 0.0, 0.5, 2.0)
 VERTICAL_T = {4: 3000.0, 5: 3000.0, 6: 3000.0, 7: 6000.0}
@@ -115,7 +115,7 @@ def full4_row(seed: int) -> dict:
     return run_with_rerun(SETTINGS["full4"], ens, _full_state(ens), seed)
 
 
-#: orbits of the n = 4 control (50 since issue 24: its mass tensor makes it 2x costlier per orbit,
+#: orbits of the n = 4 control (50: its mass tensor makes it 2x costlier per orbit,
 #: and its power is established by the validation study, bench/bench_evidence.py)
 CONTROL4_COUNT = 50
 
@@ -129,8 +129,8 @@ def control4_row(seed: int) -> dict:
             "rerun_index": []}
 
 
-#: Orbits per open-problem row (axisymmetric, general-J control): n = 5 is row S6:open-reduced-n5
-#: (issue 16); n = 6 is row S6:open-reduced-n6 (issue 23), fewer orbits: its field costs ~1.5x.
+#: Orbits per open-problem row (axisymmetric, general-J control): n = 5 is row S6:open-reduced-n5;
+#: n = 6 is row S6:open-reduced-n6, fewer orbits: its field costs ~1.5x.
 OPEN_COUNTS = {5: (100, 24), 6: (16, 4)}
 N5_COUNT, N5_CONTROL = OPEN_COUNTS[5]
 

@@ -1,5 +1,5 @@
 r"""Frequency maps (Laskar's frequency-map analysis) of the 4D sphere and of a control: the picture
-of integrability (issue 16).
+of integrability.
 
 A 2D grid of initial conditions on one energy level set $H = h$ (S2.2:energy) of the $n = 4$
 sphere: $\gamma_0 = (\sqrt{1 - x_0^2}, 0, 0, x_0)$ and $M_0 \propto \cos\varphi\,P + \sin\varphi\,Q$
@@ -308,7 +308,7 @@ def _on_dask(chunks, scheduler: str, workers: int | None, on_orbits):
 
         # no dashboard, and the scheduler's HTTP server (it starts one even without a
         # dashboard, on port 8787 by default) on a free port of this host only: a port taken by
-        # another cluster or program made Dask warn and, under warnings as errors, fail (CI, r24)
+        # another cluster or program made Dask warn and, under warnings as errors, fail (seen in CI)
         with LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
                           processes=True, host="127.0.0.1", dashboard_address=None,
                           scheduler_kwargs={"dashboard": False,

@@ -1,4 +1,4 @@
-r"""The frequency experiments of Section 5 (issue 11): which orbits, which thresholds, what is
+r"""The frequency experiments of Section 5: which orbits, which thresholds, what is
 measured. Used by the ledger rows ``S5:EJ-tori``, ``S5:reconstruction``, ``Th:Re-tori:frequencies``
 (proofs/s5_tori_evidence.py) and by the scene output ``frequencies``.
 
@@ -14,7 +14,7 @@ resolution $2\pi/T$); we use members 1 and 3 and say so. Each orbit is sampled e
   $D$ of the axisymmetric orbits it is compared with (the same analysis, the same $T$);
 * the control: the same $n = 4$ sphere, the same $b$ and initial conditions, but the generic mass
   tensor $\mathbb{J} = \mathrm{diag}(1, 2, 0.5, 0.25)$ (:mod:`simulate.analysis.control`, chosen there by a MEGNO rule;
-  issue 11 used $\mathrm{diag}(1, 1.3, 0.75, 0.5)$, whose chaos MEGNO did not resolve on 3 of 8 pilot
+  the first choice, $\mathrm{diag}(1, 1.3, 0.75, 0.5)$,, whose chaos MEGNO did not resolve on 3 of 8 pilot
   orbits; the axisymmetric one is $\mathrm{diag}(1, 1, 1, 1 + a) = \mathrm{diag}(1, 1, 1, 0.5)$).
 """
 
@@ -39,8 +39,8 @@ A, B, SEED = -0.5, 0.5, 3
 LEVEL_SET_MEMBERS = (3, 1)        # first: level set L1 (with extra orbits on it), then L2
 LEVEL_SHIFTS = (0.05, 0.1)
 GENERIC_MEMBERS = (1, 3)
-#: chosen by MEGNO in issue 16 (simulate/analysis/control.py; issue 11 had (1, 1.3, 0.75, 0.5)); the
-#: drawn rows' control moved to CHAOTIC_J[4] in issue 24, this fixed experiment keeps its own
+#: chosen by MEGNO (simulate/analysis/control.py; replacing (1, 1.3, 0.75, 0.5)); the drawn rows'
+#: control is CHAOTIC_J[4], chaotic on more orbits; this fixed experiment keeps its own
 CONTROL_J = CANDIDATE_J[4][1]
 T_END, DT, RTOL = 4096.0, 0.5, 1e-10
 REGULAR = 1e-5

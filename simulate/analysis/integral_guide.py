@@ -1,4 +1,4 @@
-r"""A numerical guide for the exact first-integral search on the $n = 5$ reduced space (issue 23, item 4).
+r"""A numerical guide for the exact first-integral search on the $n = 5$ reduced space.
 
 Not a verdict. On drawn $n = 5$ orbits of one $(a, b)$, integrated in the reduced coordinates
 $r = (x, A_\pm, B, G, E_\pm, S_{uu}, S_{uq}, S_{qq})$ (row S6:reduced-n5, ``generated.reduced5``),

@@ -1,4 +1,4 @@
-r"""How well the proved first integrals are kept along a sampled orbit (issue 24): the cheapest and
+r"""How well the proved first integrals are kept along a sampled orbit: the cheapest and
 sharpest sign that the integrated field is the right one.
 
 * On $P$ (the axisymmetric full field eq:motion-general, any $n$, and the general-$\mathbb{J}$ control

@@ -165,7 +165,7 @@ def _spectrum(lines, diffusion: float, rel_amp: float, tol: float, K: int,
     return Spectrum(pooled, sorted(abs(f) for f in basis), diffusion, rel)
 
 
-# -- vectorised over orbits (issue 16) ------------------------------------------------------------
+# -- vectorised over orbits ------------------------------------------------------------
 def _hann2(N: int) -> np.ndarray:
     r"""Hann window of order 2, $w_j = (1 + \cos\pi\tau_j)^2$, $\tau_j \in [-1, 1]$ (the window of
     :func:`spectral_lines`), normalised to $\sum_j w_j = 1$."""
@@ -225,7 +225,7 @@ def _find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a) -> None:
     ``R`` (subtracted in place) into ``found_w``, ``found_a``. Runs with one BLAS thread (the caller
     limits it): the products are small, and on a busy machine (``make verify`` runs a worker per
     core) OpenBLAS's waiting threads made them and everything after them up to 3x slower
-    (measured, docs/design-notes/r20-evidence.md)."""
+    (measured on the evidence rows)."""
     K, N = R.shape
     omega_grid = 2 * np.pi * np.fft.fftfreq(pad, d=dt)
     idx = np.arange(K)

@@ -10,12 +10,12 @@ lookup, :func:`code_unchanged` hashes the current source of each recorded module
 module in ``sys.modules``, else where the import system would find it); a module that changed,
 or that can no longer be found, makes the lookup a miss, and the recomputed entry replaces it.
 
-This is the one mechanism of every cache of computed results (issue 24): the orbits and spectra
+This is the one mechanism of every cache of computed results: the orbits and spectra
 of :mod:`simulate.analysis.evidence` / :mod:`simulate.analysis.frequencies` (``.npz`` and JSON) and
 the drawn ensembles of :mod:`simulate.analysis.drawn_evidence` (JSON through :func:`cached_json`).
 No cache keeps a hand-made list of source files: the manifest is taken from ``sys.modules``.
 
-A cache is an optimisation, never a failure and never a way in (issue 19, item 5):
+A cache is an optimisation, never a failure and never a way in:
 
 * entries are ``.npz`` read with ``allow_pickle=False`` and JSON: nothing is unpickled;
 * an entry that does not parse or has the wrong shape (truncated, random bytes, a folder in its
@@ -70,7 +70,7 @@ def warn_once(message: str) -> None:
 def read_entry(path: Path, parse):
     """``parse(text)`` of the cache entry at ``path`` (read as UTF-8), or ``None`` after one
     warning when the entry cannot be read or parsed (truncated, edited, not this version's
-    format): a damaged entry is recomputed, never trusted, never a traceback (issue 25)."""
+    format): a damaged entry is recomputed, never trusted, never a traceback."""
     try:
         return parse(path.read_text(encoding="utf-8"))
     except Exception as exc:  # noqa: BLE001 - any unreadable entry is a miss

@@ -7,7 +7,7 @@ the cache state is known: in memory / on disk / cold, :func:`simulate.integrator
 the samples), so they do not enter the choice. The cheapest candidate wins; the plan line prints
 every prediction.
 
-How the run is predicted (no constant here is a guess; each was measured, see docs/design-notes/i18.md and
+How the run is predicted (no constant here is a guess; each was measured, see
 ``bench/bench_scaling.py``, on 2 shared cores):
 
 * a **DOP853 pilot** — the scene's own field and initial conditions (the whole ensemble, as DOP853

@@ -1,5 +1,5 @@
 r"""Scenes with an ``[fma]`` table: a frequency map of the 4D sphere beside one of a control
-(:mod:`simulate.analysis.fma`; issue 16). Validated here, run by ``chaplygin simulate``.
+(:mod:`simulate.analysis.fma`). Validated here, run by ``chaplygin simulate``.
 
 .. code-block:: toml
 

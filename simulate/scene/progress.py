@@ -1,4 +1,4 @@
-"""Progress lines of long runs, with an ETA (issue 25: every run expected to last more than
+"""Progress lines of long runs, with an ETA (every run expected to last more than
 about 10 s shows one): :func:`eta`, and :class:`Tally` for runs counted in pieces (the orbits of a
 frequency map). :class:`Line` is what both share; the time-based line of an integration is
 :class:`simulate.scene.run.Progress`."""

@@ -4,7 +4,7 @@ r"""SymPy's reading of an expression into $\mathbb{Q}(x_1,\dots,x_m)$, in lowest
 ``FracField.from_expr`` builds the fraction node by node and cancels (a polynomial gcd) after
 every addition and multiplication; on the residuals of the ledger's identities that was most of
 the SymPy engine's time (P:Measure, S4:structured-field, Th:Re: 3-14x the CPU of the walk below,
-measured per call over the whole ledger in round 23, issue 25). :func:`reduced_fraction` instead
+measured per call over the whole ledger). :func:`reduced_fraction` instead
 walks the expression tree once with SymPy's sparse polynomials (``PolyElement`` over QQ), keeping
 each node as an uncancelled numerator/denominator pair (sums over the lcm of their denominators),
 and cancels once at the end with the field's own constructor. A fraction in lowest terms is

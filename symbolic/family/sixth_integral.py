@@ -1,6 +1,6 @@
 r"""A sixth first integral of the axisymmetric $n = 5$ sphere (row S6:sixth-integral-n5, beyond the paper).
 
-Found by the numerical guide of issue 23 (:mod:`simulate.analysis.integral_guide`: an orbit-constant
+Found by the numerical guide (:mod:`simulate.analysis.integral_guide`: an orbit-constant
 combination of $M$-degree 4 over $\Delta$ beyond the products of the known integrals), then fixed by
 exact linear algebra over $\mathbb{Q}(a, b)$ in the reduced coordinates of :mod:`symbolic.reduction.reduced_n5` and
 written with $\mathfrak{so}(5)$ operations:

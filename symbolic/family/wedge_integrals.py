@@ -11,7 +11,7 @@ $D_B$ the derivation extension of $B$ to $\Lambda^{2k}\mathbb{R}^n$
 in the orthonormal basis $e_I$ of $\Lambda^{2k}$, $(M^{\wedge k})_I = \operatorname{Pf}(M_{II})$ (up to the factor $k!$).
 $H_1 = 2H$ (the energy); for $n = 2k$, $D_B = \operatorname{tr}B$ on $\Lambda^n$ and $H_{n/2} = \operatorname{Pf}(M)^2/(2+a+b)$
 (known). For $n = 5$, $H_2 = (\lVert w\rVert^2 + F)/(2+a+b)$ with the $F$ of S6:sixth-integral-n5
-(checked in the tests). Conjecture (issue 23): every $H_k$ is a first integral of eq:motion-general;
+(checked in the tests). Conjecture: every $H_k$ is a first integral of eq:motion-general;
 with the $n$ known integrals they give $2n - 2 - \lfloor n/2\rfloor$ independent invariant integrals.
 
 Everything here is exact at a rational point, in the number type of the caller: SymPy ``Rational``

@@ -1,4 +1,4 @@
-"""Defects found by a new user's trial of the merged r20 round (docs/design-notes/r20-trial.md), one test each:
+"""What a user meets at the edges of the commands and the notebook API, one test each:
 ``verify --report-dir`` never replaces report files it did not write, ``mutate --compare`` reads
 its file before the run, worker counts must be positive, the notebook API refuses complex,
 non-finite and n < 3 input, and ``chaplygin docs -h`` is help, not a report path."""

@@ -1,6 +1,6 @@
-"""Defects found by a new user's trial of the merged r21 round (docs/design-notes/r21-trial.md),
-one test each: a negative fraction is an option's value (``--a -1/3``), and a formula in a row's
-notes keeps its ``*`` on the site."""
+"""Arguments and written results of the commands, one test each: a negative fraction is an
+option's value (``--a -1/3``), the first-integral command's ``--json`` is refused before the
+search or written whole, and a formula in a row's notes keeps its ``*`` on the site."""
 
 from __future__ import annotations
 
