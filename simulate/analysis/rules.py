@@ -31,11 +31,12 @@ Then, when no rule alone has too many contradicting orbits, at most 2 % may cont
 
 from __future__ import annotations
 
-import importlib
 from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+
+from chaplygin_nd.registry import Registry
 
 __all__ = ["Criterion", "Rule", "register", "rules", "get", "unmet", "separates", "contradicting",
            "fraction", "holds", "MODULES", "CONTRADICTING_MAX", "MEGNO_REGULAR_MIN", "PREDICTED_MIN",
@@ -81,27 +82,10 @@ class Rule:
     control: Callable[[list, list], bool] | None = None
 
 
-_REGISTRY: dict[str, Rule] = {}
-
-
-def register(rule: Rule) -> Rule:
-    """Add ``rule`` (one part once)."""
-    if rule.part in _REGISTRY and _REGISTRY[rule.part] is not rule:
-        raise ValueError(f"evidence rule {rule.part!r} registered twice")
-    _REGISTRY[rule.part] = rule
-    return rule
-
-
-def rules() -> list[Rule]:
-    """Every rule, in registration order (this module's first, then :data:`MODULES`)."""
-    for module in MODULES:
-        importlib.import_module(module)
-    return list(_REGISTRY.values())
-
-
-def get(part: str) -> Rule:
-    """The rule of ``part``."""
-    return next(r for r in rules() if r.part == part)
+_REGISTRY: Registry[Rule] = Registry("evidence rule", lambda r: r.part, MODULES)
+register = _REGISTRY.register
+get = _REGISTRY.get
+rules = _REGISTRY.entries
 
 
 def holds(part: str, results) -> bool:

@@ -15,12 +15,13 @@ lists them. A new integrator is one module that calls :func:`register`, and its 
 
 from __future__ import annotations
 
-import importlib
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
 from chaplygin_nd.simulate.integrators.base import Solution
+
+from chaplygin_nd.registry import Registry
 
 __all__ = ["Integrator", "register", "get", "names", "named", "entries", "MODULES"]
 
@@ -55,47 +56,23 @@ class Integrator:
     calibration: tuple[tuple[str, Any], ...] = ()
 
 
-_REGISTRY: dict[str, Integrator] = {}
-
-
-def register(entry: Integrator) -> Integrator:
-    """Add ``entry`` (one name once)."""
-    if entry.name in _REGISTRY and _REGISTRY[entry.name] is not entry:
-        raise ValueError(f"integrator {entry.name!r} registered twice")
-    _REGISTRY[entry.name] = entry
-    return entry
-
-
-def _load() -> None:
-    for module in MODULES:
-        importlib.import_module(f"chaplygin_nd.simulate.integrators.{module}")
-
-
-def get(name: str) -> Integrator:
-    """The integrator called ``name``; ``ValueError`` naming the known ones otherwise."""
-    _load()
-    if name not in _REGISTRY:
-        raise ValueError(f"no integrator {name!r}; known: {', '.join(sorted(_REGISTRY))}")
-    return _REGISTRY[name]
+_REGISTRY: Registry[Integrator] = Registry(
+    "integrator", lambda e: e.name,
+    tuple(f"chaplygin_nd.simulate.integrators.{module}" for module in MODULES))
+register = _REGISTRY.register
+get = _REGISTRY.get
+entries = _REGISTRY.entries
 
 
 def names(order: str | None = None) -> list[str]:
     """Every registered name; with ``order = "auto"`` or ``"reference"`` those that take part,
     in their rank order."""
-    _load()
     if order is None:
-        return sorted(_REGISTRY)
-    ranked = [(getattr(e, order), e.name) for e in _REGISTRY.values() if getattr(e, order) is not None]
+        return sorted(_REGISTRY.names())
+    ranked = [(getattr(e, order), e.name) for e in entries() if getattr(e, order) is not None]
     return [name for _, name in sorted(ranked)]
 
 
 def named() -> list[str]:
     """The names a scene may give in ``accuracy.method`` (besides ``auto``), sorted."""
-    _load()
-    return sorted(e.name for e in _REGISTRY.values() if e.scene)
-
-
-def entries() -> list[Integrator]:
-    """Every registered entry, in the order of :data:`MODULES` (and of registration within one)."""
-    _load()
-    return list(_REGISTRY.values())
+    return sorted(e.name for e in entries() if e.scene)

@@ -15,6 +15,7 @@ floor (tolerance methods), $C h^4\,\text{span}$ (RKMK4), $10^{2-\text{dps}}$ (Ta
 from __future__ import annotations
 
 import math
+from collections import UserDict
 from dataclasses import dataclass
 
 import numpy as np
@@ -42,62 +43,26 @@ class Calibration:
     floor: float | None = None
 
 
-class _ByMethod(dict):
+class _ByMethod(UserDict):
     """One column of the calibrations (``measured``, ``rounding`` or ``floor``) keyed by method
-    (or precision: ``real128``), read from the registered integrators on first use. A dict, so a
-    test may patch one entry."""
+    (or precision: ``real128``), read from the registered integrators on first use. A mapping a
+    test may patch one entry of."""
 
-    def __init__(self, column: str):
-        super().__init__()
-        self._column, self._filled = column, False
+    def __init__(self, column: str):  # no UserDict.__init__: ``data`` is filled on first use
+        self._column, self._data = column, None
 
-    def _fill(self) -> None:
-        if self._filled:
-            return
-        self._filled = True
-        from chaplygin_nd.simulate.integrators import registry
+    @property
+    def data(self) -> dict:  # type: ignore[override]
+        if self._data is None:
+            from chaplygin_nd.simulate.integrators import registry
 
-        for entry in registry.entries():
-            for key, calibration in entry.calibration:
-                value = getattr(calibration, self._column)
-                if value is not None:
-                    super().setdefault(key, value)
-
-    def __getitem__(self, key):
-        self._fill()
-        return super().__getitem__(key)
-
-    def get(self, key, default=None):
-        self._fill()
-        return super().get(key, default)
-
-    def __contains__(self, key):
-        self._fill()
-        return super().__contains__(key)
-
-    def __iter__(self):
-        self._fill()
-        return super().__iter__()
-
-    def __len__(self):
-        self._fill()
-        return super().__len__()
-
-    def __repr__(self):
-        self._fill()
-        return super().__repr__()
-
-    def keys(self):
-        self._fill()
-        return super().keys()
-
-    def items(self):
-        self._fill()
-        return super().items()
-
-    def values(self):
-        self._fill()
-        return super().values()
+            self._data = {}
+            for entry in registry.entries():
+                for key, calibration in entry.calibration:
+                    value = getattr(calibration, self._column)
+                    if value is not None:
+                        self._data.setdefault(key, value)
+        return self._data
 
 
 #: Worst measured error/setting ratio K per method above its floor (for ``lie`` the constant C of

@@ -13,11 +13,12 @@ nothing elsewhere switches on output names.
 
 from __future__ import annotations
 
-import importlib
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
+
+from chaplygin_nd.registry import Registry
 
 __all__ = ["Output", "register", "get", "names", "where", "owner", "drawing", "MODULES"]
 
@@ -58,41 +59,17 @@ class Output:
     vertical: bool = False
 
 
-_REGISTRY: dict[str, Output] = {}
-
-
-def register(entry: Output) -> Output:
-    """Add ``entry`` (one name once)."""
-    if entry.name in _REGISTRY and _REGISTRY[entry.name] is not entry:
-        raise ValueError(f"output {entry.name!r} registered twice")
-    _REGISTRY[entry.name] = entry
-    return entry
-
-
-def _load() -> None:
-    for module in MODULES:
-        importlib.import_module(f"chaplygin_nd.simulate.scene.{module}")
-
-
-def names() -> tuple[str, ...]:
-    """Every output name, in the order of :data:`MODULES` (and of registration within one)."""
-    _load()
-    return tuple(_REGISTRY)
-
-
-def get(name: str) -> Output:
-    """The output called ``name``; ``ValueError`` naming the known ones otherwise."""
-    _load()
-    if name not in _REGISTRY:
-        raise ValueError(f"no output {name!r}; known: {', '.join(_REGISTRY)}")
-    return _REGISTRY[name]
+_REGISTRY: Registry[Output] = Registry(
+    "output", lambda e: e.name, tuple(f"chaplygin_nd.simulate.scene.{m}" for m in MODULES))
+register = _REGISTRY.register
+get = _REGISTRY.get
+names = _REGISTRY.names
 
 
 def where(flag: str) -> frozenset[str]:
     """The names of the outputs whose ``flag`` (``reduced``, ``horizontal``, ``reconstruct``,
     ``spectral``, ...) is set."""
-    _load()
-    return frozenset(name for name, e in _REGISTRY.items() if getattr(e, flag))
+    return frozenset(e.name for e in _REGISTRY.entries() if getattr(e, flag))
 
 
 def drawing(key: str, default: Callable[..., Any]) -> Callable[..., Any] | None:
@@ -105,10 +82,11 @@ def drawing(key: str, default: Callable[..., Any]) -> Callable[..., Any] | None:
 def owner(key: str) -> tuple[Output, str] | None:
     """The output that writes the array ``key`` (its name, or a prefix of its ``figures``) and the
     key of ``figures`` that matched (``key`` itself when the entry names no figure for it)."""
-    _load()
-    if key in _REGISTRY:
-        return _REGISTRY[key], key
-    for entry in _REGISTRY.values():
+    entries = _REGISTRY.entries()
+    for entry in entries:
+        if entry.name == key:
+            return entry, key
+    for entry in entries:
         for pattern in entry.figures:
             if pattern == key or (pattern.endswith(".") and key.startswith(pattern)):
                 return entry, pattern
