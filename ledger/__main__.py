@@ -83,7 +83,8 @@ def _entry(argv: list[str] | None, command: str) -> int:
             return fail("interrupted", 130)
 
 
-def _main(argv: list[str] | None, command: str) -> int:
+def _parser(command: str) -> OneLineParser:
+    """The options of ``chaplygin verify`` / ``prove``."""
     prog = command if command.startswith("python") else f"chaplygin {command}"
     parser = OneLineParser(prog=prog, description=_DESCRIPTIONS[command])
     parser.add_argument("ids", nargs="*", metavar="ID", help={
@@ -102,6 +103,11 @@ def _main(argv: list[str] | None, command: str) -> int:
                         "(default: the checkout's root and docs/; an installed package writes "
                         "them only when DIR is given)")
     parser.add_argument("--list", action="store_true", help="list the ledger ids and exit")
+    return parser
+
+
+def _main(argv: list[str] | None, command: str) -> int:
+    parser = _parser(command)
     args = parser.parse_args(argv)
 
     try:
@@ -130,26 +136,7 @@ def _main(argv: list[str] | None, command: str) -> int:
         also = stale_report
     results = run(rows, jobs=args.jobs, seed=args.seed, on_result=lambda r: say(report.line(r)),
                   also=also, on_also=lambda text: stale_text.append(str(text)))
-    problems = []
-    for r in results:
-        if r.error:
-            problems.append(f"{r.row.id}: the proof raised:\n{r.error}")
-        elif r.status == "fails":
-            problems.append(f"{r.row.id}: fails ({r.verdict.counterexample})")
-        elif r.status == "open" and not r.verdict.notes.strip():
-            problems.append(f"{r.row.id}: open without a reason")
-    problems += [f"{i}: a finding without a kind (formula/proof/scope/reading): an error of the "
-                 "ledger" for i in report.missing_kind(results)]
-    if not args.ids:  # every printed formula must be checked by some row (DESIGN rule 1)
-        from chaplygin_nd.ledger.reach import unreached, unreached_emitted
-
-        missing = unreached({r.row.id: list(r.printed) for r in results})
-        problems += [f"printed function {f} is reached by no ledger row" for f in missing]
-        # every derivation emitted into generated/ must be checked by some row
-        problems += [f"derivation {f} is emitted into generated/ but reached by no ledger row"
-                     for f in unreached_emitted({r.row.id: list(r.derived) for r in results})]
-    unknown = unknown_registrations()
-    problems += [f"{i}: registered by a proof but not a ledger row" for i in unknown]
+    problems = _problems(results, whole=not args.ids)
     generated = "not checked"
     if args.check_generated:
         stale = stale_text[0]   # regenerated beside the rows (runner.run's ``also``)
@@ -178,6 +165,33 @@ def _main(argv: list[str] | None, command: str) -> int:
     for p in problems:
         fail(f"PROBLEM: {p}", 1)
     return 1 if problems else 0
+
+
+def _problems(results, whole: bool) -> list[str]:
+    """What makes the run fail: a proof that raised, a ``fails`` row, an ``open`` row without a
+    reason, a finding without a kind, a proof registering an id that is no row; on a ``whole``
+    run also a printed formula or an emitted derivation that no row reaches (DESIGN rule 1)."""
+    problems = []
+    for r in results:
+        if r.error:
+            problems.append(f"{r.row.id}: the proof raised:\n{r.error}")
+        elif r.status == "fails":
+            problems.append(f"{r.row.id}: fails ({r.verdict.counterexample})")
+        elif r.status == "open" and not r.verdict.notes.strip():
+            problems.append(f"{r.row.id}: open without a reason")
+    problems += [f"{i}: a finding without a kind (formula/proof/scope/reading): an error of the "
+                 "ledger" for i in report.missing_kind(results)]
+    if whole:  # every printed formula must be checked by some row (DESIGN rule 1)
+        from chaplygin_nd.ledger.reach import unreached, unreached_emitted
+
+        missing = unreached({r.row.id: list(r.printed) for r in results})
+        problems += [f"printed function {f} is reached by no ledger row" for f in missing]
+        # every derivation emitted into generated/ must be checked by some row
+        problems += [f"derivation {f} is emitted into generated/ but reached by no ledger row"
+                     for f in unreached_emitted({r.row.id: list(r.derived) for r in results})]
+    unknown = unknown_registrations()
+    problems += [f"{i}: registered by a proof but not a ledger row" for i in unknown]
+    return problems
 
 
 def _report_paths(report_dir: str | Path | None, whole: bool):

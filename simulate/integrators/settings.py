@@ -18,8 +18,6 @@ import math
 from collections import UserDict
 from dataclasses import dataclass
 
-import numpy as np
-
 __all__ = ["Settings", "Tolerance", "Step", "Digits", "Calibration", "SAFETY", "MEASURED",
            "ROUNDING", "FLOORS", "CALIBRATED_SPAN", "tolerance", "step", "digits"]
 

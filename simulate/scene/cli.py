@@ -41,8 +41,8 @@ from chaplygin_nd.console import (
 __all__ = ["main"]
 
 
-def main(argv: list[str] | None = None) -> int:
-    """Entry point; returns the exit status (see the module docstring)."""
+def _parser() -> OneLineParser:
+    """The options of ``chaplygin simulate``."""
     ap = OneLineParser(prog="chaplygin simulate", description=__doc__.split("\n\n")[0])
     ap.add_argument("--version", action="version", version=version_line())
     ap.add_argument("scene", nargs="?",
@@ -60,6 +60,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--scheduler", default=None, metavar="ADDRESS",
                     help="frequency-map scenes: run on this Dask scheduler ('local' starts a "
                     "local cluster of --workers processes; needs the extra 'cluster')")
+    return ap
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point; returns the exit status (see the module docstring)."""
+    ap = _parser()
     args = ap.parse_args(argv)
     if args.list:
         for name, title in builtin_scenes().items():

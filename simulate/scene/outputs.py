@@ -25,8 +25,8 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from chaplygin_nd.simulate.dynamics import so
 from chaplygin_nd.simulate import kernels
+from chaplygin_nd.simulate.dynamics import so
 from chaplygin_nd.simulate.kernels import active
 from chaplygin_nd.simulate.scene import figures, output_registry
 from chaplygin_nd.simulate.scene.figures import plot

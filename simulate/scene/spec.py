@@ -68,19 +68,18 @@ import numpy as np
 from chaplygin_nd.simulate.dynamics import families
 from chaplygin_nd.simulate.dynamics.ball import Ball
 from chaplygin_nd.simulate.scene import budget, initial
+from chaplygin_nd.simulate.scene import times as sample_times
 from chaplygin_nd.simulate.scene.body import body
 from chaplygin_nd.simulate.scene.fields import SceneError
-from chaplygin_nd.simulate.scene.fields import array as _array
 from chaplygin_nd.simulate.scene.fields import number as _number
 from chaplygin_nd.simulate.scene.fields import unknown as _unknown
 
 if TYPE_CHECKING:  # pragma: no cover
     from chaplygin_nd.simulate.scene.frequency_map import FrequencyMapScene
 
-__all__ = ["Scene", "SceneError", "OUTPUTS", "METHODS", "load", "loads", "find", "builtin_scenes"]
+__all__ = ["Scene", "SceneError", "outputs", "methods", "load", "loads", "find", "builtin_scenes"]
 
 _TOP = {"title", "n", "a", "b", "radius", "ball", "initial", "times", "outputs", "accuracy"}
-_TIMES = {"t_end", "samples", "t"}
 _ACCURACY = {"target", "method", "dps", "step"}
 
 
@@ -267,10 +266,10 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene | Fr
     a, b, radius, ball, notes, remarks = body(raw, n, fail)
     ini = initial.table(raw, n, fail)
     times = raw.get("times", {})
-    _unknown(times, _TIMES, "times.", fail)
-    _check_size(raw, n, ini, _samples(times, fail), force, fail)
+    _unknown(times, sample_times.KEYS, "times.", fail)
+    _check_size(raw, n, ini, sample_times.samples(times, fail), force, fail)
     M0, gamma0, Omega0 = initial.condition(ini, n, a, b, ball, fail)
-    t = _times(times, fail)
+    t = sample_times.times(times, fail)
     want, figures = _outputs(raw, n, t, times, ini, M0, gamma0, fail)
     target, method, dps, step = _accuracy(raw, fail)
     return Scene(title=str(raw.get("title", source)), n=n, a=a, b=b, radius=radius,
@@ -380,43 +379,3 @@ def _accuracy(raw: dict, fail) -> tuple[float, str, int, float]:
     if not step > 0:
         fail("accuracy.step", f"step = {step} is not positive", "use e.g. 0.01")
     return target, method, dps, step
-
-
-def _samples(times, fail):
-    """The number of samples the times table asks for, checked before any array is made."""
-    if "t" in times:
-        return len(times["t"]) if isinstance(times["t"], list) else 2
-    samples = _number(times, "samples", fail, integer=True, default=201, where="times.samples")
-    if samples < 2:
-        fail("times.samples", f"samples = {samples}", "use samples >= 2")
-    return samples
-
-
-def _times(times, fail):
-    if "t" in times:
-        if "t_end" in times or "samples" in times:
-            fail("times", "both t and t_end/samples are given", "give one of them")
-        if not isinstance(times["t"], list):
-            fail("times.t", "not a list", "e.g. t = [0.0, 1.0, 2.0]")
-        t = _array(times["t"], (len(times["t"]),), "times.t", fail)
-        if t.size < 2 or t[0] < 0 or np.any(np.diff(t) <= 0):
-            fail("times.t", "not an increasing list of >= 2 times starting at t >= 0",
-                 "e.g. t = [0.0, 1.0, 2.0]")
-        _resolvable(t, "times.t", fail)
-        return t
-    t_end = _number(times, "t_end", fail, required=True, where="times.t_end")
-    if not t_end > 0:
-        fail("times.t_end", f"t_end = {t_end} is not positive", "choose t_end > 0")
-    samples = _number(times, "samples", fail, integer=True, default=201, where="times.samples")
-    if samples < 2:
-        fail("times.samples", f"samples = {samples}", "use samples >= 2")
-    t = np.linspace(0.0, t_end, samples)
-    _resolvable(t, "times.t_end", fail)
-    return t
-
-
-def _resolvable(t, where, fail):
-    """Consecutive times at least 16 ulp apart (``t_end = 5e-324`` gives equal float64 samples)."""
-    if np.any(np.diff(t) <= 16 * np.spacing(np.abs(t[1:]))) or not np.isfinite(t).all():
-        fail(where, f"the sample times are not distinct in float64 (t_end = {t[-1]:g} with "
-             f"{len(t)} samples)", "choose a larger t_end or fewer samples")

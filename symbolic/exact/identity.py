@@ -33,7 +33,6 @@ which engines decided it (:func:`engine_tally`); the ledger prints it in the row
 from __future__ import annotations
 
 import time
-from collections import Counter
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from random import Random
@@ -52,6 +51,15 @@ from chaplygin_nd.symbolic.exact.flint_engine import (
     use_engine,
 )
 from chaplygin_nd.symbolic.exact.sympy_fraction import reduced_fraction
+from chaplygin_nd.symbolic.exact.tally import (  # noqa: F401  (re-exported: the runner reads them here)
+    dimension,
+    engine_note,
+    engine_tally,
+    point_timings,
+    record,
+    reset_engine_tally,
+    timing,
+)
 from sympy.polys.fields import field as fraction_field
 from sympy.polys.orderings import lex
 from sympy.polys.rings import PolyElement
@@ -95,67 +103,6 @@ class Check:
 
     def __bool__(self) -> bool:
         return self.ok
-
-
-# --------------------------------------------------------------------------------------------
-# Which engines decided what (per process; the runner reads it after each row).
-# --------------------------------------------------------------------------------------------
-
-_TALLY: Counter = Counter()
-#: (kind, label, size, engine, seconds) of every zero test (the bench reads it); size is n for a
-#: seeded point, the number of variables for an identity
-_TIMINGS: list[tuple[str, str, int | None, str, float]] = []
-
-
-def point_timings(clear: bool = False) -> list[tuple[str, str, int | None, str, float]]:
-    """(kind, label, size, engine, seconds) of each engine's part of each zero test: ``points``
-    (one seeded point, value and zero test; size = n) and ``identity`` (one
-    :func:`rational_identity`; size = number of variables). ``clear`` empties the record."""
-    out = list(_TIMINGS)
-    if clear:
-        _TIMINGS.clear()
-    return out
-
-
-def _dimension(pt: dict) -> int | None:
-    """n of a sampled point: its ``n``, else the length of its ``gamma``."""
-    if isinstance(pt.get("n"), int):
-        return pt["n"]
-    g = pt.get("gamma")
-    return len(g) if g is not None else None
-
-
-def _record(kind: str, engines: str, label: str = "", size: int | None = None,
-            spent: Mapping[str, float] | None = None) -> None:
-    _TALLY[(kind, engines)] += 1
-    for engine, seconds in (spent or {}).items():
-        _TIMINGS.append((kind, label, size, engine, seconds))
-
-
-def engine_tally() -> dict[tuple[str, str], int]:
-    """(kind, engines) -> number of zero tests since :func:`reset_engine_tally`; kind is
-    ``identity`` (:func:`rational_identity`) or ``points`` (one seeded point of
-    :func:`zero_at_points`)."""
-    return dict(_TALLY)
-
-
-def reset_engine_tally() -> None:
-    """Forget the tally (the runner calls it before each row)."""
-    _TALLY.clear()
-
-
-def engine_note(tally: Mapping[tuple[str, str], int]) -> str:
-    """The sentence a row's method ends with: which engines decided its zero tests."""
-    if not tally:
-        return ("engines: no zero test through symbolic.exact.identity (exact values computed in the "
-                "proof's own SymPy code; one engine)")
-    kinds = {"identity": "identities", "points": "points"}
-    parts = []
-    for kind in ("identity", "points"):
-        items = sorted((e, c) for (k, e), c in tally.items() if k == kind)
-        if items:
-            parts.append(f"{kinds[kind]} " + ", ".join(f"{e} x{c}" for e, c in items))
-    return "engines: " + "; ".join(parts) + " (expressions and point values built by SymPy)"
 
 
 # --------------------------------------------------------------------------------------------
@@ -255,9 +202,9 @@ def rational_identity(residual, *, sphere: Sequence[sp.Symbol] | None = None,
                 f"{'holds' if flint_cx is None else 'fails'}")
         cx = sympy_cx if "sympy" in engines else flint_cx
         if cx is not None:
-            _record("identity", who, label, len(gens), spent)
+            record("identity", who, label, len(gens), spent)
             return Check(False, method, cx, time.perf_counter() - start, engines=who)
-    _record("identity", who, label, len(gens), spent)
+    record("identity", who, label, len(gens), spent)
     return Check(True, method, None, time.perf_counter() - start, engines=who)
 
 
@@ -431,7 +378,7 @@ def zero_at_points(residual: Callable[[dict], object], sample: Callable[[Random]
         rng = points.generator(seed, label, i)
         pt = sample(rng)
         value = _evaluate(residual, pt, engines, label)
-        _record("points", who)
+        record("points", who)
         zero, where, entry = value
         if not zero:
             cx = Counterexample(tuple(pt.items()), entry, where)
@@ -442,7 +389,7 @@ def zero_at_points(residual: Callable[[dict], object], sample: Callable[[Random]
 def _evaluate(residual, pt, engines, label) -> tuple[bool, str, object]:
     """(zero, where, first non-zero entry) of ``residual(pt)``, decided by each engine; with
     both engines the two values must be equal entry by entry."""
-    values, value, reuse, n = {}, None, False, _dimension(pt)
+    values, value, reuse, n = {}, None, False, dimension(pt)
     decided: dict = {}
     for engine in engines:
         t0 = time.perf_counter()
@@ -456,7 +403,7 @@ def _evaluate(residual, pt, engines, label) -> tuple[bool, str, object]:
             decided["sympy"] = exact_zero(value)
         else:
             flint_values = _fmpq_entries(value)
-        _TIMINGS.append(("points", label, n, engine, time.perf_counter() - t0))
+        timing("points", label, n, engine, time.perf_counter() - t0)
     if "flint" in values:
         bad = next(((w, sp.Rational(int(v.p), int(v.q))) for w, _, v in flint_values if v != 0),
                    None)
