@@ -30,7 +30,7 @@ def test_choose_takes_the_least_total_and_describes_all():
 
 def test_decomposition_size_is_quadratic_for_the_full_field():
     for n in (8, 16, 32):
-        assert cost.decomposition_size(f"full n={n}", n) <= 30 * n * n
+        assert heyoka_taylor.decomposition_size(f"full n={n}", n) <= 30 * n * n
 
 
 def test_a_named_method_is_kept():

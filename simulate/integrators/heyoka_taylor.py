@@ -25,6 +25,7 @@ from __future__ import annotations
 import importlib.util
 import math
 import os
+import sys
 import time
 from typing import Any
 
@@ -32,7 +33,7 @@ import numpy as np
 from chaplygin_nd.runtime import jit_cache
 from chaplygin_nd.runtime.expressions import HeyokaArithmetic
 from chaplygin_nd.simulate.integrators import heyoka_systems, settings
-from chaplygin_nd.simulate.integrators.base import Solution
+from chaplygin_nd.simulate.integrators.base import Candidate, Pilot, Solution
 from chaplygin_nd.simulate.integrators.registry import Integrator, register
 from chaplygin_nd.simulate.integrators.settings import Calibration, Tolerance
 
@@ -316,6 +317,66 @@ def _describe(s) -> str:
     return f"heyoka Taylor, tol {s.tol:.3g}" + ("" if s.precision == "double" else f", {s.precision}")
 
 
+# -- what a run would cost (simulate.scene.cost; constants measured by bench/bench_scaling.py) --
+
+#: N_Taylor = N_DOP853 * rtol^(1/8) / STEP_RATIO: Taylor steps of order p barely depend on the
+#: tolerance while DOP853's scale as rtol^(1/8) (measured over n = 3..12, tol 1e-8..1e-14; spread
+#: 0.070-0.101).
+STEP_RATIO = 0.082
+#: Seconds per decomposition operation and order^2 of one Taylor step (compact, unrolled).
+KAPPA = {True: 0.25e-9, False: 0.13e-9}
+#: A step of a batch of the SIMD width costs this many single steps.
+BATCH_STEP = 1.3
+HEYOKA_IMPORT = 1.0
+DISK_LOAD = 0.03
+SIMD = 4
+
+
+def decomposition_size(system_name: str, n: int) -> int:
+    """Elementary operations of heyoka's decomposition of a system (fitted to the measured sizes:
+    full field 216 / 672 / 1416 / 9456 at n = 4 / 8 / 12 / 32; the reconstruction adds the
+    $2n^3$ of $g\\Omega$; the reduced 7D field 135)."""
+    if system_name.startswith("reduced"):
+        return 135
+    size = 9 * n * n + 12 * n + 20
+    if "reconstruction" in system_name:
+        size += 2 * n**3 + 3 * n * n
+    return size
+
+
+def _startup(system_name: str, n: int, compact: bool, state: str) -> float:
+    """Compile (compact 0.6 + 1.3e-4 D s, unrolled 0.3 + 0.025 D s for D operations), or load from
+    disk (:data:`DISK_LOAD`), plus importing heyoka when it is not yet imported."""
+    imported = 0.0 if "heyoka" in sys.modules else HEYOKA_IMPORT
+    D = decomposition_size(system_name, n)
+    if state == "in memory":
+        return 0.0
+    if state == "on disk":
+        return imported + DISK_LOAD
+    return imported + (0.6 + 1.3e-4 * D if compact else 0.3 + 0.025 * D)
+
+
+def predict_cost(p: Pilot, tol: float) -> list[Candidate]:
+    """heyoka compact and unrolled: Taylor steps from the DOP853 pilot's (:data:`STEP_RATIO`), a
+    step $\\kappa D p^2$ (:data:`KAPPA`), batches of the SIMD width, and the start-up of each
+    compile-cache state. ``[]`` when heyoka is not installed."""
+    if importlib.util.find_spec("heyoka") is None:
+        return []
+    count = p.y0.shape[0]
+    width = max(1, min(SIMD, count)) if count > 1 else 1
+    batches = math.ceil(count / width)
+    taylor_steps = max(1.0, p.rate * p.span * max(p.rtol, 2.2e-14) ** 0.125 / STEP_RATIO)
+    order = order_for(tol)
+    D = decomposition_size(p.system.name, p.n)  # type: ignore[attr-defined]
+    out = []
+    for compact in (True, False):
+        state = cache_state(p.system, "double", tol, compact, width)
+        step = KAPPA[compact] * D * order**2 * (BATCH_STEP if width > 1 else 1.0)
+        out.append(Candidate("heyoka", compact, _startup(p.system.name, p.n, compact, state),  # type: ignore[attr-defined]
+                             batches * taylor_steps * step, state))
+    return out
+
+
 #: Measured by ``chaplygin bench calibration`` against heyoka in real128 (rounded up); in real128
 #: the same ratio K, the rounding scaled by 2^-60, the floor that of quadruple precision.
 CALIBRATION = (("heyoka", Calibration(measured=12.0, rounding=1.4e-13, floor=2.0 ** -52)),
@@ -326,4 +387,4 @@ HEYOKA = register(Integrator(
     calibrate=lambda target, span, step=0.01, dps=30, precision="double":
         settings.tolerance("heyoka", target, precision, span),
     error=settings.tolerance_error, describe=_describe, available=usable,
-    auto=0, reference=1, costed=True, calibration=CALIBRATION))
+    auto=0, reference=1, costed=True, cost=predict_cost, calibration=CALIBRATION))

@@ -38,7 +38,8 @@ class Integrator:
     calibrated relative error (no safety factor). ``auto`` / ``reference``: rank among the
     methods ``accuracy.method = "auto"`` / the cross-check reference try, lowest first (``None``:
     never). ``costed``: the cost model (:mod:`simulate.scene.cost`) predicts its run time.
-    ``scene``: a scene may name it in ``accuracy.method``. ``calibration``: ``((key, Calibration),
+    ``scene``: a scene may name it in ``accuracy.method``. ``cost(pilot, tol) -> [Candidate]``:
+    its predicted runs (required when ``costed``; :class:`simulate.integrators.base.Pilot`). ``calibration``: ``((key, Calibration),
     ...)``, one per precision it calibrates (the key is its name, or e.g. ``real128``)."""
 
     name: str
@@ -52,6 +53,7 @@ class Integrator:
     auto: int | None = None
     reference: int | None = None
     costed: bool = False
+    cost: Callable[..., list] | None = None
     scene: bool = True
     calibration: tuple[tuple[str, Any], ...] = ()
 

@@ -139,13 +139,8 @@ def _make(scene: Scene, model: str, reason: str, reconstruct: bool, Omega0: np.n
             cost,  # the method by predicted cost (compile + run)
         )
 
-        dop = settings(scene, "dop853", model)
-        hey = settings(scene, "heyoka", model)
-        assert isinstance(dop, accuracy.Tolerance) and isinstance(hey, accuracy.Tolerance)
-        allowed = ("auto" if scene.method == "auto" and chosen.method == "heyoka" and dop.honoured
-                   else chosen.method)  # only methods that honour the target compete
-        picked = cost.for_scene(scene, model, reconstruct, allowed,
-                                hey.tol, dop.tol)
+        picked = cost.for_scene(scene, model, reconstruct, _competitors(scene, model, chosen),
+                                _tol(settings(scene, "dop853", model)))  # the DOP853 pilot's
         if picked is not None:
             (best, costs) = picked
             compact, predicted = best.compact, best.total
@@ -155,6 +150,25 @@ def _make(scene: Scene, model: str, reason: str, reconstruct: bool, Omega0: np.n
     return Plan(model, reason, reconstruct, method, Omega0, skipped, list(scene.notes),
                 detail=chosen.describe() if chosen else method, accuracy=chosen,
                 compact=compact, costs=costs, predicted_seconds=predicted)
+
+
+def _tol(s: accuracy.Settings | None) -> float:
+    assert isinstance(s, accuracy.Tolerance)
+    return s.tol
+
+
+def _competitors(scene: Scene, model: str, chosen: accuracy.Settings) -> dict[str, float]:
+    """The methods whose predicted cost competes, with their tolerances: with ``auto``, every
+    usable integrator registered ``costed`` whose calibrated settings honour the target, if the
+    first choice is one of them (in the registry's order); otherwise the chosen method alone."""
+    if scene.method != "auto":
+        return {chosen.method: _tol(chosen)}
+    honoured = {e.name: settings(scene, e.name, model) for e in registry.entries()
+                if e.costed and e.available()}
+    honoured = {m: s for m, s in honoured.items() if s is not None and s.honoured}
+    if chosen.method not in honoured:
+        return {chosen.method: _tol(chosen)}
+    return {m: _tol(s) for m, s in honoured.items()}
 
 
 def _omega0(scene: Scene, k: Kernels) -> np.ndarray:
