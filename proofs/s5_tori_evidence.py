@@ -6,7 +6,7 @@ that the measurement could have come out otherwise. Verdict ``evidence`` (never 
 ``open`` with the numbers. Every row rests on initial conditions drawn by the ledger's seed
 (simulate/analysis/draws.py: $a \in \{-0.9, -0.5, 0.5, 2\}$, $b \in \{0.5, 2\}$, energy scales $0.5, 1, 2$),
 integrated in heyoka's batch mode with a MEGNO tangent vector (simulate/analysis/chaos.py), analysed by NAFF
-(simulate/analysis/naff.py) and classified by the rule of proofs/drawn_common.py, fixed beforehand.
+(simulate/analysis/naff.py) and classified by the rules of simulate/analysis/rules.py, fixed beforehand.
 
 * **S5:EJ-tori** (lines 884-885). "The regular compact level sets of the integrals which have no
   equilibrium points are 2-tori where the flow is quasi-periodic after a time reparametrisation."

@@ -1,4 +1,4 @@
-"""The verdict rule of the drawn evidence rows (proofs/drawn_common.py) on synthetic orbits, and
+"""The verdict rule of the drawn evidence rows (simulate/analysis/rules.py, proofs/drawn_common.py) on synthetic orbits, and
 the exact part of S6:open-reduced-n5 (quotient dimension and independent invariant integrals)."""
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """Power of the evidence rows on a planted defect, the cheapest case: the sign of one
 term of the full field flipped (bench/planted.py ``sign``) in a temporary copy of the package,
 never in the tree. The defect must first break the proved integrals (else it is no defect); then
-the rows' rule (proofs/drawn_common.py) on those orbits must not support the statement, and must
+the rows' rule (simulate/analysis/rules.py) on those orbits must not support the statement, and must
 say that the integrals caught it. The full table (every row, both defects, the reduced field) is
 in ``chaplygin bench evidence``."""
 
