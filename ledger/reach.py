@@ -64,6 +64,7 @@ NOT_DERIVATIONS = {
     "exact.identity": "the exact zero-test engines (decide identities, build no formula)",
     "exact.flint_engine": "the second exact engine (FLINT): decides zero tests, builds no formula",
     "exact.sympy_fraction": "the SymPy engine's reading of a residual into Q(x) (part of the engine)",
+    "exact.tally": "which engine decided which zero test, and in what time (derives nothing)",
     "flint_model": "the second engine's own evaluation of the definitions at exact points",
     "exact.flint_matrix": "the second engine's matrix type: printed formulas evaluated in fmpq",
     "exact.counterexample": "renders a counterexample of the engine (text and LaTeX), derives nothing",
