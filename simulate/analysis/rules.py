@@ -33,6 +33,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -64,7 +65,7 @@ class Criterion:
     least (``at_least``) or at most (``at_most``) ``bound`` of all."""
 
     what: str
-    counts: Callable[[object], bool]
+    counts: Callable[[Any], bool]
     bound: float
     at_least: bool
 
@@ -77,7 +78,7 @@ class Rule:
     part: str
     observable: str
     criteria: tuple[Criterion, ...]
-    contradicts: Callable[[object], bool] | None = None
+    contradicts: Callable[[Any], bool] | None = None
     word: str = ""
     control: Callable[[list, list], bool] | None = None
 

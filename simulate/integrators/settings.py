@@ -47,19 +47,21 @@ class _ByMethod(UserDict):
     test may patch one entry of."""
 
     def __init__(self, column: str):  # no UserDict.__init__: ``data`` is filled on first use
-        self._column, self._data = column, None
+        self._column = column
+        self._data: dict | None = None
 
     @property
     def data(self) -> dict:  # type: ignore[override]
         if self._data is None:
             from chaplygin_nd.simulate.integrators import registry
 
-            self._data = {}
+            data: dict = {}
             for entry in registry.entries():
                 for key, calibration in entry.calibration:
                     value = getattr(calibration, self._column)
                     if value is not None:
-                        self._data.setdefault(key, value)
+                        data.setdefault(key, value)
+            self._data = data
         return self._data
 
 

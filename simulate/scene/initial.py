@@ -79,12 +79,14 @@ def condition(ini: Initial, n: int, a: float, b: float, ball, fail):
     init, tol, family, members = ini.raw, ini.tol, ini.family, ini.members
     Omega0 = None
     if not ini.explicit:
-        if ini.seed is None:
+        seed = ini.seed
+        if seed is None:
             fail("initial.seed", f"the {family} family needs a seed", "add seed = <integer>")
+        assert seed is not None  # fail raises
         if members is not None:
-            M0, gamma0 = families.draw(family, n, a, b, ini.seed, ini.drawn, ini.scale)
+            M0, gamma0 = families.draw(family, n, a, b, seed, ini.drawn, ini.scale)
             return M0[members], gamma0[members], Omega0
-        M0, gamma0 = families.draw(family, n, a, b, ini.seed, ini.count, ini.scale)
+        M0, gamma0 = families.draw(family, n, a, b, seed, ini.count, ini.scale)
         return M0, gamma0, Omega0
     if "M" in init and "Omega" in init:
         fail("initial", "both M and Omega are given", "give one of them")
