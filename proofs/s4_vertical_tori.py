@@ -87,6 +87,9 @@ facts (Fubini; $B$ is null; analytic zero sets are null) — statements about Le
 no finite identity decides. No floats appear anywhere.
 
 Uses: Th:Re (the solution and $\zeta \in \mathfrak{so}(n-1)$), eq:action.
+
+(Longer than most scripts, about 440 lines, because it is one claim group: the parts of the one
+row share the rank computations and the seeded points, and a reader follows the proof top down.)
 """
 
 from __future__ import annotations
