@@ -14,8 +14,8 @@ $H_1 = 2H$ (the energy); for $n = 2k$, $D_B = \operatorname{tr}B$ on $\Lambda^n$
 (checked in the tests). The proof that every $H_k$ is a first integral for every $n$ is in
 proofs/s6_wedge_integrals.py (its identities: :mod:`symbolic.family.wedge_proof`).
 
-Everything here is exact at a rational point, in the number type of the caller: SymPy ``Rational``
-(linear solves by ``DomainMatrix`` over QQ) or FLINT ``fmpq`` (``fmpq_mat``), so the two engines
+Everything here is exact at a rational point, in the number type of the caller: SymPy's ``QQ``
+(GMP rationals; linear solves by ``DomainMatrix`` over QQ) or FLINT ``fmpq`` (``fmpq_mat``), so the two engines
 decide independently. Forms on $\Lambda^m$ are dicts $I \mapsto$ coefficient ($I$ a sorted tuple);
 $2 + D_B$ is kept sparse and solved block by block (the connected components of its non-zero
 pattern: one block for a generic $\gamma$, blocks of size $\le 2$ when $\gamma \in \operatorname{span}\{E_{n-1}, E_n\}$).
@@ -38,7 +38,7 @@ import sympy as sp
 from sympy.polys.matrices import DomainMatrix
 
 __all__ = ["subsets", "pfaffian", "wedge_power", "derivation_matrix", "shifted", "solve", "interior",
-           "inner", "rate", "value", "gradient", "rate_of_gradient", "point_fields", "numbers"]
+           "inner", "rate", "value", "gradient", "rate_of_gradient", "field", "point_fields", "numbers"]
 
 #: the constant of the resolvent: $L_\gamma = 2 + D_B$ on $\Lambda^2$ (eq:M-O-axi-symm), and $H_k$ uses the same
 SHIFT = 2
@@ -139,10 +139,9 @@ def _dense_solve(A, y, engine: str):
     if engine == "flint":
         X = flint.fmpq_mat(n, n, [v for row in A for v in row]).solve(flint.fmpq_mat(n, 1, list(y)))
         return [X[i, 0] for i in range(n)]
-    dm = DomainMatrix([[sp.QQ(v.p, v.q) for v in row] for row in A], (n, n), sp.QQ)
-    rhs = DomainMatrix([[sp.QQ(v.p, v.q)] for v in y], (n, 1), sp.QQ)
-    sol = dm.lu_solve(rhs).to_Matrix()
-    return [sol[i, 0] for i in range(n)]
+    dm = DomainMatrix([list(row) for row in A], (n, n), sp.QQ)
+    rhs = DomainMatrix([[v] for v in y], (n, 1), sp.QQ)
+    return [row[0] for row in dm.lu_solve(rhs).to_list()]
 
 
 def solve(A, y: list, engine: str, zero) -> list:
@@ -181,12 +180,14 @@ def inner(X: dict, Y: dict, zero):
 
 
 def numbers(engine: str):
-    """(convert, zero, one) for the engine's rationals: SymPy ``Rational`` or FLINT ``fmpq``."""
+    """(convert, zero, one) for the engine's rationals: the elements of SymPy's domain ``QQ`` (GMP's
+    ``mpq`` under the project's ground types, never FLINT's: chaplygin_nd sets ``SYMPY_GROUND_TYPES``)
+    or FLINT ``fmpq``."""
     if engine == "flint":
         return (lambda v: flint.fmpq(int(sp.Rational(v).p), int(sp.Rational(v).q))), flint.fmpq(0), flint.fmpq(1)
     if engine != "sympy":
         raise ValueError(f"unknown engine {engine!r} (sympy or flint)")
-    return (lambda v: sp.Rational(v)), sp.Integer(0), sp.Integer(1)
+    return (lambda v: sp.QQ.convert(sp.Rational(v))), sp.QQ.zero, sp.QQ.one
 
 
 def _B(gamma, a, b, n):
@@ -303,11 +304,16 @@ def gradient(M, gamma, a, b, k: int, engine: str = "sympy", shift=SHIFT) -> list
     return out
 
 
-def rate_of_gradient(grad: list, M, gamma, a, b, engine: str = "sympy"):
-    r"""$dF(X) = \sum_{i<j}\partial_{M_{ij}}F\,\dot M_{ij} + \sum_m\partial_{\gamma_m}F\,\dot\gamma_m$ at the point: the
-    rate along eq:motion-general of the function whose differential ``grad`` is (coordinates of
-    :func:`gradient`); ``grad`` in the engine's numbers or SymPy rationals."""
-    num, zero, _ = numbers(engine)
+def field(M, gamma, a, b, engine: str = "sympy") -> list:
+    r"""$X = ((\dot M_{ij})_{i<j}, \dot\gamma)$ of eq:motion-general at the point, in the coordinates of
+    :func:`gradient` and the engine's numbers ($\Omega$ by the exact solve of :func:`point_fields`)."""
     _, _, Md, gd, _, _, _ = point_fields(M, gamma, a, b, engine)
-    field = [Md[i][j] for i, j in subsets(M.rows, 2)] + list(gd)
-    return sum((num(d) * f for d, f in zip(grad, field, strict=True)), zero)
+    return [Md[i][j] for i, j in subsets(M.rows, 2)] + list(gd)
+
+
+def rate_of_gradient(grad: list, X: list, engine: str = "sympy"):
+    r"""$dF(X) = \sum_{i<j}\partial_{M_{ij}}F\,\dot M_{ij} + \sum_m\partial_{\gamma_m}F\,\dot\gamma_m$: the rate along
+    the field ``X`` (:func:`field`) of the function whose differential ``grad`` is (coordinates of
+    :func:`gradient`); ``grad`` and ``X`` in the engine's numbers."""
+    _, zero, _ = numbers(engine)
+    return sum((d * f for d, f in zip(grad, X, strict=True)), zero)
