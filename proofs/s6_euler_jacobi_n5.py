@@ -22,9 +22,10 @@ by $R_1 = R_2 = 0$, S6:reduced-n5) the reduced field has
 hence, by the theorem, every compact connected regular level set of the six integrals that carries
 no equilibrium is a 2-torus with quasi-periodic motion after a change of time.
 **Equilibria**: at every equilibrium of the reduced field $G = S_{uq} = 0$ (for $b > -2$; exact, from
-$\dot x = G/(2+a+b)$ and the $\dot S_{qq}$, $\dot E_+$ components at $G = 0$). *Not proved*: that the six
-integrals are dependent at every equilibrium (which would make the proviso "no equilibrium" automatic
-on regular level sets).
+$\dot x = G/(2+a+b)$ and the $\dot S_{qq}$, $\dot E_+$ components at $G = 0$); on the family of relative
+equilibria with $\Omega E_5 = 0$ (four parameters in the quotient) the six integrals are dependent (exact rank
+at seeded points). *Not proved*: that they are dependent at every equilibrium (which would make the
+proviso "no equilibrium" automatic on regular level sets).
 
 **Computed here** (SymPy and FLINT, exact): $D\,X(R_1) = C_{11}R_1$, $D\,X(R_2) = C_{21}R_1 + C_{22}R_2$;
 $\alpha = -3/2$ from the ansatz and the identity $\operatorname{div}(\Delta^\alpha X) = \Delta^\alpha(C_{11}+C_{22})/D$ on $\mathbb{R}^{10}$
@@ -145,6 +146,35 @@ def equilibria_part() -> Part:
     return _part("at every equilibrium G = S_uq = 0 (b > -2)", checks)
 
 
+def relative_equilibria_part(a, b) -> Part:
+    r"""At seeded points of the relative equilibria with $\Omega E_5 = 0$ ($\Omega \in \mathfrak{so}(4)$, any $\gamma$,
+    $M = L_\gamma\Omega$: then $\dot M = [M, \Omega]$ and $\dot\gamma = -\Omega\gamma$ are the velocity of the $SO(4)$ orbit,
+    a 4-parameter family of equilibria of the reduced field): the reduced field vanishes and the
+    six integrals have rank < 6 + 2 there, i.e. these equilibria lie in the critical set."""
+    from chaplygin_nd.symbolic import algebra, model
+    from chaplygin_nd.symbolic.exact import flint_engine
+
+    ranks, zero = [], True
+    field = ej.r5.field()
+    for t in range(3):
+        rng = points.generator(ledger_seed(), "S6:euler-jacobi-n5 relative equilibria", t)
+        g = points.sphere_point(rng, 5)
+        Om = sp.zeros(5, 5)
+        Om[:4, :4] = points.skew_matrix(rng, 4)
+        L = model.L_matrix(g, sp.diag(1, 1, 1, 1, 1 + a), b)
+        M = algebra.unvec(list(L * sp.Matrix(algebra.vec(Om))), 5)
+        pt = ej.quotient_point(M, g)
+        at = {ej.r5.SYMBOLS[n]: v for n, v in pt.items()} | {ej.r5.a: a, ej.r5.b: b}
+        zero = zero and all(sp.cancel(field[n].xreplace(at)) == 0 for n in ej.r5.COORDS)
+        J = ej.jacobian_at(pt, a, b)
+        with flint_engine.use_engine("flint"):
+            ranks.append((J.rank(), flint_engine.rank(J)))
+    return _part("the relative equilibria with Omega E = 0 lie in the critical set", [
+        ("reduced field zero, rank < 8", Check(zero and max(max(r) for r in ranks) < 8,
+                                             f"at 3 seeded points: reduced field zero {zero}, ranks (SymPy, FLINT) {ranks} "
+                                             f"of (df_1..df_6, dR_1, dR_2), a = {a}, b = {b}"))])
+
+
 ARGUED = ("the Euler-Jacobi theorem (as the paper cites it at line 884: Arnold-Kozlov-Neishtadt, "
           "Mathematical Aspects of Classical and Celestial Mechanics; Borisov-Mamaev 2008), applied through two textbook facts: "
           "the Leray residue rho dr/(dR_1 ^ dR_2) is invariant on {R = 0} iff div(rho X) = rho tr(C)/D there "
@@ -164,11 +194,12 @@ def s6_euler_jacobi_n5() -> Verdict:
     a, b = points.rational(rng, -1, 1, nonzero=True), points.rational(rng, 1, 3)
     measure, alpha = measure_part()
     parts = [quotient_part(), measure, integrals_part(a, b), positivity_part(), equilibria_part(),
+             relative_equilibria_part(a, b),
              Verdict.by_argument(ARGUED).as_part("the theorem (cited) and how it applies")]
     notes = (f"invariant density on the quotient: Delta^({alpha}) / |d(R_1, R_2)/d(y, y')| in the chart "
              "r minus {y, y'}; L_gamma > 0 on S^4 iff " + RANGE + "; at every equilibrium G = S_uq = 0; "
-             "open: that the six integrals are dependent at every equilibrium (regular level sets "
-             "without equilibria)")
+             "the relative equilibria with Omega E = 0 (a 4-parameter family) lie in the critical set; "
+             "open: that every equilibrium does (so that regular level sets carry none)")
     return Verdict.of_parts(parts, n_values=(5,), notes=notes, method=(
         "exact identities on the quotient R^10 (SymPy and FLINT): invariant ideal of the relations, the "
         "measure exponent derived from an ansatz, the integrals, the characteristic polynomial of L_gamma; "
