@@ -7,7 +7,8 @@ the manual (``docs/pages/``, each page written once; the README links to them).
 Writes ``index.md`` (totals, errata and remarks typeset, the claim graph with every node a link,
 the rows grouped by the paper's sections and then *Beyond the paper* (:mod:`sitegen.sections`),
 and the sidebar's toctrees), one page ``claims/<page_name(id)>.md`` per ledger row
-(:mod:`sitegen.claims`), the manual (``docs/pages/``, copied, with the evidence
+(:mod:`sitegen.claims`), the manual (``docs/pages/``, copied; the theorem page filled from the
+report and written again as ``pages/theorem.tex``, :mod:`sitegen.theorem`; with the evidence
 rules' validation study ``pages/evidence-study.md`` that ``chaplygin bench evidence`` writes) and the two tutorials executed now (:mod:`sitegen.tutorials`). Exit 2 with one line when the report is
 missing or does not match this checkout's ledger (run ``chaplygin verify`` first).
 
@@ -32,7 +33,7 @@ ROOT = DOCS.parent
 sys.path.insert(0, str(DOCS))
 
 from chaplygin_nd.ledger import graph  # noqa: E402
-from sitegen import claims, sections, tutorials  # noqa: E402
+from sitegen import claims, sections, theorem, tutorials  # noqa: E402
 
 
 @dataclass
@@ -113,6 +114,7 @@ MANUAL = (("pages/verdicts", "Verdicts, kinds and reports"),
           ("pages/evidence", "Evidence: Section 5's dynamics, measured"),
           ("pages/evidence-study", "Evidence: the chaos rule's validation study"),
           ("pages/open-problem", "Beyond the paper: the open problem for n ≥ 5"),
+          ("pages/theorem", "Beyond the paper: the theorem"),
           ("pages/scenes", "Scenes and the planner"),
           ("pages/accuracy", "Accuracy, cross-check and output folders"),
           ("pages/caches", "Caches"),
@@ -267,6 +269,11 @@ def main(argv: list[str] | None = None) -> int:
         (out / "claims" / f"{graph.page_name(row['id'])}.md").write_text(
             claims.page(row, ctx), encoding="utf-8")
     shutil.copytree(DOCS / "pages", out / "pages")
+    page = (DOCS / "pages" / "theorem.md").read_text(encoding="utf-8")   # and its LaTeX twin
+    (out / "pages" / "theorem.md").write_text(theorem.markdown(page, report["rows"], report["seed"]),
+                                              encoding="utf-8")
+    (out / "pages" / "theorem.tex").write_text(theorem.latex(page, report["rows"], report["seed"]),
+                                               encoding="utf-8")
     shutil.copytree(DOCS / "figures", out / "figures")
     tutorials.execute_all(DOCS / "tutorials", out / "tutorials")
     print(f"wrote {len(report['rows'])} claim pages, the index, the manual and the tutorials "

@@ -1,5 +1,5 @@
-r"""Beyond the paper: an exact search for first integrals, and a sixth integral for $n = 5$ (rows
-S6:first-integrals and S6:euler-jacobi-n5).
+r"""Beyond the paper: an exact search for first integrals, and a sixth integral for $n = 5$ (row
+S6:first-integrals).
 
 **The search** (symbolic/search/integral_search.py, one mechanism for every $n$ and every diagonal mass
 tensor): the integrals $P/D^k$ of eq:motion-general with $P$ of $M$-degree $d$ and $\gamma$-degree
@@ -40,12 +40,7 @@ six known ones (Jacobian rank 7 of 7 modulo a prime, which proves full rank over
 ``make verify-deep``). For $n = 5$ the same quadratic form in $(v_n, \langle v,\gamma\rangle)$ is
 $a(2+a)^{-1}$ times $F$'s numerator plus $b(2+a)^{-1}\langle v,\gamma\rangle^2\Delta$.
 
-**Euler–Jacobi for n = 5** (row S6:euler-jacobi-n5): $\dim P/SO(4) = 8$ (S6:open-reduced-n5), an
-invariant measure (P:Measure: the density $\Delta^{-3/2}$ is $SO(4)$-invariant), and $6 = 8 - 2$
-independent invariant integrals: the hypotheses of the Euler–Jacobi theorem on the regular part of
-the reduced space. Machine-checked: the integrals, their invariance and independence. Argued:
-that the measure and the integrals descend to the regular (free) stratum of $P/SO(4)$, compactness of
-the level sets ($H$ is positive definite in $M$ and $S^4$ is compact), and the theorem itself.
+**Euler–Jacobi for n = 5**: row S6:euler-jacobi-n5 (proofs/s6_euler_jacobi_n5.py).
 """
 
 from __future__ import annotations
@@ -234,31 +229,3 @@ def s6_first_integrals() -> Verdict:
                 "proved": [p.name for p in parts if p.name.startswith("X(G)")]}],
             "seconds": round(time.perf_counter() - t0, 2)}
     return replace(v, data=data)
-
-
-@claim("S6:euler-jacobi-n5", uses=("S6:first-integrals", "S6:sixth-integral-n5", "S6:reduced-n5",
-                                   "S6:open-reduced-n5", "P:Measure", "S5:EJ-tori"),
-       adds=(SECTION, "for n = 5 the reduced system on P/SO(4) (dimension 8) has an invariant "
-                      "measure and 6 = 8 - 2 independent first integrals: the hypotheses of the "
-                      "Euler-Jacobi theorem"))
-def s6_euler_jacobi_n5() -> Verdict:
-    from chaplygin_nd.proofs.s6_open_reduced_n5 import reduced_dimension_check
-
-    exact = reduced_dimension_check()
-    quotient = 14 - exact["orbit_rank"][0]
-    r = known_integrals.jacobian_rank(model_for(5), ledger_seed(), include_new=True)
-    ok = exact["orbit_rank"] == (6, 6) and exact["invariant"] and r["rank"] == quotient - 2
-    checked = Part("dim P/SO(4) = 8; six invariant integrals of rank 6",
-                   "holds" if ok else "fails",
-                   f"exact ranks at seeded rational points (SymPy + FLINT): orbits "
-                   f"{exact['orbit_rank'][0]}, quotient {quotient}, integrals rank {r['rank']}")
-    argued = Verdict.by_argument(
-        "the density Delta^{-3/2} of P:Measure and the six integrals are SO(4)-invariant, so they "
-        "descend to the regular (free-orbit) part of P/SO(4); H is positive definite in M and S^4 "
-        "is compact, so the level sets are compact; Euler-Jacobi (an invariant measure and "
-        "dim - 2 independent integrals) then gives, on regular compact level sets without "
-        "equilibria, motion on 2-tori that is quasi-periodic after a change of time, consistent "
-        "with the 2 reduced frequencies measured on 84 of 85 resolved orbits (S6:open-reduced-n5)"
-    ).as_part("Euler-Jacobi on the regular part of P/SO(4)")
-    return Verdict.of_parts([checked, argued], n_values=(5,),
-                            method="exact ranks + argued theorem")

@@ -25,14 +25,9 @@ $F$ (both engines).
 $F_s = \langle w, (2+a)E_5 + bx\gamma\rangle^2/\Delta$, satisfies $aF_s - (2+a)F = -b\langle w,\gamma\rangle^2$
 (a known integral): the two routes found one and the same new integral.
 
-**What follows (row S6:euler-jacobi-n5, argued there, not here).** With (1)-(3), S6:reduced-n5 ($\dim P/SO(4) = 8$) and the invariant measure
-of P:Measure (which is $SO(4)$-invariant and so descends to the quotient), the Euler–Jacobi theorem (as
-the paper uses it for $n = 4$: an $m$-dimensional system with an invariant measure and $m - 2$
-independent integrals) gives: the reduced system on $P/SO(4)$ is integrable; its regular compact
-connected level sets without equilibria are 2-tori carrying quasi-periodic motion after a time
-reparametrisation. This matches the 2 reduced frequencies measured in S6:open-reduced-n5. Not
-proved here: the descent of the measure as an exact computation (done for $n = 4$ in S5:red-measure),
-and the reconstruction to $P$.
+**What follows** (row S6:euler-jacobi-n5): with the five known integrals, $F$ gives the $8 - 2 = 6$
+integrals that Euler–Jacobi needs on the 8-dimensional $P/SO(4)$; that row computes the invariant
+measure on the quotient, compactness and the independence there, and cites the theorem.
 
 **How it was found.** simulate/analysis/integral_guide.py: on 10 drawn orbits at $(a, b) = (1/2, 2)$,
 the $M$-degree-4 basis over $\Delta$ (numerator degree $\le 2$ in $x$) had a 5-dimensional orbit-constant

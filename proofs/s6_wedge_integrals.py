@@ -1,116 +1,205 @@
-r"""Beyond the paper: a family of first integrals for every $n$, and the count of the tori (row S6:wedge-integrals).
+r"""Beyond the paper: a family of first integrals for every $n$, and their independence (row S6:wedge-integrals).
 
-**Claim.** For the axisymmetric sphere with $B = aE_nE_n^T + b\gamma\gamma^T$ (so $L_\gamma = 2 + D_B$ on
-$\Lambda^2 = \mathfrak{so}(n)$) and $D_B$ the derivation extension of $B$ to $\Lambda^{2k}$,
+**Claim.** For the axisymmetric sphere in dimension $n \ge 4$ with $B = aE_nE_n^T + b\gamma\gamma^T$ (so
+$L_\gamma = 2 + D_B$ on $\Lambda^2 = \mathfrak{so}(n)$, eq:M-O-axi-symm) and $D_B$ the derivation extension of $B$ to
+$\Lambda^{2k}$, every
 
 .. math::
     H_k = \langle M^{\wedge k}, (2 + D_B)^{-1} M^{\wedge k}\rangle, \qquad 1 \le k \le \lfloor n/2\rfloor,
 
-are first integrals of eq:motion-general ($H_1 = 2H$; $H_{n/2} = \operatorname{Pf}(M)^2/(2+a+b)$ for even $n$).
-With the $n$ known integrals (the non-constant coefficients of $p(\lambda, \sigma)$ and $H$), the new
-ones $H_2, \dots, H_{\lceil n/2\rceil - 1}$ (that is $\lceil n/2\rceil - 2$ of them) give
-$2n - 2 - \lfloor n/2\rfloor$ independent $SO(n-1)$-invariant integrals: exactly the number a flow on
-$\lfloor n/2\rfloor$-tori in the $(2n-2)$-dimensional $P/SO(n-1)$ needs.
+is a first integral of eq:motion-general, for every $a, b$ with $L_\gamma$ invertible ($H_1 = 2H$;
+$H_{n/2} = \operatorname{Pf}(M)^2/(2+a+b)$ for even $n$). With the $n$ known integrals (the $n - 1$
+non-constant coefficients of $p(\lambda, \sigma)$ and $H$), $H_2, \dots, H_{\lceil n/2\rceil - 1}$ give
+$2n - 2 - \lfloor n/2\rfloor$ functionally independent $SO(n-1)$-invariant integrals (checked for
+$n = 5, \dots, 12$).
 
-**Checked here.** (1) $\dot H_k = 0$ exactly at a seeded rational point of $P$ with random rational
-$a \in [-1, 1]\setminus\{0\}$, $b \in [1, 3]$, for every $k$ and $n = 4, \dots, 9$ ($\Omega$ by an exact solve of the
-definition eq:M-O-axi-symm, :mod:`symbolic.family.wedge_integrals`; SymPy ``DomainMatrix`` and FLINT
-``fmpq_mat``, which must agree): Schwartz–Zippel evidence of the identity for those $n$, the method the
-ledger uses for all-$n$ rows up to $n = 12$ (here to 9 for cost). (2) At a seeded rational point, the
-differentials on $TP$ of the $n$ known integrals and $H_2..H_{\lceil n/2\rceil-1}$ have rank
-$2n - 2 - \lfloor n/2\rfloor$ and vanish on the generators of $SO(n-1)$, $n = 5, \dots, 8$ (SymPy and
-FLINT ranks, exact zeros). For $n = 6$, $\dot H_2 = 0$ is also checked as an identity in symbolic $a, b$
-beside the ledger (:mod:`symbolic.family.wedge_n6`, ``tests/test_wedge_n6.py``: FLINT reduction of the
-164 220-term residual modulo $\lVert\gamma\rVert^2 = 1$, 40 s; SymPy's reduction agreed in a 600 s run).
-For $n = 5$ the symbolic proof is row S6:sixth-integral-n5 ($H_2$ and its $F$
-is $(\lVert w\rVert^2 + F)/(2+a+b)$; tests/test_reduced5.py).
+**Proof of conservation (every $n$, every $k$).** Write $W = M^{\wedge k}$, $Y = (2 + D_B)^{-1}W$, $D_E = D_{EE^T}$.
+*(i) Collapse.* $D$ is a Lie-algebra map ($D_{[X, S]} = [D_X, D_S]$), $D_\Omega$ is skew and $D_S$ symmetric for
+skew $\Omega$ and symmetric $S$. Along $\dot M = [M, \Omega]$, $\dot\gamma = -\Omega\gamma$, for *any* skew $\Omega$:
+$\dot M = -D_\Omega M$, so $\dot W = -D_\Omega W$ ($D_\Omega$ is a derivation of $\wedge$), and
+$\dot B = -[\Omega, B] + a[\Omega, EE^T]$ ($E$ is fixed, $\gamma\gamma^T$ rotates). Then
+$\dot H_k = 2\langle\dot W, Y\rangle - \langle Y, D_{\dot B}Y\rangle
+= 2\langle D_BY, D_\Omega Y\rangle - 2\langle D_\Omega Y, D_BY\rangle + 2a\langle D_\Omega Y, D_EY\rangle
+= 2a\langle D_\Omega Y, D_EY\rangle$ (the term $4\langle Y, D_\Omega Y\rangle$ vanishes), and with
+$D_{xy^T + yx^T} = x\wedge\iota_y + y\wedge\iota_x$ this is $-2a\langle\iota_EY, \iota_{\Omega E}Y\rangle$.
+*(ii) Vanishing for $\Omega = L_\gamma^{-1}M$.* Take a 2-plane $V \ni E, \gamma$, $e = E$, $f \perp e$ in $V$, $U = V^\perp$:
+$B$ maps $V$ into $V$ and kills $U$, so on $\Lambda = \Lambda V\otimes\Lambda U$ the operator $2 + D_B$ is $2$ on
+$\Lambda U$, $(2 + B|_V)\otimes 1$ on $V\wedge\Lambda U$ and $c = 2 + \operatorname{tr}B|_V = 2 + a + b$ on $e\wedge f\wedge\Lambda U$.
+Split $M = m_0 + e\wedge p + f\wedge q + \mu\,e\wedge f$; the exponential of the commuting even forms
+factorises, giving $M^{\wedge k}/k!$ and hence $Y$ in closed form
+(:mod:`symbolic.family.wedge_proof`), and $\Omega$ as its case $k = 1$: $u = \Omega e = -\omega_e - \frac{\mu}{c}f$ with
+$\omega_e \in \operatorname{span}\{p, q\}$. Expanding $\langle\iota_eY, \iota_uY\rangle$ leaves three terms; each vanishes because
+$\iota_x$ is the adjoint of $x\wedge$ and $x\wedge x = 0$: $T_1 \propto \langle\omega_e\wedge\omega_e\wedge A, m^{(k)}\rangle$,
+$T_2 \propto \langle\omega_e\wedge A, \omega_f\wedge A\rangle - \langle\omega_e\wedge A, \omega_f\wedge A\rangle$,
+$T_3 \propto \langle\omega_e\wedge p\wedge q\wedge A', \omega_f\wedge A\rangle$. Hence $\dot H_k = 0$. $\square$
+Nothing here depends on $n$ beyond $\dim V = 2$: every operator acts on $V$ (two dimensions) and by
+the same formulas on $\Lambda U$, whatever $\dim U$; the case $\gamma = \pm E$ is covered (any $V \ni E$ will do).
 
-**Not proved.** The identity for every $n$ (no reduction argument yet); and what the count gives for
-$n \ge 6$: Euler–Jacobi needs $m - 2$ integrals and yields 2-tori, but here the expected tori have
-dimension $\lfloor n/2\rfloor \ge 3$; quasi-periodicity on $k$-tori needs, besides $m - k$ integrals,
-$k$ independent commuting vector fields preserving them (Bogoyavlenskij's broad integrability) or a
-Hamiltonisation (the paper's first open problem). Those are not established here.
+**Checked here** (exact, SymPy's ``QQ`` and FLINT ``fmpq``, which must both give zero):
+(1) the collapse identity $\dot H_k = -2a\langle\iota_EY, \iota_{\Omega E}Y\rangle$ for a *random* skew $\Omega$, every
+$k$, $n = 4..12$ (with the control that $\dot H_k \ne 0$ there for some $k$: the identity is not $0 = 0$);
+(2) every equality of step (ii) — the splitting, $Y$ against its closed form, $u = \Omega e$, the
+expansion into $T_1 + T_2 + T_3$, and each $T_i$ before and after moving $\iota$ across — with $B$ a
+*random symmetric* matrix supported on $V$ (which contains every $aEE^T + b\gamma\gamma^T$, $\gamma \in V$, so every
+$a, b$), every $k$, $n = 4..12$; (3) independently of the proof, $\dot H_k = 0$ at seeded generic points
+($\gamma$ in general position, $\Omega$ an exact solve of eq:M-O), $n = 4..9$; (4) at a seeded point
+with $\gamma \in \operatorname{span}\{E_{n-1}, E_n\}$ (every point of $P$ is such a point after a rotation in $SO(n-1)$,
+eq:action; full rank at one point proves independence), the $2n - 2 - \lfloor n/2\rfloor$ differentials
+restricted to $TP$ have exactly that rank over $\mathbb{Q}$, each vanishes on the field at that point
+(the rank is that of the conserved functions themselves) and on the generators of $SO(n-1)$,
+$n = 5..12$. ``make verify-deep`` (``CHAPLYGIN_ND_DEEP=1``) adds $n = 13, 14$ to (1), (2), (4).
+$n = 5$: symbolic proof in S6:sixth-integral-n5; $n = 6$, $k = 2$: a symbolic identity in
+tests/test_wedge_n6.py (slow).
 
-**Uses** eq:motion-general, eq:M-O-axi-symm, eq:pol-first-integrals, eq:action.
+**Argued** (one part): that the identities used in (i)-(ii) hold in every dimension — each is a
+statement about the exterior algebra ($D$ a Lie-algebra map into derivations, $\iota_x$ adjoint to
+$x\wedge$, $x\wedge x = 0$, the block form of $2 + D_B$ for $B$ supported on $V$) proved above for every
+$\dim U$; the checks (1)-(2) confirm them exactly in each $n \le 12$.
+
+**Not proved.** Independence for every $n$ (checked to $n = 12$; no argument for all $n$ yet); and
+what the count gives for $n \ge 6$: Euler–Jacobi yields 2-tori from $m - 2$ integrals, but here the
+expected tori have dimension $\lfloor n/2\rfloor \ge 3$ (Bogoyavlenskij's broad integrability would need
+$\lfloor n/2\rfloor$ commuting symmetry fields as well).
+
+**Uses** eq:motion-general, eq:M-O-axi-symm, eq:pol-first-integrals, eq:action, S6:sixth-integral-n5.
 """
 
 from __future__ import annotations
 
+import os
+
 import sympy as sp
-from chaplygin_nd.ledger.registry import Verdict, claim
-from chaplygin_nd.proofs.s6_open_reduced_n5 import _generators, _integral_gradients
-from chaplygin_nd.symbolic.exact import flint_engine, points
-from chaplygin_nd.symbolic.exact.identity import Check
+from chaplygin_nd.ledger.registry import Part, Verdict, claim
+from chaplygin_nd.symbolic.exact import points
 from chaplygin_nd.symbolic.exact.points import ledger_seed
+from chaplygin_nd.symbolic.family import independence as ind
 from chaplygin_nd.symbolic.family import wedge_integrals as wi
+from chaplygin_nd.symbolic.family import wedge_proof as wp
 
 SECTION = "Conclusions — open problems (beyond the paper)"
-RATE_N = (4, 5, 6, 7, 8, 9)
-RANK_N = (5, 6, 7, 8)
+ENGINES = ("sympy", "flint")
+PROOF_N = tuple(range(4, 13))
+GENERIC_RATE_N = tuple(range(4, 10))
+RANK_N = tuple(range(5, 13))
+DEEP_N = (13, 14)
+#: up to this n the collapse check uses a generic gamma; above, gamma in span{E_{n-1}, E_n} (cost)
+GENERIC_MAX = 8
 
 
-def _point(n: int, what: str):
-    rng = points.generator(ledger_seed(), "S6:wedge-integrals", what, n)
-    M = points.skew_matrix(rng, n)
-    gamma = points.sphere_point(rng, n)
+def _parameters(rng):
     a = sp.Integer(0)
     while a == 0:   # a = 0 is the spherical tensor (Omega constant): a special stratum, not generic
         a = points.rational(rng, -1, 1)
-    return M, gamma, a, points.rational(rng, 1, 3)
+    return a, points.rational(rng, 1, 3)
 
 
-def conservation(n: int) -> Check:
-    r"""Part (1) in dimension ``n``: $\dot H_k = 0$ at a seeded rational point, both engines, every $k$."""
-    M, g, a, b = _point(n, "rate")
-    bad = []
-    for k in range(1, n // 2 + 1):
-        rs, rf = wi.rate(M, g, a, b, k, "sympy"), wi.rate(M, g, a, b, k, "flint")
-        if sp.Rational(int(rf.p), int(rf.q)) != rs:
-            raise flint_engine.EngineDisagreement(f"dH_{k}/dt at n = {n}: SymPy {rs}, FLINT {rf}")
-        if rs != 0:
-            bad.append((k, rs))
-    return Check(not bad, f"n = {n}: dH_k/dt = 0 exactly for k = 1..{n // 2} at a = {a}, b = {b} "
-                          "(SymPy DomainMatrix and FLINT fmpq_mat)" + (f"; non-zero: {bad}" if bad else ""))
+def point(n: int, what: str, adapted: bool):
+    """A seeded exact point ``(M, gamma, a, b)``: ``gamma`` generic on the sphere, or (``adapted``)
+    a rational point of the circle in span{E_{n-1}, E_n}."""
+    rng = points.generator(ledger_seed(), "S6:wedge-integrals", what, n)
+    M = points.skew_matrix(rng, n)
+    gamma = (sp.Matrix([0] * (n - 2) + list(points.sphere_point(rng, 2))) if adapted
+             else points.sphere_point(rng, n))
+    return (M, gamma, *_parameters(rng))
 
 
-def independence(n: int) -> tuple[Check, int]:
-    """Part (2) in dimension ``n``: the rank on $TP$ of the known and the new integrals, invariance."""
-    M, g, a, b = _point(n, "rank")
-    _, G = _integral_gradients(M, g, a, b)
-    rows = [wi.gradient(M, g, a, b, k, "sympy") for k in range(2, (n + 1) // 2)]
-    J = G.col_join(sp.Matrix(rows)) if rows else G
-    N = n * (n - 1) // 2
-    JT = J * sp.diag(sp.eye(N), sp.eye(n) - g * g.T)
-    r_sympy = JT.rank()
-    with flint_engine.use_engine("flint"):
-        r_flint = flint_engine.rank(JT)
-    invariant = all(v == 0 for v in J * _generators(M, g).T)
-    need = 2 * n - 2 - n // 2
-    return (Check(r_sympy == r_flint == need and invariant,
-                  f"n = {n}: rank {r_sympy} (SymPy), {r_flint} (FLINT) of {J.rows} integrals "
-                  f"({n} known + {len(rows)} new), needed 2n - 2 - floor(n/2) = {need}; "
-                  f"SO({n - 1})-invariant: {invariant}"), r_sympy)
+def _zero_in_both(values: dict) -> tuple[bool, list]:
+    """``values``: engine -> list of (label, value); both engines must give zero everywhere."""
+    bad = [(eng, lab, str(v)) for eng, vals in values.items() for lab, v in vals if v != 0]
+    return not bad, bad
+
+
+def collapse(n: int) -> Part:
+    r"""Check (1): $\dot H_k + 2a\langle\iota_EY, \iota_{\Omega E}Y\rangle = 0$ for a random skew $\Omega$, every $k$,
+    both engines; control: $\dot H_k \ne 0$ for that $\Omega$ and some $k$."""
+    M, g, a, b = point(n, "collapse", adapted=n > GENERIC_MAX)
+    Om = points.skew_matrix(points.generator(ledger_seed(), "S6:wedge-integrals", "Omega", n), n)
+    ks = range(1, n // 2 + 1)
+    vals = {eng: [(f"k = {k}", wp.collapse_residual(M, g, a, b, k, Om, eng)) for k in ks] for eng in ENGINES}
+    ok, bad = _zero_in_both(vals)
+    moving = [k for k in ks if wi.rate(M, g, a, b, k, "flint", Om) != 0]
+    ok = ok and bool(moving)
+    return Part(f"collapse, n = {n}", "holds" if ok else "fails",
+                f"dH_k/dt = -2a <i_E Y, i_(Omega E) Y> exactly for a random skew Omega, k = 1..{n // 2}, "
+                f"a = {a}, b = {b}, gamma {'in span{E_n-1, E_n}' if n > GENERIC_MAX else 'generic'} "
+                f"(SymPy QQ and FLINT); control: dH_k/dt != 0 for k in {moving}",
+                counterexample=None if ok else f"non-zero: {bad}; control k: {moving}")
+
+
+def vanishing(n: int) -> Part:
+    """Check (2): every equality of the vanishing step, random symmetric B on V, every k, both engines."""
+    rng = points.generator(ledger_seed(), "S6:wedge-integrals", "vanishing", n)
+    M = points.skew_matrix(rng, n)
+    x, y, z = points.rationals(rng, 3, -1, 2)
+    BV = [[x, y], [y, z]]
+    vals = {eng: [(f"k = {k}: {lab}", v) for k in range(1, n // 2 + 1)
+                  for lab, v in wp.vanishing_terms(M, BV, k, eng).items()] for eng in ENGINES}
+    ok, bad = _zero_in_both(vals)
+    return Part(f"vanishing, n = {n}", "holds" if ok else "fails",
+                f"splitting, closed form of Y, u = Omega e, <i_e Y, i_u Y> = T1 + T2 + T3 and each T_i = 0 "
+                f"(before and after moving the interior product), k = 1..{n // 2}, B = [[{x}, {y}], [{y}, {z}]] "
+                f"on V (SymPy QQ and FLINT)", counterexample=None if ok else str(bad))
+
+
+def conservation(n: int) -> Part:
+    r"""Check (3): $\dot H_k = 0$ at a seeded generic point, $\Omega$ solved from eq:M-O, every $k$, both engines."""
+    M, g, a, b = point(n, "rate", adapted=False)
+    vals = {eng: [(f"k = {k}", wi.rate(M, g, a, b, k, eng)) for k in range(1, n // 2 + 1)] for eng in ENGINES}
+    ok, bad = _zero_in_both(vals)
+    return Part(f"conserved at a generic point, n = {n}", "holds" if ok else "fails",
+                f"dH_k/dt = 0 exactly for k = 1..{n // 2} at a = {a}, b = {b} (SymPy QQ and FLINT)",
+                counterexample=None if ok else str(bad))
+
+
+def independence(n: int) -> tuple[Part, dict]:
+    """Check (4): the rank on TP of the n known integrals and H_2..H_{ceil(n/2)-1}, each conserved
+    at the point and SO(n-1)-invariant, both engines."""
+    M, g, a, b = point(n, "rank", adapted=True)
+    recs = {eng: ind.rank_record(M, g, a, b, eng) for eng in ENGINES}
+    r = recs["sympy"]
+    ok = all(x["rank"] == x["expected"] == x["functions"] and not x["not_conserved"]
+             and not x["not_invariant"] for x in recs.values())
+    text = (f"rank {r['rank']} (SymPy QQ), {recs['flint']['rank']} (FLINT) of {r['functions']} functions "
+            f"({n} known + {r['functions'] - n} new), expected 2n - 2 - floor(n/2) = {r['expected']}; "
+            f"each differential vanishes on the field and on so({n - 1}) at the point (a = {a}, b = {b})")
+    bad = {eng: (x["not_conserved"], x["not_invariant"]) for eng, x in recs.items()}
+    return (Part(f"independent, n = {n}", "holds" if ok else "fails", text,
+                 counterexample=None if ok else f"not conserved / not invariant: {bad}; ranks "
+                 f"{ {e: x['rank'] for e, x in recs.items()} }"),
+            {"n": n, "rank": r["rank"], "expected": r["expected"], "functions": r["functions"],
+             "method": "exact over QQ (SymPy and FLINT) at a seeded rational point"})
+
+
+ARGUED = ("the identities of steps (i) and (ii) hold in every dimension: D is a Lie-algebra map into "
+          "derivations, i_x is the adjoint of x^ and x^x = 0, and 2 + D_B acts blockwise on "
+          "Lambda V (x) Lambda U for B supported on the 2-plane V; none depends on dim U (the proof in "
+          "the module docstring); checks (1)-(2) confirm each exactly for n <= 12")
 
 
 @claim("S6:wedge-integrals", uses=("eq:motion-general", "eq:M-O-axi-symm", "eq:pol-first-integrals",
                                     "eq:action", "S6:sixth-integral-n5"),
        adds=(SECTION, "first integrals H_k = <M^k, (2 + D_B)^{-1} M^k> of the axisymmetric sphere "
-                      "(B = a E_n E_n^T + b gamma gamma^T); with the n known ones they give "
-                      "2n - 2 - floor(n/2) independent invariant integrals (n = 5..8 exact at seeded "
-                      "points; conservation exact at seeded points for n = 4..9)"))
+                      "(B = a E_n E_n^T + b gamma gamma^T) for every n and k, proved; with the n known "
+                      "ones they give 2n - 2 - floor(n/2) independent invariant integrals (exact ranks "
+                      "n = 5..12)"))
 def s6_wedge_integrals() -> Verdict:
-    parts = [Verdict.all_of([(f"n = {n}", conservation(n))], n_values=(n,)).as_part(f"conserved, n = {n}")
-             for n in RATE_N]
-    ranks = {}
-    for n in RANK_N:
-        chk, r = independence(n)
-        ranks[n] = r
-        parts.append(Verdict.all_of([(f"n = {n}", chk)], n_values=(n,)).as_part(f"independent, n = {n}"))
-    notes = ("independent invariant integrals (known n + new ceil(n/2) - 2): "
-             + ", ".join(f"n = {n}: {r}" for n, r in ranks.items())
-             + "; for every n this is 2n - 2 - floor(n/2), the count of quasi-periodic motion on "
-             "floor(n/2)-tori in P/SO(n-1); all n: conjecture (no reduction argument); n >= 6: a torus "
-             "theorem beyond Euler-Jacobi is needed and not established")
-    return Verdict.of_parts(parts, n_values=tuple(sorted(set(RATE_N) | set(RANK_N))), notes=notes, method=(
-        "exact at seeded rational points (Schwartz-Zippel): dH_k/dt by exact solves of L_gamma and of "
-        "2 + D_B on the wedge powers, SymPy and FLINT; exact Jacobian ranks (SymPy and FLINT)"))
+    deep = bool(os.environ.get("CHAPLYGIN_ND_DEEP"))
+    proof_n = PROOF_N + (DEEP_N if deep else ())
+    rank_n = RANK_N + (DEEP_N if deep else ())
+    parts = [collapse(n) for n in proof_n] + [vanishing(n) for n in proof_n]
+    parts += [conservation(n) for n in GENERIC_RATE_N]
+    table = []
+    for n in rank_n:
+        part, rec = independence(n)
+        parts.append(part)
+        table.append(rec)
+    parts.append(Verdict.by_argument(ARGUED).as_part("the identities hold in every dimension"))
+    from dataclasses import replace
+    notes = ("proof of conservation for every n in the module docstring (collapse + vanishing); "
+             "independent invariant integrals: " + ", ".join(f"n = {r['n']}: {r['rank']}" for r in table)
+             + " (= 2n - 2 - floor(n/2)); independence for every n: not proved")
+    v = Verdict.of_parts(parts, n_values=tuple(sorted(set(proof_n) | set(rank_n))), notes=notes, method=(
+        "proof for every n (collapse + vanishing) with each of its identities checked exactly for "
+        "n = 4..12 (SymPy QQ and FLINT); conservation at generic seeded points n = 4..9; exact Jacobian "
+        "ranks over QQ n = 5..12 of functions checked conserved at the rank point"))
+    return replace(v, data={"rank_table": table})

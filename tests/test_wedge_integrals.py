@@ -82,3 +82,60 @@ def test_pfaffian_is_the_definition(size):
     idx = tuple(range(1, size + 1))
     assert wi.pfaffian(rows, idx, 0, 1) == definitions.pfaffian(A.extract(list(idx), list(idx)))
     assert wi.pfaffian(rows, (), 0, 1) == 1
+
+
+@pytest.mark.parametrize("engine", ["sympy", "flint"])
+def test_gamma_gradient_is_the_derivation_route(engine):
+    """The gamma part of wedge_integrals.gradient (interior products) against -<Y, D_dB Y> with the
+    matrix of the derivation of dB = b(e_m gamma^T + gamma e_m^T) (derivation_matrix), n = 6, k = 2."""
+    n, k = 6, 2
+    M, gamma, a, b = _point(n, seed=5)
+    num, zero, one = wi.numbers(engine)
+    grad = wi.gradient(M, gamma, a, b, k, engine)
+    g = [num(v) for v in gamma]
+    B = [[(num(a) if i == j == n - 1 else zero) + num(b) * g[i] * g[j] for j in range(n)] for i in range(n)]
+    W = wi.wedge_power([[num(M[i, j]) for j in range(n)] for i in range(n)], n, k, zero, one)
+    Y = wi.solve(wi.shifted(B, n, 2 * k, zero), W, engine, zero)
+    for m in range(n):
+        dB = [[num(b) * ((one if i == m else zero) * g[j] + g[i] * (one if j == m else zero))
+               for j in range(n)] for i in range(n)]
+        D = wi.derivation_matrix(dB, n, 2 * k, zero)
+        DY = [sum((v * Y[c] for c, v in D.get(r, {}).items()), zero) for r in range(len(Y))]
+        assert grad[n * (n - 1) // 2 + m] == -sum((y * z for y, z in zip(Y, DY, strict=True)), zero)
+
+
+def test_the_rank_part_fails_for_a_function_that_is_not_an_integral(monkeypatch):
+    """The rank part of S6:wedge-integrals evaluates the conservation of the functions it
+    differentiates: with (1 + D_B)^{-1} in place of (2 + D_B)^{-1} in the differential (a function
+    that is not an integral, whose rank would still be full) the part fails, in both engines."""
+    import functools
+
+    from chaplygin_nd.proofs import s6_wedge_integrals as row
+    from chaplygin_nd.symbolic.family import independence as ind
+
+    assert row.independence(6)[0].verdict == "holds"
+    M, g, a, b = row.point(6, "rank", adapted=True)
+    monkeypatch.setattr(wi, "gradient", functools.partial(wi.gradient, shift=1))
+    for engine in ("sympy", "flint"):
+        rec = ind.rank_record(M, g, a, b, engine)
+        assert rec["rank"] == rec["expected"]          # the rank alone would not notice
+        assert rec["not_conserved"] == ["H_1 = 2H", "H_2"]
+    part, _ = row.independence(6)
+    assert part.verdict == "fails" and "not conserved" in part.counterexample
+
+
+def test_the_collapse_and_vanishing_parts_can_fail(monkeypatch):
+    """Controls of the proof's checks: a wrong constant in the resolvent (3 + D_B) breaks the
+    vanishing step's closed form of Y; the two sides of the collapse are non-zero."""
+    from chaplygin_nd.proofs import s6_wedge_integrals as row
+    from chaplygin_nd.symbolic.family import wedge_proof as wp
+
+    assert row.vanishing(6).verdict == "holds" and row.collapse(6).verdict == "holds"
+    M, g, a, b = row.point(6, "collapse", adapted=False)
+    Om = points.skew_matrix(points.generator(1, "Omega"), 6)
+    # both sides of the collapse are non-zero for a generic Omega: the identity is not 0 = 0
+    assert all(wp.collapse_residual(M, g, a, b, k, Om, "flint") == 0 for k in (1, 2, 3))
+    assert any(wi.rate(M, g, a, b, k, "flint", Om) != 0 for k in (1, 2))
+    original = wi.shifted
+    monkeypatch.setattr(wi, "shifted", lambda B, n, m, zero, shift=2: original(B, n, m, zero, 3 if m == 4 else shift))
+    assert row.vanishing(6).verdict == "fails"

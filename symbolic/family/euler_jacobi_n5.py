@@ -1,0 +1,168 @@
+r"""The hypotheses of the Euler–Jacobi theorem for the reduced $n = 5$ sphere, computed on the quotient
+(row S6:euler-jacobi-n5).
+
+The quotient $P/SO(4)$ is, on its regular part, an open subset of the 8-dimensional variety
+$Z = \{R_1 = R_2 = 0\} \subset \mathbb{R}^{10}$ in the invariants $r = (x, A_\pm, B, G, E_\pm, S_{uu}, S_{uq}, S_{qq})$ of
+S6:reduced-n5, with the reduced field $X = N/D$, $D = 2(2+a+b)\Delta(x)$ (:mod:`symbolic.reduction.reduced_n5`).
+
+**Invariant measure on $Z$** (derived here, not assumed). $X$ preserves the ideal of the relations:
+$D\,X(R_1) = C_{11}R_1$, $D\,X(R_2) = C_{21}R_1 + C_{22}R_2$ (cofactors by exact division). For a density
+$\rho$ on $\mathbb{R}^{10}$ the Leray residue $\omega = \rho\,dr/(dR_1\wedge dR_2)$ on the regular part of $Z$ satisfies
+$L_X\omega = \big(\operatorname{div}(\rho X)/\rho - (C_{11} + C_{22})/D\big)\,\omega$ on $Z$ (write $\rho\,dr = dR_1\wedge dR_2\wedge\tilde\omega$
+and use $L_X dR_i = d(XR_i)$), so $\omega$ is invariant iff $\operatorname{div}(\rho X) = \rho\,(C_{11}+C_{22})/D$ on $Z$. The ansatz
+$\rho = \Delta^\alpha$ turns this into $P_0 + \alpha P_1 = 0$ with
+$P_0 = \Delta\sum_i\partial_iN_i - N_x\Delta' - \Delta(C_{11} + C_{22})$, $P_1 = N_x\Delta'$; :func:`measure_exponent` solves it
+and the identity is then checked exactly. In a chart $(r \setminus \{y, y'\})$ of $Z$ the density is
+$\Delta^\alpha/\lvert\partial(R_1, R_2)/\partial(y, y')\rvert$: the fibre factor is what a restriction of $\Delta^\alpha$ alone would miss
+(the $n = 4$ erratum S5:red-measure).
+
+**Integrals on $Z$.** Each of the six ($p$'s four non-constant coefficients, $H$, and $F$ of
+S6:sixth-integral-n5) $f = P/Q$ has $Q\,X(P) - P\,X(Q) \in (R_1, R_2)$: exact division with zero
+remainder, then the identity $D(Q\,X(P) - P\,X(Q)) = q_1R_1 + q_2R_2$ is checked by both engines.
+
+**Positivity.** $\det(\lambda - L_\gamma) = (\lambda-2)^3(\lambda-2-a-b)\big(\lambda^2 - (4+a+b)\lambda + \Delta(x)\big)^3$ on $S^4$
+(:func:`charpoly_residual`, at $\gamma \in \operatorname{span}\{E_4, E_5\}$ by $SO(4)$-conjugation); $\Delta$ is affine in $x^2 \in [0, 1]$ with end values $(2+a)(2+b)$ and $2(2+a+b)$.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+
+import sympy as sp
+from chaplygin_nd.symbolic import model
+from chaplygin_nd.symbolic.family import sixth_integral as si
+from chaplygin_nd.symbolic.reduction import invariants_n5 as ri5
+from chaplygin_nd.symbolic.reduction import reduced_n5 as r5
+
+__all__ = ["coordinates", "field", "relations", "relation_cofactors", "measure_polynomials",
+           "measure_exponent", "integral_fractions", "integral_memberships", "charpoly_residual",
+           "quotient_point", "jacobian_at"]
+
+
+def coordinates() -> dict:
+    """Name -> generator of :data:`symbolic.reduction.invariants_n5.INV_RING` for the ten reduced coordinates."""
+    g = ri5.INV_RING.gens
+    return {n: g[2 + i] for i, n in enumerate(r5.COORDS)}
+
+
+def _Delta():
+    a, b, x = ri5.INV_RING.gens[:3]
+    return (2 + a) * (2 + b) - a * b * x**2
+
+
+def field() -> tuple[dict, object]:
+    r"""$(N, D)$: the numerators of the reduced field (S6:reduced-n5) and $D = 2(2+a+b)\Delta$."""
+    a, b = ri5.INV_RING.gens[:2]
+    return r5.field_numerators(), 2 * (2 + a + b) * _Delta()
+
+
+def _X(f, N) -> object:
+    """$D\\,X(f)$ for a polynomial ``f`` of :data:`INV_RING`."""
+    c = coordinates()
+    return sum((f.diff(c[n]) * N[n] for n in r5.COORDS), ri5.INV_RING(0))
+
+
+@cache
+def relations() -> tuple:
+    """$R_1, R_2$ (S6:reduced-n5, $s = 1 - x^2$) as elements of :data:`INV_RING`."""
+    return tuple(ri5.INV_RING(r) for r in r5.relations_on_P())
+
+
+@cache
+def relation_cofactors() -> dict:
+    r"""$C_{11}, C_{21}, C_{22}$ with $D\,X(R_1) = C_{11}R_1$, $D\,X(R_2) = C_{21}R_1 + C_{22}R_2$ (exact division;
+    raises if a remainder is not zero: then the relations would not be invariant)."""
+    N, _ = field()
+    R1, R2 = relations()
+    (c11, c12), rem1 = _X(R1, N).div([R1, R2])
+    (c22, c21), rem2 = _X(R2, N).div([R2, R1])
+    if rem1 or rem2 or c12:
+        raise ArithmeticError("X does not preserve the ideal (R1, R2) in triangular form")
+    return {"C11": c11, "C21": c21, "C22": c22}
+
+
+def measure_polynomials() -> tuple:
+    r"""$(P_0, P_1)$ of the module docstring: $\operatorname{div}(\Delta^\alpha X) - \Delta^\alpha\operatorname{tr}C/D = 0$ iff $P_0 + \alpha P_1 = 0$."""
+    N, _ = field()
+    c = coordinates()
+    Dl = _Delta()
+    dD = Dl.diff(c["x"])
+    C = relation_cofactors()
+    div = sum((N[n].diff(c[n]) for n in r5.COORDS), ri5.INV_RING(0))
+    return Dl * div - N["x"] * dD - Dl * (C["C11"] + C["C22"]), N["x"] * dD
+
+
+def measure_exponent() -> sp.Rational:
+    r"""The $\alpha$ with $P_0 + \alpha P_1 = 0$, read off one coefficient (the identity is checked by the row)."""
+    P0, P1 = measure_polynomials()
+    mon, c1 = next(iter(P1.terms()))
+    return -sp.Rational(str(dict(P0.terms()).get(mon, 0))) / sp.Rational(str(c1))
+
+
+def integral_fractions() -> dict:
+    r"""The six integrals on $Z$ as (numerator, denominator) in :data:`INV_RING`: the four
+    coefficients of $p$ and $2DH$ of S6:reduced-n5, and $\Delta F$ of S6:sixth-integral-n5."""
+    num = r5._integral_numerators()
+    _, D = field()
+    out = {n: (num[n], ri5.INV_RING(1)) for n in r5.INTEGRAL_NAMES[:4]}
+    out["H"] = (num["H"], 2 * D)
+    out["F"] = (si.numerator_in_invariants(), _Delta())
+    return out
+
+
+def integral_memberships() -> dict:
+    r"""For each integral $f = P/Q$: $T = Q\,DX(P) - P\,DX(Q)$ and its cofactors $(q_1, q_2)$ with
+    $T = q_1R_1 + q_2R_2$ (exact division; the remainder is returned too, zero when $f$ is conserved on $Z$)."""
+    N, _ = field()
+    R1, R2 = relations()
+    out = {}
+    for name, (P, Q) in integral_fractions().items():
+        T = Q * _X(P, N) - P * _X(Q, N)
+        if T == 0:   # conserved on all of R^10
+            q1 = q2 = rem = ri5.INV_RING(0)
+        else:
+            (q1, q2), rem = T.div([R1, R2])
+        out[name] = {"T": T, "q1": q1, "q2": q2, "remainder": rem}
+    return out
+
+
+def charpoly_residual():
+    r"""$\det(\lambda - L_\gamma) - (\lambda-2)^3(\lambda-2-a-b)(\lambda^2-(4+a+b)\lambda+\Delta(x))^3$ for $n = 5$, symbolic
+    $a, b$, at $\gamma = (0, 0, 0, s, x)$ (every $\gamma \in S^4$ is $h\gamma'$ of such a $\gamma'$ with $h \in SO(4)$, and
+    $L_{h\gamma} = hL_{\gamma'}h^{-1}$ has the same spectrum: eq:action); zero modulo $s^2 + x^2 = 1$.
+    Returns (residual, lambda, (s, x))."""
+    from sympy.polys.matrices import DomainMatrix
+
+    a, b, x = r5.a, r5.b, r5.x
+    lam, s = sp.symbols("lambda s")
+    gam = sp.Matrix([0, 0, 0, s, x])
+    L = model.L_matrix(gam, sp.diag(1, 1, 1, 1, 1 + a), b)
+    dm = DomainMatrix.from_Matrix(lam * sp.eye(10) - L)
+    det = dm.domain.to_sympy(dm.det())
+    Dl = (2 + a) * (2 + b) - a * b * x**2
+    target = (lam - 2) ** 3 * (lam - 2 - a - b) * (lam**2 - (4 + a + b) * lam + Dl) ** 3
+    return sp.expand(det - target), lam, (s, x)
+
+
+def quotient_point(M, gamma) -> dict:
+    """The reduced coordinates (name -> value) of a point ``(M, gamma)`` of $P$ (S6:reduced-n5)."""
+    Ml = [[M[i, j] for j in range(5)] for i in range(5)]
+    vals = ri5.generators_from(Ml, list(gamma[:4]))
+    return {"x": gamma[4], **{n: vals[n] for n in r5.COORDS[1:]}}
+
+
+def jacobian_at(point: dict, a, b) -> sp.Matrix:
+    r"""The $8\times10$ Jacobian of $(f_1, \dots, f_6, R_1, R_2)$ in the reduced coordinates at ``point``,
+    exactly (rank 8 there: the six are independent on $Z$)."""
+    c = coordinates()
+    at = [a, b] + [point[n] for n in r5.COORDS]
+
+    def ev(p):
+        return sp.Rational(str(p(*at))) if p else sp.Integer(0)
+    rows = []
+    for P, Q in integral_fractions().values():
+        q0, p0 = ev(Q), ev(P)
+        rows.append([(ev(P.diff(c[n])) * q0 - p0 * ev(Q.diff(c[n]))) / q0**2 for n in r5.COORDS])
+    for Rr in relations():
+        rows.append([ev(Rr.diff(c[n])) for n in r5.COORDS])
+    return sp.Matrix(rows)
