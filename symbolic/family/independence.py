@@ -18,7 +18,6 @@ exactly, and interpolated (a polynomial of degree $\le n$ in $\lambda$, $\le 2$ 
 from __future__ import annotations
 
 import sympy as sp
-
 from chaplygin_nd.symbolic.family import wedge_integrals as wi
 
 __all__ = ["coefficient_gradients", "integral_gradients", "rank_record"]
