@@ -383,5 +383,5 @@ def first_integrals(n: int, degree: int, a: Any = None, b: Any = None, *, J: Any
         raise ValueError("k and d_gamma must be integers >= 0")
     Jtext = None if J is None else [str(j) for j in J]
     model = parse_model(n, None if a is None else str(a), None if b is None else str(b), Jtext)
-    return [fi.search_degree(model, d, d + 2 * k if d_gamma is None else d_gamma, k,
-                             include_new=not paper_only) for d in range(1, degree + 1)]
+    return [fi.search_degree(model, *fi.box_for(d, k, d_gamma), include_new=not paper_only)
+            for d in range(1, degree + 1)]

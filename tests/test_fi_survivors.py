@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 import sympy as sp
 from chaplygin_nd.symbolic.search import (
+    box_search,
     candidate_basis,
     found_integral,
     known_integrals,
@@ -217,7 +218,7 @@ def test_the_rank_branch_gives_the_nullity_of_the_kernel_branch(monkeypatch):
     does, and the nullities equal the F_p kernel dimensions of the default run."""
     model = sampled_field.axisymmetric(4, A, B)
     kernel = fi.search_degree(model, 2, 4, 1)
-    monkeypatch.setattr(fi, "RECOVERY_MAX", 0)
+    monkeypatch.setattr(box_search, "RECOVERY_MAX", 0)  # the base owns it
     ranked = fi.search_degree(model, 2, 4, 1)
     assert ranked.recovered is None
     assert [b.nullity for b in ranked.blocks] == [b.nullity for b in kernel.blocks]

@@ -101,7 +101,7 @@ def main(argv: list[str]) -> int:
 
     rows = []
     for d in range(args.start, args.degree + 1):
-        dg = d + 2 * args.k if args.d_gamma is None else args.d_gamma
+        _, dg, _ = fi.box_for(d, args.k, args.d_gamma)
         t0 = time.perf_counter()
         r = fi.search_degree(model, d, dg, args.k, include_new=not args.paper_only,
                              progress=lambda s: print(s, file=sys.stderr, flush=True))

@@ -27,7 +27,7 @@ from functools import lru_cache
 import flint
 import numpy as np
 import sympy as sp
-from chaplygin_nd.symbolic.search import sampled_field
+from chaplygin_nd.symbolic.search import backend, sampled_field
 from chaplygin_nd.symbolic.search.sampled_field import Model
 
 __all__ = ["Generator", "generators", "products", "values", "jacobian_rank"]
@@ -171,7 +171,7 @@ def values(model: Model, z: np.ndarray, p: int, include_new: bool = False) -> np
                 ui = (b * x % p * g[:, i] + ((2 + a) if i == n - 1 else 0)) % p
                 w = (w + vi * ui) % p
             delta = ((2 + a) * (2 + b) - a * b % p * x % p * x) % p
-            cols["F"] = w * w % p * sampled_field.inv_mod(delta, p) % p
+            cols["F"] = w * w % p * backend.inv_mod(delta, p) % p
     if include_new and model.kind == "axisymmetric" and n == 6:
         cols["G"] = _g6(M, g, model, p)
     elif include_new and model.kind == "axisymmetric" and n > 6:
@@ -211,7 +211,7 @@ def _g6(M, g, model: Model, p: int) -> np.ndarray:
     num = (2 * a * (a + 2) % p * pp + 4 * a * b % p * x % p * pq + 2 * b * (b + 2) % p * qq
            + a * b % p * ((a + b + 4) % p) % p * (pg * pg % p)) % p
     delta = ((2 + a) * (2 + b) - a * b % p * x % p * x) % p
-    return num * sampled_field.inv_mod(delta, p) % p
+    return num * backend.inv_mod(delta, p) % p
 
 
 def _g_general(M, g, model: Model, p: int) -> np.ndarray:
@@ -240,7 +240,7 @@ def _g_general(M, g, model: Model, p: int) -> np.ndarray:
     num = (2 * a * (a + 2) % p * dot(we, we) + 4 * a * b % p * x % p * dot(we, wg)
            + 2 * b * (b + 2) % p * dot(wg, wg) + a * b % p * ((a + b + 4) % p) % p * dot(weg, weg)) % p
     delta = ((2 + a) * (2 + b) - a * b % p * x % p * x) % p
-    return num * sampled_field.inv_mod(delta, p) % p
+    return num * backend.inv_mod(delta, p) % p
 
 
 def _gradients_at(model: Model, M: sp.Matrix, gamma: sp.Matrix) -> sp.Matrix:
@@ -351,7 +351,7 @@ def jacobian_rank_mod_p(model: Model, include_new: bool = True, prime_index: int
     J = np.array(grads, dtype=np.int64).T % p            # functions x coordinates
     D0 = sampled_field.field_at(model, z0[None, :], p)["D"][0]
     f0 = values(model, z0[None, :], p, include_new)[0, keep]
-    inv = int(sampled_field.inv_mod(np.array([D0]), p)[0])
+    inv = int(backend.inv_mod(np.array([D0]), p)[0])
     for j, i in enumerate(keep):   # d(P/D) = (dP - f dD)/D with P = f D for the rational ones
         if gens[i].d_power:
             dD = np.array([_linear_coefficient(
@@ -362,7 +362,7 @@ def jacobian_rank_mod_p(model: Model, include_new: bool = True, prime_index: int
     g = z0[dim:] % p
     proj = (np.eye(n, dtype=np.int64) - np.outer(g, g)) % p
     T = np.concatenate([J[:, :dim], J[:, dim:] @ proj % p], axis=1) % p
-    r = flint.nmod_mat(T.shape[0], T.shape[1], T.ravel().tolist(), p).rank()
+    r = backend.get().rank(T, p)
     return {"rank_mod_p": r, "functions": len(keep), "prime": p,
             "names": [gens[i].name for i in keep]}
 
