@@ -57,8 +57,9 @@ from collections.abc import Callable
 import sympy as sp
 from chaplygin_nd.ledger.registry import Part, Verdict, claim, decided
 from chaplygin_nd.symbolic.exact.points import ledger_seed
-from chaplygin_nd.symbolic.search import found_integral, known_integrals, sampled_field
+from chaplygin_nd.symbolic.search import found_integral, genericity, known_integrals, sampled_field
 from chaplygin_nd.symbolic.search import integral_search as fi
+from chaplygin_nd.symbolic.search.invariant_search import InvariantRingSearch
 
 SECTION = "Conclusions — open problems (beyond the paper)"
 A, B = sp.Rational(-1, 3), sp.Rational(3, 2)
@@ -69,6 +70,16 @@ CHEAP = {3: ((1, 2, 0), (2, 4, 1), (3, 4, 1)), 4: ((2, 4, 1), (4, 4, 0)),
 #: the heavier boxes of ``make verify-deep`` (CHAPLYGIN_ND_DEEP=1); minutes to an hour
 DEEP = {4: ((3, 5, 1), (4, 6, 1)), 5: ((3, 5, 1), (4, 4, 0), (4, 6, 1), (5, 5, 0), (5, 7, 1), (6, 4, 0), (6, 6, 0), (6, 6, 1), (6, 6, 2)),
         6: ((2, 4, 1), (3, 5, 1), (4, 4, 0), (4, 4, 1)), 7: ((2, 4, 1), (3, 3, 0), (4, 4, 0))}
+
+
+#: the invariant-ring search (symbolic/search/invariant_search.py): controls, then n = 5 in every
+#: box of M-degree <= 6, gamma-degree <= 6, Delta^0..Delta^2 (``make verify``, seconds) ...
+INVARIANT = {3: ((1, 2, 0), (2, 4, 1), (3, 4, 1)), 4: ((2, 4, 1), (3, 5, 1), (4, 4, 0), (4, 6, 1)),
+             5: tuple((d, 6, k) for d in range(1, 7) for k in range(3))}
+#: ... and to M-degree 8, gamma-degree <= 8 (``make verify-deep``; about a minute)
+INVARIANT_DEEP = {5: tuple((d, 8, k) for d in range(1, 9) for k in range(3))}
+#: a second (a, b) for the box (6, 6, Delta^2): consistent with the semicontinuity argument
+SECOND_AB = (sp.Rational(2, 5), sp.Rational(5, 7))
 
 
 def model_for(n: int) -> sampled_field.Model:
@@ -90,6 +101,61 @@ def box_record(n: int, box: tuple[int, int, int]) -> dict:
     rec = {key: val for key, val in r.as_dict().items() if key != "blocks"}
     rec["known_paper_only"] = paper
     return rec
+
+
+def invariant_record(n: int, box: tuple[int, int, int], model=None) -> dict:
+    """The record of one box of the invariant-ring search (the statement's fields: box, class,
+    parameters), with the rank of the paper's integrals alone beside the rank with F."""
+    model = model or model_for(n)
+    search = InvariantRingSearch(model, seed=ledger_seed())
+    r = search.run_box(box)
+    paper = sum(InvariantRingSearch(model, seed=ledger_seed(), include_new=False).known_ranks(box).values())
+    rec = {key: val for key, val in r.as_dict().items() if key != "blocks"}
+    rec.update(strategy="invariant ring", invariance=search.ring.group + "-invariant",
+               a=None if model.a is None else str(model.a), b=str(model.b),
+               known_paper_only=paper, blocks=[blk["unknowns"] for blk in r.as_dict()["blocks"]])
+    return rec
+
+
+def _invariant_parts(table: list[dict], second: dict, generic: dict, deep: bool) -> list[Part]:
+    ctl = [r for r in table if r["n"] in (3, 4) or (r["n"] == 5 and r["d"] < 4)]
+    ok = all(r["settled"] and r["recovered"] is not False and r["known_paper_only"] == r["known"]
+             for r in ctl)
+    controls = Part("controls in the invariant ring: n = 3 generic J, n = 4 (SO(3)), n = 5 (SO(4)) "
+                    "below M-degree 4", "holds" if ok else "fails",
+                    "the same sandwich on the invariant-ring unknowns: "
+                    + "; ".join(f"n={r['n']} {_box_text(r)}: {r['unknowns']} unknowns, found "
+                                f"{r['found']} = known {r['known']}" for r in ctl))
+    f_row = next(r for r in table if (r["n"], r["d"], r["d_gamma"], r["k"]) == (5, 4, 6, 1))
+    f_ok = f_row["found"] - f_row["known_paper_only"] == 1 and f_row["settled"] and f_row["recovered"]
+    finding = Part("the invariant ring finds F again: n = 5, " + _box_text(f_row) + ", one beyond the paper's",
+                   "holds" if f_ok else "fails",
+                   f"found {f_row['found']}, paper's algebra {f_row['known_paper_only']}, with F "
+                   f"{f_row['known']}, recovered {f_row['recovered']}")
+    parts = [controls, finding]
+    for top in ((6, 8) if deep else (6,)):
+        rows = [r for r in table if r["n"] == 5 and r["d_gamma"] == top]
+        ok = bool(rows) and all(r["settled"] and r["recovered"] is not False for r in rows)
+        parts.append(Part(
+            f"n = 5: no SO(4)-invariant integral beyond the algebra of the six, M-degree 1..{top}, "
+            f"gamma-degree <= {top}, Delta^0..Delta^2, (a, b) = ({A}, {B})",
+            "holds" if ok else "fails",
+            f"{len(rows)} boxes, every one settled (found = known): "
+            + ", ".join(f"{_box_text(r)} {r['found']}={r['known']} of {r['unknowns']}" for r in rows)))
+    gen_ok = generic["ok"] and second["settled"] and second["found"] == next(
+        r["found"] for r in table if (r["n"], r["d"], r["d_gamma"], r["k"]) == (5, 6, 6, 2))
+    parts.append(Part("generic (a, b): the nullity is upper semicontinuous in (a, b) "
+                      "(symbolic/search/genericity.py)", "holds" if gen_ok else "fails",
+                      f"the conditions and the known numerators are polynomial in (a, b) "
+                      f"(SymPy, n = 5: {', '.join(generic['checked'])}), so a box settled at "
+                      f"({A}, {B}) is settled for all (a, b) outside a proper algebraic subset; "
+                      f"consistent: the box {_box_text(second)} at (a, b) = ({second['a']}, "
+                      f"{second['b']}) found {second['found']} = known {second['known']}"))
+    return parts
+
+
+def _box_text(r: dict) -> str:
+    return f"(M-degree {r['d']}, gamma-degree <= {r['d_gamma']}, Delta^{r['k']})"
 
 
 def _is_control(n: int, box: tuple[int, int, int]) -> bool:
@@ -184,6 +250,25 @@ def _proofs(deep: bool) -> list[tuple[bool, Callable[[], Part]]]:
     return steps
 
 
+def _statements(inv_table: list[dict], deep: bool) -> list[dict]:
+    """The row's statements about what was searched, each with its boxes, class and parameters."""
+    out = []
+    for top in ((6, 8) if deep else (6,)):
+        rows = [r for r in inv_table if r["n"] == 5 and r["d_gamma"] == top]
+        out.append({
+            "statement": f"n = 5: every SO(4)-invariant first integral P/Delta^k with P of M-degree "
+                         f"<= {top} and gamma-degree <= {top} on the sphere, k = 0, 1, 2, lies in the "
+                         "algebra of the six known integrals (the paper's five and F)",
+            "n": 5, "invariance": "SO(4)-invariant (the integrals of the reduced system on P/SO(4))",
+            "a": str(A), "b": str(B),
+            "generic": "for all (a, b) outside a proper algebraic subset: the nullity is upper "
+                       "semicontinuous in (a, b) (symbolic/search/genericity.py, checked)",
+            "boxes": [[r["d"], r["d_gamma"], r["k"]] for r in rows],
+            "settled": all(r["settled"] for r in rows),
+            "where": "make verify-deep" if top > 6 else "make verify"})
+    return out
+
+
 @claim("S6:first-integrals", uses=("eq:motion-general", "eq:pol-first-integrals", "P:inversion",
                                     "eq:Delta", "eq:action", "S2.2:energy"),
        adds=(SECTION, "an exact search for polynomial and rational (P/Delta^k) first integrals, "
@@ -215,18 +300,29 @@ def s6_first_integrals() -> Verdict:
     done |= {i: decided(run()) for i, (cheap, run) in enumerate(steps) if not cheap}
     searched(lambda n, box: True)
     table = [records[(n, box)] for n, bx in boxes.items() for box in bx]
-    parts = [controls, finding, *(done[i] for i in range(len(steps)))]
+    invariant_boxes = {n: tuple(bx) + (INVARIANT_DEEP.get(n, ()) if deep else ())
+                       for n, bx in INVARIANT.items()}
+    inv_table = [invariant_record(n, box) for n, bx in invariant_boxes.items() for box in bx]
+    second = invariant_record(5, (6, 6, 2), sampled_field.axisymmetric(5, *SECOND_AB))
+    inv_parts = [decided(p) for p in _invariant_parts(inv_table, second,
+                                                      genericity.polynomial_in_parameters(5), deep)]
+    parts = [controls, finding, *inv_parts, *(done[i] for i in range(len(steps)))]
     n5 = [r for r in table if r["n"] == 5]
     reached = max(r["d"] for r in n5)
+    top = max(r["d_gamma"] for r in inv_table if r["n"] == 5)
     v = Verdict.of_parts(
         parts, n_values=tuple(sorted(boxes)),
         method="modular search (FLINT nmod_mat) with exact bounds; reconstruction over QQ; "
                "exact identities modulo the sphere (SymPy + FLINT)",
-        notes=(f"n = 5 searched to M-degree {reached} ({'deep' if reached > 4 else 'make verify'} "
-               "boxes); every box settled once F is counted; heavier boxes: make verify-deep or "
-               "`chaplygin first-integrals`"))
+        notes=(f"n = 5, SO(4)-invariant integrals (those of the reduced system): M-degree <= "
+               f"{top}, gamma-degree <= {top}, Delta^0..Delta^2, all settled with F counted, at "
+               f"(a, b) = ({A}, {B}) and by semicontinuity of the nullity for generic (a, b) "
+               f"({'make verify-deep' if deep else 'make verify; M-degree 8: make verify-deep'}); "
+               f"weight-zero boxes (a larger class) to M-degree {reached}; every box in "
+               "verification.json (degree_table, invariant_table, statements)"))
     from dataclasses import replace
-    data = {"degree_table": table,
+    data = {"degree_table": table, "invariant_table": inv_table + [second],
+            "statements": _statements(inv_table, deep),
             "new_integrals": [{"n": n, "text": found_integral.new_integral_text(n),
                                "proved": [p.name for p in parts if p.name.startswith("X(F)")
                                           and f"n = {n}," in p.name]} for n in (3, 5, 7)]

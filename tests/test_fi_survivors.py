@@ -153,6 +153,9 @@ def _expected(model: sampled_field.Model, M, g, include_new: bool) -> dict:
         if include_new:
             num, den = found_integral.new_integral(M, g, model.a, model.b)
             out["F"] = num / den
+            e = sp.Matrix([0, 0, 0, 0, 1])    # F2 = <v, B(2+B)v>/Delta, B = a E_n E_n^T + b gamma gamma^T
+            Bm = model.a * e * e.T + model.b * g * g.T
+            out["F2"] = (v.T * Bm * (2 * sp.eye(5) + Bm) * v)[0, 0] / den
     return out
 
 
@@ -161,7 +164,7 @@ def test_known_values_are_the_generators_of_the_definition(n, include_new):
     """known_integrals.values at an exact point, column by column, against the definitions over QQ
     reduced mod p: a sign or a scale of one generator (which no rank sees) is caught. The
     coefficients of (-1)^n det(M + sigma gamma gamma^T - lambda), Pf M (n = 4), <v, gamma> with
-    adj(M) = v v^T and F (n = 5), H = <M, Omega>/2 with Omega solved from eq:M-O."""
+    adj(M) = v v^T, F and F2 (n = 5), H = <M, Omega>/2 with Omega solved from eq:M-O."""
     model = sampled_field.axisymmetric(n, A, B)
     M, g, z = _point(n, 11)
     got = known_integrals.values(model, z, P, include_new)[0]
