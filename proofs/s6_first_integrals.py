@@ -75,9 +75,14 @@ DEEP = {4: ((3, 5, 1), (4, 6, 1)), 5: ((3, 5, 1), (4, 4, 0), (4, 6, 1), (5, 5, 0
 #: the invariant-ring search (symbolic/search/invariant_search.py): controls, then n = 5 in every
 #: box of M-degree <= 6, gamma-degree <= 6, Delta^0..Delta^2 (``make verify``, seconds) ...
 INVARIANT = {3: ((1, 2, 0), (2, 4, 1), (3, 4, 1)), 4: ((2, 4, 1), (3, 5, 1), (4, 4, 0), (4, 6, 1)),
-             5: tuple((d, 6, k) for d in range(1, 7) for k in range(3))}
-#: ... and to M-degree 8, gamma-degree <= 8 (``make verify-deep``; about a minute)
-INVARIANT_DEEP = {5: tuple((d, 8, k) for d in range(1, 9) for k in range(3))}
+             5: tuple((d, 6, k) for d in range(1, 7) for k in range(3)), 6: ((4, 6, 1),)}
+#: ... and n = 5 to M-degree 8, gamma-degree <= 8, n = 6 and 7 to M-degree 6, gamma-degree <= 6
+#: (``make verify-deep``; about a minute in all)
+INVARIANT_DEEP = {5: tuple((d, 8, k) for d in range(1, 9) for k in range(3)),
+                  6: tuple((d, 6, k) for d in range(1, 7) for k in range(3) if (d, k) != (4, 1)),
+                  7: tuple((d, 6, k) for d in range(1, 7) for k in range(3))}
+#: the known integrals beyond the paper's that the algebra of each n holds (known_integrals)
+BEYOND = {5: "F", 6: "G", 7: "F and G"}
 #: a second (a, b) for the box (6, 6, Delta^2): consistent with the semicontinuity argument
 SECOND_AB = (sp.Rational(2, 5), sp.Rational(5, 7))
 
@@ -117,7 +122,7 @@ def invariant_record(n: int, box: tuple[int, int, int], model=None) -> dict:
     return rec
 
 
-def _invariant_parts(table: list[dict], second: dict, generic: dict, deep: bool) -> list[Part]:
+def _invariant_parts(table: list[dict], second: dict, generic: list[dict]) -> list[Part]:
     ctl = [r for r in table if r["n"] in (3, 4) or (r["n"] == 5 and r["d"] < 4)]
     ok = all(r["settled"] and r["recovered"] is not False and r["known_paper_only"] == r["known"]
              for r in ctl)
@@ -126,32 +131,46 @@ def _invariant_parts(table: list[dict], second: dict, generic: dict, deep: bool)
                     "the same sandwich on the invariant-ring unknowns: "
                     + "; ".join(f"n={r['n']} {_box_text(r)}: {r['unknowns']} unknowns, found "
                                 f"{r['found']} = known {r['known']}" for r in ctl))
-    f_row = next(r for r in table if (r["n"], r["d"], r["d_gamma"], r["k"]) == (5, 4, 6, 1))
-    f_ok = f_row["found"] - f_row["known_paper_only"] == 1 and f_row["settled"] and f_row["recovered"]
-    finding = Part("the invariant ring finds F again: n = 5, " + _box_text(f_row) + ", one beyond the paper's",
-                   "holds" if f_ok else "fails",
-                   f"found {f_row['found']}, paper's algebra {f_row['known_paper_only']}, with F "
-                   f"{f_row['known']}, recovered {f_row['recovered']}")
+    rows = [next(r for r in table if (r["n"], r["d"], r["d_gamma"], r["k"]) == (n, 4, 6, 1))
+            for n in (5, 6)]
+    f_ok = all(r["found"] - r["known_paper_only"] == 1 and r["settled"] and r["recovered"] for r in rows)
+    finding = Part("the invariant ring finds F (n = 5) and G (n = 6) again: one integral beyond the "
+                   "paper's in " + _box_text(rows[0]), "holds" if f_ok else "fails",
+                   "; ".join(f"n = {r['n']}: found {r['found']}, paper's algebra "
+                             f"{r['known_paper_only']}, with {BEYOND[r['n']]} {r['known']}, "
+                             f"recovered {r['recovered']}" for r in rows))
     parts = [controls, finding]
-    for top in ((6, 8) if deep else (6,)):
-        rows = [r for r in table if r["n"] == 5 and r["d_gamma"] == top]
-        ok = bool(rows) and all(r["settled"] and r["recovered"] is not False for r in rows)
+    for n, top, rows in _sweeps(table):
+        ok = all(r["settled"] and r["recovered"] is not False for r in rows)
         parts.append(Part(
-            f"n = 5: no SO(4)-invariant integral beyond the algebra of the six, M-degree 1..{top}, "
-            f"gamma-degree <= {top}, Delta^0..Delta^2, (a, b) = ({A}, {B})",
-            "holds" if ok else "fails",
+            f"n = {n}: no {rows[0]['invariance']} integral beyond the algebra of the paper's and "
+            f"{BEYOND[n]}, M-degree 1..{top}, gamma-degree <= {top}, Delta^0..Delta^2, "
+            f"(a, b) = ({A}, {B})", "holds" if ok else "fails",
             f"{len(rows)} boxes, every one settled (found = known): "
             + ", ".join(f"{_box_text(r)} {r['found']}={r['known']} of {r['unknowns']}" for r in rows)))
-    gen_ok = generic["ok"] and second["settled"] and second["found"] == next(
+    gen_ok = all(g["ok"] for g in generic) and second["settled"] and second["found"] == next(
         r["found"] for r in table if (r["n"], r["d"], r["d_gamma"], r["k"]) == (5, 6, 6, 2))
     parts.append(Part("generic (a, b): the nullity is upper semicontinuous in (a, b) "
                       "(symbolic/search/genericity.py)", "holds" if gen_ok else "fails",
                       f"the conditions and the known numerators are polynomial in (a, b) "
-                      f"(SymPy, n = 5: {', '.join(generic['checked'])}), so a box settled at "
+                      f"(SymPy, n = {', '.join(str(g['n']) for g in generic)}: "
+                      f"{', '.join(generic[0]['checked'])}), so a box settled at "
                       f"({A}, {B}) is settled for all (a, b) outside a proper algebraic subset; "
                       f"consistent: the box {_box_text(second)} at (a, b) = ({second['a']}, "
                       f"{second['b']}) found {second['found']} = known {second['known']}"))
     return parts
+
+
+def _sweeps(table: list[dict]):
+    """(n, top, records) for every complete sweep of the table: all boxes (d, top, k), d = 1..top,
+    k = 0..2, at that n."""
+    out = []
+    for n in sorted({r["n"] for r in table}):
+        for top in sorted({r["d_gamma"] for r in table if r["n"] == n}):
+            rows = [r for r in table if r["n"] == n and r["d_gamma"] == top]
+            if {(r["d"], r["k"]) for r in rows} >= {(d, k) for d in range(1, top + 1) for k in range(3)}:
+                out.append((n, top, sorted(rows, key=lambda r: (r["d"], r["k"]))))
+    return out
 
 
 def _box_text(r: dict) -> str:
@@ -250,23 +269,28 @@ def _proofs(deep: bool) -> list[tuple[bool, Callable[[], Part]]]:
     return steps
 
 
-def _statements(inv_table: list[dict], deep: bool) -> list[dict]:
+def _statements(inv_table: list[dict]) -> list[dict]:
     """The row's statements about what was searched, each with its boxes, class and parameters."""
     out = []
-    for top in ((6, 8) if deep else (6,)):
-        rows = [r for r in inv_table if r["n"] == 5 and r["d_gamma"] == top]
+    for n, top, rows in _sweeps(inv_table):
+        group = rows[0]["invariance"].replace("-invariant", "")
         out.append({
-            "statement": f"n = 5: every SO(4)-invariant first integral P/Delta^k with P of M-degree "
+            "statement": f"n = {n}: every {group}-invariant first integral P/Delta^k with P of M-degree "
                          f"<= {top} and gamma-degree <= {top} on the sphere, k = 0, 1, 2, lies in the "
-                         "algebra of the six known integrals (the paper's five and F)",
-            "n": 5, "invariance": "SO(4)-invariant (the integrals of the reduced system on P/SO(4))",
+                         f"algebra of the known integrals (the paper's and {BEYOND[n]})",
+            "n": n, "invariance": f"{group}-invariant (the integrals of the reduced system on P/{group})",
             "a": str(A), "b": str(B),
             "generic": "for all (a, b) outside a proper algebraic subset: the nullity is upper "
                        "semicontinuous in (a, b) (symbolic/search/genericity.py, checked)",
             "boxes": [[r["d"], r["d_gamma"], r["k"]] for r in rows],
             "settled": all(r["settled"] for r in rows),
-            "where": "make verify-deep" if top > 6 else "make verify"})
+            "where": "make verify" if all((n, tuple(b)) in _VERIFY_BOXES for b in
+                                          ([r["d"], r["d_gamma"], r["k"]] for r in rows))
+            else "make verify-deep"})
     return out
+
+
+_VERIFY_BOXES = {(n, box) for n, bx in INVARIANT.items() for box in bx}
 
 
 @claim("S6:first-integrals", uses=("eq:motion-general", "eq:pol-first-integrals", "P:inversion",
@@ -304,8 +328,8 @@ def s6_first_integrals() -> Verdict:
                        for n, bx in INVARIANT.items()}
     inv_table = [invariant_record(n, box) for n, bx in invariant_boxes.items() for box in bx]
     second = invariant_record(5, (6, 6, 2), sampled_field.axisymmetric(5, *SECOND_AB))
-    inv_parts = [decided(p) for p in _invariant_parts(inv_table, second,
-                                                      genericity.polynomial_in_parameters(5), deep)]
+    generic = [genericity.polynomial_in_parameters(n) for n in ((5, 6, 7) if deep else (5,))]
+    inv_parts = [decided(p) for p in _invariant_parts(inv_table, second, generic)]
     parts = [controls, finding, *inv_parts, *(done[i] for i in range(len(steps)))]
     n5 = [r for r in table if r["n"] == 5]
     reached = max(r["d"] for r in n5)
@@ -317,12 +341,12 @@ def s6_first_integrals() -> Verdict:
         notes=(f"n = 5, SO(4)-invariant integrals (those of the reduced system): M-degree <= "
                f"{top}, gamma-degree <= {top}, Delta^0..Delta^2, all settled with F counted, at "
                f"(a, b) = ({A}, {B}) and by semicontinuity of the nullity for generic (a, b) "
-               f"({'make verify-deep' if deep else 'make verify; M-degree 8: make verify-deep'}); "
+               f"({'make verify-deep; n = 6, 7 SO(n-1)-invariant to M-degree 6, gamma-degree 6, all settled with G (and F for n = 7)' if deep else 'make verify; M-degree 8 and n = 6, 7 to M-degree 6: make verify-deep'}); "
                f"weight-zero boxes (a larger class) to M-degree {reached}; every box in "
                "verification.json (degree_table, invariant_table, statements)"))
     from dataclasses import replace
     data = {"degree_table": table, "invariant_table": inv_table + [second],
-            "statements": _statements(inv_table, deep),
+            "statements": _statements(inv_table),
             "new_integrals": [{"n": n, "text": found_integral.new_integral_text(n),
                                "proved": [p.name for p in parts if p.name.startswith("X(F)")
                                           and f"n = {n}," in p.name]} for n in (3, 5, 7)]

@@ -25,13 +25,14 @@ GENERIC3 = sampled_field.general((1, sp.Rational(3, 2), sp.Rational(7, 3)), sp.R
 P = 268435361
 
 
-def test_the_derivative_weights_are_exact_to_degree_four():
-    """h'(0) = sum_t w_t h(t) for h = t^j, j = 0..4 (the generators have degree <= 4)."""
-    for j in range(5):
-        got = sum(Fraction(num, den) * t**j for t, num, den in invariant_search.DERIVATIVE_NODES)
-        assert got == (1 if j == 1 else 0), j
-    for ring in (invariant_rings.ring_for(4, "axisymmetric"), invariant_rings.ring_for(5, "axisymmetric")):
-        assert max(m + q for m, q in zip(ring.m_degree, ring.q_degree)) <= 4
+def test_the_derivative_weights_are_exact_to_their_degree():
+    """h'(0) = sum_t w_t h(t) for h = t^j, j = 0..D; for D = 4 the classical five-point weights."""
+    for D in range(1, 9):
+        nodes = invariant_search.derivative_nodes(D)
+        for j in range(D + 1):
+            assert sum(w * t**j for t, w in nodes) == (1 if j == 1 else 0), (D, j)
+    assert [w for _t, w in invariant_search.derivative_nodes(4)] == [
+        Fraction(-25, 12), 4, -3, Fraction(4, 3), Fraction(-1, 4)]
 
 
 def test_the_so4_generators_mod_p_are_those_of_the_reduction():
@@ -112,3 +113,23 @@ def test_no_invariant_ring_for_n_without_generators():
 def test_the_parameters_enter_polynomially():
     r = genericity.polynomial_in_parameters(3)
     assert r["ok"] and "numerator of F2" in r["checked"]
+
+
+def test_the_weyl_dimension_agrees_with_the_su2_counts():
+    """orthogonal_invariants.dimension (Weyl's formula for SO(m)) against the independent counts:
+    SU(2) x SU(2) for SO(4) (invariants_n5, by tridegree) and SU(2) for SO(3)."""
+    from chaplygin_nd.symbolic.search import orthogonal_invariants as oi
+
+    for d in range(5):
+        for l in range(4):
+            assert oi.dimension(4, d, l) == sum(invariants_n5.invariant_dimension(i, d - i, l)
+                                                for i in range(d + 1))
+            assert oi.dimension(3, d, l) == invariant_rings.ring_for(4, "axisymmetric").dimension(d, l)
+    assert oi.dimension(5, 2, 0) == 2 and oi.dimension(6, 3, 0) == 1   # |K|^2, |u|^2; Pf K
+
+
+def test_n6_invariant_ring_finds_G_beyond_the_paper():
+    model = sampled_field.axisymmetric(6, A, B)
+    r = invariant_search.InvariantRingSearch(model).run_box((4, 6, 1))
+    paper = sum(invariant_search.InvariantRingSearch(model, include_new=False).known_ranks((4, 6, 1)).values())
+    assert r.settled and r.recovered and r.found == paper + 1

@@ -14,7 +14,8 @@ $G = SO(n-1)$ of $E_n$ (eq:SOnminus1) acts on $(K, u, q)$ and fixes $x$ (eq:acti
   normalise $G$; each generator is even or odd under each (read off at a point mod $p$).
 
 Rings: ``trivial`` ($n = 3$, a generic mass tensor: every polynomial; generators the coordinates),
-``SO3`` ($n = 4$: the Gram entries of $k, u, q$ and $\delta = \langle q, k\times u\rangle$,
+``SO(n-1)`` for $n = 6, 7$ (generators chosen among natural candidates, dimensions from
+Weyl's character formula: symbolic/search/orthogonal_invariants.py), ``SO3`` ($n = 4$: the Gram entries of $k, u, q$ and $\delta = \langle q, k\times u\rangle$,
 symbolic/reduction/invariants_n4.py), ``SO4`` ($n = 5$: $A_\pm, B, G, E_\pm, S_{uu}, S_{uq}, S_{qq}, s$
 of symbolic/reduction/invariants_n5.py, row S6:reduced-n5, taken as $A_+ \pm A_-$, $E_+ \pm E_-$ so
 that every generator is even or odd under the reflection $g_1$).
@@ -172,29 +173,39 @@ def ring_for(n: int, kind: str) -> Ring:
                                         "Sqq", "s"),
                     (2, 2, 2, 1, 2, 2, 4, 3, 2, 0), (0, 0, 0, 1, 1, 1, 0, 1, 2, 2), _so4_values,
                     _so4_dimension, (0, 4))
+    if 6 <= n <= MAX_N:
+        return _orthogonal(n)
     raise ValueError(f"no invariant generators derived for the axisymmetric n = {n} "
-                     "(the invariant-ring search covers n = 4, 5; use the weight-zero search)")
+                     f"(the invariant-ring search covers n = 4..{MAX_N}; use the weight-zero search)")
+
+
+#: the largest n with a ring (candidates with m! terms each; n = 8 would have 5040)
+MAX_N = 7
+#: the bidegrees the generators of n >= 6 are searched to (boxes beyond them are refused)
+ORTHOGONAL_BOUNDS = (6, 6)
+
+
+def _orthogonal(n: int) -> Ring:
+    """SO(n-1) for n >= 6: generators chosen among the candidates of
+    symbolic/search/orthogonal_invariants.py up to :data:`ORTHOGONAL_BOUNDS`."""
+    from chaplygin_nd.symbolic.search import backend, orthogonal_invariants as oi
+
+    m = n - 1
+    gens = oi.generators(m, *ORTHOGONAL_BOUNDS, backend.PRIMES[2])
+
+    def values(z, p):
+        M, g = phase_arrays(z, n, p)
+        return oi.evaluate(list(gens), M[:, :m, :m], M[:, :m, m], g[:, :m], p)
+
+    return Ring(f"SO{m}", n, f"SO({m})", tuple(c.name for c in gens), tuple(c.m_degree for c in gens),
+                tuple(c.q_degree for c in gens), values, lambda d, l: oi.dimension(m, d, l), (0, n - 1))
 
 
 def products(ring: Ring, d: int, l: int) -> list[tuple[int, ...]]:
     """Exponent vectors of the generator products of M-degree d and q-degree l."""
-    out = []
-    r = len(ring.names)
+    from chaplygin_nd.symbolic.search.orthogonal_invariants import products_of
 
-    def rec(i, dm, dq, acc):
-        if i == r:
-            if dm == d and dq == l:
-                out.append(tuple(acc))
-            return
-        e = 0
-        while dm + e * ring.m_degree[i] <= d and dq + e * ring.q_degree[i] <= l:
-            rec(i + 1, dm + e * ring.m_degree[i], dq + e * ring.q_degree[i], acc + [e])
-            if ring.m_degree[i] == 0 and ring.q_degree[i] == 0:
-                break
-            e += 1
-
-    rec(0, 0, 0, [])
-    return out
+    return products_of(ring.m_degree, ring.q_degree, d, l)
 
 
 def reflect(z: np.ndarray, n: int, mask: int, p: int) -> np.ndarray:

@@ -23,8 +23,8 @@ with $X$ and normalise $G$); a product is an eigenvector, so the unknowns split 
 without mixing, and the known products are projected ($\sum_g \chi(g) f(g\cdot z)$).
 
 **Conditions and exactness.** Rows: $X(P)(z) - kP(z)X(D)(z)/D(z) = 0$ at seeded points of $P$ mod
-$p$ (symbolic/search/conditions.py, with $\dot g_i = dg_i(X)$ from the exact 5-point
-interpolation of $t \mapsto g_i(z + t\dot z)$, $\deg g_i \le 4$). The unknowns have integer
+$p$ (symbolic/search/conditions.py, with $\dot g_i = dg_i(X)$ from the exact interpolation of
+$t \mapsto g_i(z + t\dot z)$ at $\max_i \deg g_i + 1$ nodes). The unknowns have integer
 coefficients, so the saturated-lattice argument of symbolic/search/integral_search.py gives
 nullity$_p \ge \dim_\mathbb{Q} V^G$; the known integrals are $G$-invariant and lie in the box, so
 rank$_p$(known) $\le \dim K \le \dim V^G$. Equal ends: $V^G = K$ exactly.
@@ -33,16 +33,23 @@ rank$_p$(known) $\le \dim K \le \dim V^G$. Equal ends: $V^G = K$ exactly.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from fractions import Fraction
 from functools import cache
+from math import comb
 
 import numpy as np
 from chaplygin_nd.symbolic.search import backend, conditions, invariant_rings, known_integrals, sampled_field
 from chaplygin_nd.symbolic.search.box_search import MARGIN, BoxSearch
 
-__all__ = ["InvariantRingSearch", "basis", "DERIVATIVE_NODES"]
+__all__ = ["InvariantRingSearch", "basis", "derivative_nodes"]
 
-#: t = 0..4 and the weights of h'(0) = sum w_t h(t), exact for polynomials h of degree <= 4
-DERIVATIVE_NODES = ((0, -25, 12), (1, 4, 1), (2, -3, 1), (3, 4, 3), (4, -1, 4))
+
+
+def derivative_nodes(degree: int) -> list[tuple[int, Fraction]]:
+    r"""Nodes $t = 0..D$ and weights with $h'(0) = \sum_t w_t h(t)$ for every polynomial $h$ of
+    degree $\le D$ (Lagrange: $w_0 = -\sum_{t=1}^D 1/t$, $w_t = (-1)^{t+1}\binom{D}{t}/t$)."""
+    return [(0, -sum(Fraction(1, t) for t in range(1, degree + 1)))] + \
+        [(t, Fraction((-1) ** (t + 1) * comb(degree, t), t)) for t in range(1, degree + 1)]
 
 
 def _parities(ring, p: int = backend.PRIMES[1]) -> np.ndarray:
@@ -139,8 +146,9 @@ class InvariantRingSearch(BoxSearch):
 
     def _derivatives(self, z, zdot, p):
         acc = np.zeros((len(z), len(self.ring.names) + 1), dtype=np.int64)
-        for t, num, den in DERIVATIVE_NODES:
-            w = num % p * pow(den, p - 2, p) % p
+        top = max(m + q for m, q in zip(self.ring.m_degree, self.ring.q_degree))
+        for t, frac in derivative_nodes(max(1, top)):
+            w = frac.numerator % p * pow(frac.denominator, p - 2, p) % p
             acc = (acc + w * self._values((z + t * zdot) % p, p)) % p
         return acc
 
