@@ -23,12 +23,12 @@ from collections import Counter
 from dataclasses import dataclass
 from math import comb
 
-__all__ = ["Estimate", "estimate", "available_bytes", "EXACT_COUNT_MAX_N"]
+__all__ = ["Estimate", "estimate", "available_bytes", "duration", "weight_zero_count", "EXACT_COUNT_MAX_N"]
 
 #: seconds per entry of the condition values, per unit b^3 of a block's rank, per (character x
 #: orbit) of the weight-zero split, and the fixed cost of a box (idle 2-core machine)
 SECONDS_PER_ENTRY = 1.5e-7
-SECONDS_PER_CUBE = 1.5e-9
+SECONDS_PER_CUBE = 2e-10
 SECONDS_PER_SPLIT = 2e-6
 SECONDS_FIXED = 0.3
 BASE_BYTES = 150 * 2**20        #: the process with NumPy, SymPy and FLINT loaded
@@ -43,15 +43,18 @@ class Estimate:
     largest: int             # the largest block (estimated for the weight-zero space)
     seconds: float
     bytes: int
+    split_seconds: float = 0.0   # the part of ``seconds`` spent splitting by characters
 
     def line(self) -> str:
         d, dg, k = self.box
-        u = f"{self.unknowns}" if self.exact else f"<= {self.unknowns}"
+        u = f"{self.unknowns}" if self.exact else f"at most {self.unknowns}"
+        bound = "" if self.exact else " (from that bound)"
         return (f"box (M-degree {d}, gamma-degree <= {dg}, D^{k}): {u} unknowns, largest block "
-                f"~{self.largest}, estimated {_duration(self.seconds)} and {_size(self.bytes)}")
+                f"~{self.largest}, estimated {duration(self.seconds)} and {_size(self.bytes)}{bound}")
 
 
-def _duration(s: float) -> str:
+def duration(s: float) -> str:
+    """A duration for a person: seconds, minutes, hours or years."""
     if s < 120:
         return f"{s:.1f} s"
     if s < 7200:
@@ -136,7 +139,7 @@ def estimate(search, box: tuple) -> Estimate:
             unknowns, exact = weight_zero_count(n, planes, d, dg), True
         else:
             unknowns, exact = comb(nm + d - 1, d) * _gamma_total(n, dg), False
-        share = 1.5 / 2 ** (planes + 1) if planes else 1.5 / 2 ** n
+        share = 1.5 / 2 ** (min(planes, 4) + 1) if planes else 1.5 / 2 ** min(n, 5)
         largest = max(1, min(unknowns, int(unknowns * share)))
         split = SECONDS_PER_SPLIT * 2.0 ** n * unknowns
         enum_bytes = comb(nm + d - 1, d) * (8 * nm + 64)
@@ -148,4 +151,4 @@ def estimate(search, box: tuple) -> Estimate:
     chunk = min(rows * unknowns, 4_000_000)
     nbytes = (BASE_BYTES + enum_bytes + 8 * width * unknowns * 3 + 40 * chunk
               + 8 * rows * unknowns + 40 * largest * largest)
-    return Estimate(tuple(box), unknowns, exact, largest, seconds, int(nbytes))
+    return Estimate(tuple(box), unknowns, exact, largest, seconds, int(nbytes), split)
