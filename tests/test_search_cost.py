@@ -47,3 +47,13 @@ def test_the_run_names_its_class_and_says_what_is_left(capsys):
     out = capsys.readouterr().out
     assert "SO(4)-invariant" in out and "a = -1/3, b = 3/2" in out
     assert "s left" in out and out.count("settled") == 2
+
+
+def test_primes_mapped_over_processes_print_the_same_table(capsys):
+    argv = ["5", "4", "--from", "4", "--a", "-1/3", "--b", "3/2"]
+    assert main(argv) == 0
+    one = [line for line in capsys.readouterr().out.splitlines() if line.startswith("n=5 d=4")]
+    assert main(argv + ["--primes", "2", "--workers", "2"]) == 0
+    two = [line for line in capsys.readouterr().out.splitlines() if line.startswith("n=5 d=4")]
+    assert "2 primes" not in one[0] and "(primes 2)" in two[0]
+    assert one[0].split(", found ")[1].split(",")[0] == two[0].split(", found ")[1].split(",")[0]

@@ -19,8 +19,10 @@ Before the first block: one line per box with its unknowns and the estimated tim
 per degree: unknowns, the F_p nullity (``found``, an upper bound of the dimension of the
 integrals), the F_p rank of the known algebra (``known``, a lower bound), ``settled`` when they
 agree (then exactly: nothing beyond the known integrals), seconds, and the estimated time left.
-Progress per block on stderr. Bad input: one line ``error: ...`` and exit status 2; nothing is
-written.
+Progress per block on stderr. ``--primes N`` runs every box at N primes and combines the bounds;
+the (box, prime) tasks then run in ``--workers`` processes or on a Dask cluster (``--scheduler
+ADDRESS`` or ``local``), with the same table. Bad input: one line ``error: ...`` and exit status
+2; nothing is written.
 """
 
 from __future__ import annotations
@@ -97,6 +99,14 @@ def main(argv: list[str]) -> int:
                              "available now)")
     parser.add_argument("--max-hours", type=float, default=24.0,
                         help="refuse a box estimated above this many hours (default 24)")
+    parser.add_argument("--primes", type=positive_int, default=1,
+                        help="run every box at this many primes and combine the bounds "
+                             "(symbolic/search/multimodular.py; default 1)")
+    parser.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                        help="map the (box, prime) tasks over a Dask scheduler at ADDRESS, or "
+                             "'local' for a local cluster of --workers processes")
+    parser.add_argument("--workers", type=positive_int, default=None,
+                        help="worker processes for --primes / --scheduler local (default 1 / cores)")
     parser.add_argument("--json", type=path_argument,
                         help="write the degree table to this file (atomically)")
     args = parser.parse_args(argv)
@@ -145,6 +155,8 @@ def main(argv: list[str]) -> int:
                                  f"or a lower degree is smaller)")
     except ValueError as err:
         return fail(str(err))
+    if args.primes > 1 or args.scheduler is not None:
+        return _mapped(model, args, boxes, search)
     rows = []
     spent, planned = 0.0, 0.0
     for i, (box, est) in enumerate(zip(boxes, estimates)):
@@ -159,6 +171,39 @@ def main(argv: list[str]) -> int:
               f"{r.found}, known {r.known}, {'settled' if r.settled else 'NOT settled (candidates)'}, "
               f"{took:.1f} s" + (f"; about {left:.0f} s left" if i + 1 < len(boxes) else ""),
               flush=True)
+    if args.json:
+        from chaplygin_nd.writing import write_atomic
+
+        write_atomic(args.json.absolute(), json.dumps(rows, indent=1, default=str))
+    return 0
+
+
+def _mapped(model, args, boxes, search) -> int:
+    """The boxes at ``--primes`` primes, mapped over processes or Dask (multimodular)."""
+    import os
+    import time
+
+    from chaplygin_nd.console import fail
+    from chaplygin_nd.symbolic.search import multimodular
+
+    count = args.workers or (os.cpu_count() or 1 if args.scheduler == "local" else 1)
+    where = (f"a local Dask cluster of {count} processes" if args.scheduler == "local" else
+             f"Dask scheduler {args.scheduler}" if args.scheduler else
+             f"{count} process{'es' if count > 1 else ''}")
+    print(f"{len(boxes) * args.primes} tasks ({len(boxes)} boxes x {args.primes} primes) on {where}",
+          flush=True)
+    t0 = time.perf_counter()
+    try:
+        rows = multimodular.run(model, args.space, boxes, args.primes, not args.paper_only,
+                                args.scheduler, args.workers)
+    except ValueError as err:
+        return fail(str(err))
+    for r in rows:
+        r.update(space=args.space or _default_space(model), invariance=search.invariance)
+        print(f"n={r['n']} d={r['d']} d_gamma={r['d_gamma']} k={r['k']}: {r['unknowns']} unknowns, "
+              f"found {r['found']}, known {r['known']} (primes {len(r['primes'])}), "
+              f"{'settled' if r['settled'] else 'NOT settled (candidates)'}", flush=True)
+    print(f"{time.perf_counter() - t0:.1f} s", flush=True)
     if args.json:
         from chaplygin_nd.writing import write_atomic
 
