@@ -42,7 +42,7 @@ def _one(n: int, box: tuple, space: str) -> dict:
 
     from chaplygin_nd.proofs.s6_first_integrals import model_for
     from chaplygin_nd.symbolic.search import cost
-    from chaplygin_nd.symbolic.search.command import make_search
+    from chaplygin_nd.symbolic.search.strategies import make_search
 
     search = make_search(model_for(n), space)
     est = cost.estimate(search, box)
@@ -59,7 +59,7 @@ def _one(n: int, box: tuple, space: str) -> dict:
 def _not_run(n: int, box: tuple) -> dict:
     from chaplygin_nd.proofs.s6_first_integrals import model_for
     from chaplygin_nd.symbolic.search import cost
-    from chaplygin_nd.symbolic.search.command import make_search
+    from chaplygin_nd.symbolic.search.strategies import make_search
 
     est = cost.estimate(make_search(model_for(n), "weight-zero"), box)
     return {"n": n, "d": box[0], "d_gamma": box[1], "k": box[2], "space": "weight-zero",

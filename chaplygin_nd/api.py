@@ -377,7 +377,8 @@ def first_integrals(n: int, degree: int, a: Any = None, b: Any = None, *, J: Any
     ([(1, 1), (2, 3)], True)
     """
     from chaplygin_nd.symbolic.search import integral_search as fi
-    from chaplygin_nd.symbolic.search.command import make_search, parse_model
+    from chaplygin_nd.symbolic.search.command import parse_model
+    from chaplygin_nd.symbolic.search.strategies import make_search
 
     if not isinstance(degree, int) or degree < 1:
         raise ValueError(f"degree = {degree!r}: an integer >= 1")

@@ -4,7 +4,8 @@ fit (symbolic/search/cost.py): one line, exit status 2, the figure and the overr
 from __future__ import annotations
 
 from chaplygin_nd.symbolic.search import candidate_basis, cost, sampled_field
-from chaplygin_nd.symbolic.search.command import main, make_search
+from chaplygin_nd.symbolic.search.command import main
+from chaplygin_nd.symbolic.search.strategies import make_search
 
 
 def test_the_weight_zero_count_is_the_basis_size():

@@ -95,8 +95,10 @@ class BoxSearch:
     integral searches a symbolic/search/sampled_field.Model); ``backend``: a back-end name or
     object; ``include_new``: count the integrals found by the search among the known ones."""
 
-    #: the invariance class the strategy searches, as said in a statement
-    invariance = "none"
+    @property
+    def invariance(self) -> str:
+        """The invariance class the strategy searches, as said in a statement."""
+        return "none (every polynomial of the box)"
 
     def __init__(self, model, *, backend: str | Any = "flint", prime_index: int = 0, seed: int = 0,
                  include_new: bool = True):

@@ -30,7 +30,7 @@ from __future__ import annotations
 import json
 from fractions import Fraction
 
-__all__ = ["main", "parse_model", "make_search"]
+__all__ = ["main", "parse_model"]
 
 
 def _rational(text: str, name: str):
@@ -127,11 +127,11 @@ def main(argv: list[str]) -> int:
     import sys
     import time
 
-    from chaplygin_nd.symbolic.search import cost
+    from chaplygin_nd.symbolic.search import cost, strategies
     from chaplygin_nd.symbolic.search import integral_search as fi
 
     try:
-        search = make_search(model, args.space, include_new=not args.paper_only)
+        search = strategies.make_search(model, args.space, include_new=not args.paper_only)
         boxes = [fi.box_for(d, args.k, args.d_gamma) for d in range(args.start, args.degree + 1)]
         limit = (args.max_memory * 2**30 if args.max_memory is not None else cost.available_bytes())
         params = (f"a = {model.a}, b = {model.b}" if model.kind == "axisymmetric"
@@ -162,7 +162,7 @@ def main(argv: list[str]) -> int:
     for i, (box, est) in enumerate(zip(boxes, estimates)):
         t0 = time.perf_counter()
         r = search.run_box(box, progress=lambda s: print(s, file=sys.stderr, flush=True))
-        rows.append({**r.as_dict(), "space": args.space or _default_space(model),
+        rows.append({**r.as_dict(), "space": args.space or strategies.default_space(model),
                      "invariance": search.invariance})
         took = time.perf_counter() - t0
         spent, planned = spent + took, planned + est.seconds
@@ -184,7 +184,7 @@ def _mapped(model, args, boxes, search) -> int:
     import time
 
     from chaplygin_nd.console import fail
-    from chaplygin_nd.symbolic.search import multimodular
+    from chaplygin_nd.symbolic.search import multimodular, strategies
 
     count = args.workers or (os.cpu_count() or 1 if args.scheduler == "local" else 1)
     where = (f"a local Dask cluster of {count} processes" if args.scheduler == "local" else
@@ -199,7 +199,7 @@ def _mapped(model, args, boxes, search) -> int:
     except ValueError as err:
         return fail(str(err))
     for r in rows:
-        r.update(space=args.space or _default_space(model), invariance=search.invariance)
+        r.update(space=args.space or strategies.default_space(model), invariance=search.invariance)
         print(f"n={r['n']} d={r['d']} d_gamma={r['d_gamma']} k={r['k']}: {r['unknowns']} unknowns, "
               f"found {r['found']}, known {r['known']} (primes {len(r['primes'])}), "
               f"{'settled' if r['settled'] else 'NOT settled (candidates)'}", flush=True)
@@ -209,30 +209,3 @@ def _mapped(model, args, boxes, search) -> int:
 
         write_atomic(args.json.absolute(), json.dumps(rows, indent=1, default=str))
     return 0
-
-
-def _default_space(model) -> str:
-    from chaplygin_nd.symbolic.search import invariant_rings
-
-    try:
-        invariant_rings.ring_for(model.n, model.kind)
-    except ValueError:
-        return "weight-zero"
-    return "invariant"
-
-
-def make_search(model, space: str | None, include_new: bool = True):
-    """The strategy for ``space`` (``invariant``, ``weight-zero``, or None: the invariant ring
-    where its generators are derived, else weight zero); ValueError when the invariant ring is
-    asked for where it is not derived."""
-    from chaplygin_nd.symbolic.search.integral_search import WeightZeroSearch
-    from chaplygin_nd.symbolic.search.invariant_search import InvariantRingSearch
-
-    space = space or _default_space(model)
-    if space == "invariant":
-        if _default_space(model) != "invariant":
-            from chaplygin_nd.symbolic.search import invariant_rings
-
-            invariant_rings.ring_for(model.n, model.kind)     # raises with the reason
-        return InvariantRingSearch(model, include_new=include_new)
-    return WeightZeroSearch(model, include_new=include_new)

@@ -90,7 +90,7 @@ def _weights(n: int, planes: int):
 
 
 def _sym_counts(weights, d: int) -> Counter:
-    dp = [Counter() for _ in range(d + 1)]
+    dp: list[Counter] = [Counter() for _ in range(d + 1)]
     dp[0][(0,) * len(weights[0]) if weights and weights[0] else ()] = 1
     for w in weights:
         for k in range(1, d + 1):      # multiset counts: add w any number of times, in place

@@ -107,7 +107,9 @@ class WeightZeroSearch(BoxSearch):
     characters of the coordinate reflections (module docstring); any diagonal mass tensor
     (``planes = 0``: no torus)."""
 
-    invariance = "weight zero of a maximal torus of SO(n-1) (contains every SO(n-1)-invariant integral)"
+    @property
+    def invariance(self) -> str:
+        return "weight zero of a maximal torus of SO(n-1) (contains every SO(n-1)-invariant integral)"
 
     def unknown_counts(self, box):
         d, d_gamma, _k = box

@@ -24,6 +24,7 @@ that every generator is even or odd under the reflection $g_1$).
 from __future__ import annotations
 
 from collections import Counter
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cache
 from math import comb
@@ -43,8 +44,8 @@ class Ring:
     names: tuple[str, ...]
     m_degree: tuple[int, ...]
     q_degree: tuple[int, ...]
-    values: object            # callable (z, p) -> int64 array (points, generators)
-    dimension: object         # callable (d, l) -> int
+    values: Callable[[np.ndarray, int], np.ndarray]   # (z, p) -> int64 (points, generators)
+    dimension: Callable[[int, int], int]               # (d, l) -> dim I_{d,l}
     reflections: tuple[int, ...]   # coordinate indices k of the reflections g_k (0-based)
 
 
@@ -97,10 +98,10 @@ def _so3_values(z, p):
 
 def _sym_power(weights, d: int) -> Counter:
     """Weight multiplicities (tuples) of the d-th symmetric power of a representation."""
-    dp = [Counter() for _ in range(d + 1)]
+    dp: list[Counter] = [Counter() for _ in range(d + 1)]
     dp[0][(0,) * len(weights[0])] = 1
     for w in weights:
-        new = [Counter() for _ in range(d + 1)]
+        new: list[Counter] = [Counter() for _ in range(d + 1)]
         for k in range(d + 1):
             for key, c in dp[k].items():
                 for m in range(d - k + 1):

@@ -48,7 +48,7 @@ __all__ = ["InvariantRingSearch", "basis", "derivative_nodes"]
 def derivative_nodes(degree: int) -> list[tuple[int, Fraction]]:
     r"""Nodes $t = 0..D$ and weights with $h'(0) = \sum_t w_t h(t)$ for every polynomial $h$ of
     degree $\le D$ (Lagrange: $w_0 = -\sum_{t=1}^D 1/t$, $w_t = (-1)^{t+1}\binom{D}{t}/t$)."""
-    return [(0, -sum(Fraction(1, t) for t in range(1, degree + 1)))] + \
+    return [(0, -sum((Fraction(1, t) for t in range(1, degree + 1)), Fraction(0)))] + \
         [(t, Fraction((-1) ** (t + 1) * comb(degree, t), t)) for t in range(1, degree + 1)]
 
 

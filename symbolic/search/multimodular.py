@@ -18,7 +18,7 @@ __all__ = ["run", "combine"]
 
 def _task(args) -> dict:
     model, space, include_new, box, prime_index = args
-    from chaplygin_nd.symbolic.search.command import make_search
+    from chaplygin_nd.symbolic.search.strategies import make_search
 
     search = make_search(model, space, include_new=include_new)
     search.prime_index = prime_index
@@ -56,7 +56,7 @@ def run(model, space: str | None, boxes, primes: int = 2, include_new: bool = Tr
 
         from chaplygin_nd import processes
 
-        with processes.pool(min(workers, len(tasks)), mp.get_context("spawn")) as pool:
+        with processes.pool(min(workers or 1, len(tasks)), mp.get_context("spawn")) as pool:
             out = [f.result() for f in [pool.submit(_task, t) for t in tasks]]
     return [combine(out[i * primes:(i + 1) * primes]) for i in range(len(boxes))]
 

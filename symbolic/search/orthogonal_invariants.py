@@ -39,10 +39,10 @@ __all__ = ["dimension", "Candidate", "generators", "products_of"]
 
 
 def _sym_power(weights, d: int) -> Counter:
-    dp = [Counter() for _ in range(d + 1)]
+    dp: list[Counter] = [Counter() for _ in range(d + 1)]
     dp[0][(0,) * len(weights[0])] = 1
     for w in weights:
-        new = [Counter() for _ in range(d + 1)]
+        new: list[Counter] = [Counter() for _ in range(d + 1)]
         for k in range(d + 1):
             for key, c in dp[k].items():
                 for t in range(d - k + 1):
@@ -217,7 +217,7 @@ def generators(m: int, dmax: int, lmax: int, p: int) -> tuple[Candidate, ...]:
 
     la = backend.get()
     kept: list[Candidate] = []
-    vals_kept = None
+    vals_kept = np.zeros((0, 0), np.int64)
     cands = candidates(m, dmax, lmax)
     pts = 64
     K, u, q = _random_KUQ(m, pts, p, 1)
