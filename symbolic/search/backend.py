@@ -66,11 +66,13 @@ class FlintBackend:
     name = "flint"
 
     def rank(self, A, p):
+        """$\\mathrm{rank}_p A$ (``nmod_mat.rank``)."""
         if 0 in np.shape(A):
             return 0
         return _nmod(A, p).rank()
 
     def nullspace(self, A, p):
+        """Rows: a basis of the right null space (``nmod_mat.nullspace``)."""
         cols = np.shape(A)[1]
         if np.shape(A)[0] == 0:
             return np.eye(cols, dtype=np.int64)
@@ -78,12 +80,14 @@ class FlintBackend:
         return _array(X, cols=nullity).T.copy()
 
     def rref(self, A, p):
+        """The non-zero rows of the RREF (``nmod_mat.rref``)."""
         if 0 in np.shape(A):
             return np.zeros((0, np.shape(A)[1]), np.int64)
         R, rank = _nmod(A, p).rref()
         return _array(R, rows=rank)
 
     def matmul(self, A, B, p):
+        """$AB \\bmod p$ (``nmod_mat`` product)."""
         return _array(_nmod(A, p) * _nmod(B, p))
 
 

@@ -45,12 +45,15 @@ class NumpyBackend:
     name = "numpy"
 
     def rank(self, A, p):
+        """The number of pivots of the Gauss–Jordan form."""
         return len(_rref(A, p)[1]) if A.size else 0
 
     def rref(self, A, p):
+        """The Gauss–Jordan form without its zero rows."""
         return _rref(A, p)[0]
 
     def nullspace(self, A, p):
+        """One kernel vector per free column, read off the Gauss–Jordan form."""
         cols = A.shape[1]
         R, piv = _rref(A, p) if A.size else (np.zeros((0, cols), np.int64), [])
         free = [c for c in range(cols) if c not in set(piv)]
@@ -62,6 +65,7 @@ class NumpyBackend:
         return out
 
     def matmul(self, A, B, p):
+        """$AB \\bmod p$ with Python integers (no overflow)."""
         prod = np.asarray(A, dtype=object) @ np.asarray(B, dtype=object)
         return (prod % p).astype(np.int64)
 

@@ -136,6 +136,7 @@ class BoxSearch:
     # ------------------------------------------------------------ what the base owns
     @property
     def prime(self) -> int:
+        """The prime of this search (``PRIMES[prime_index]``)."""
         return PRIMES[self.prime_index]
 
     def run_box(self, box: tuple, progress: Callable[[str], None] | None = None) -> DegreeResult:

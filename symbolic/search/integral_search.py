@@ -109,6 +109,7 @@ class WeightZeroSearch(BoxSearch):
 
     @property
     def invariance(self) -> str:
+        """The class searched: weight zero for the torus (larger than the invariants)."""
         return "weight zero of a maximal torus of SO(n-1) (contains every SO(n-1)-invariant integral)"
 
     def unknown_counts(self, box):

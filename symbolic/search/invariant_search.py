@@ -118,10 +118,12 @@ class InvariantRingSearch(BoxSearch):
 
     @property
     def ring(self):
+        """The invariant ring of the model (symbolic/search/invariant_rings.py)."""
         return invariant_rings.ring_for(self.model.n, self.model.kind)
 
     @property
     def invariance(self) -> str:
+        """The class searched: the ring's group's invariants."""
         return f"{self.ring.group}-invariant (the integrals of the reduced system on P/{self.ring.group})"
 
     def columns(self, box) -> dict:
