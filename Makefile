@@ -23,8 +23,9 @@ SEED ?=
 verify: setup
 	$(CLI) verify --check-generated $(if $(SEED),--seed $(SEED))
 
-## verify-deep: the heavy boxes of the first-integral search (S6:first-integrals: n = 5 to
-## M-degree 6, n = 6, 7) and the symbolic n = 5 proof of the new integral; tens of minutes.
+## verify-deep: the heavy boxes of the first-integral search (S6:first-integrals: weight-zero
+## boxes of n = 5 to M-degree 6 and of n = 6, 7; the invariant ring of n = 5 to M-degree 8 and of
+## n = 6, 7 to M-degree 6) and the symbolic n = 5 proof of the new integral; tens of minutes.
 verify-deep: setup
 	CHAPLYGIN_ND_DEEP=1 $(CLI) prove S6:first-integrals $(if $(SEED),--seed $(SEED))
 

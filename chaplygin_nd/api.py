@@ -353,7 +353,8 @@ def zeta(M0: Any, gamma0: Any, a: Any, b: Any) -> np.ndarray:
 
 
 def first_integrals(n: int, degree: int, a: Any = None, b: Any = None, *, J: Any = None,
-                    d_gamma: int | None = None, k: int = 1, paper_only: bool = False) -> list:
+                    d_gamma: int | None = None, k: int = 1, paper_only: bool = False,
+                    space: str = "weight-zero") -> list:
     r"""The exact first-integral search of row S6:first-integrals for M-degrees ``1..degree``:
     integrals $P/D^k$ of eq:motion-general with $P$ of $\gamma$-degree $\le$ ``d_gamma``
     (default $d + 2k$) on the sphere, $D = \Delta$ (eq:Delta) for the axisymmetric sphere
@@ -363,7 +364,9 @@ def first_integrals(n: int, degree: int, a: Any = None, b: Any = None, *, J: Any
     algebra of the known integrals), ``settled`` when they agree — then *exactly* nothing beyond
     the known integrals lies in the box. Parameters are exact rationals (``"-1/3"``, ``0.5``);
     bad input raises ``ValueError`` naming the field. Domain: $n \ge 3$, $b > 0$, $a \ge -1$
-    or ``J`` positive.
+    or ``J`` positive. ``space``: ``"weight-zero"`` (monomials of weight zero for a maximal torus
+    of $SO(n-1)$) or ``"invariant"`` (the $SO(n-1)$-invariant polynomials, the integrals of the
+    reduced system; $n = 4..7$ or a generic ``J``; symbolic/search/invariant_search.py).
 
     Chaplygin's sphere with a generic mass tensor: $\langle M, \gamma\rangle$ at degree 1, then
     $\|M\|^2$, $\langle M, \gamma\rangle^2$ and the energy at degree 2, and nothing else:
@@ -375,6 +378,7 @@ def first_integrals(n: int, degree: int, a: Any = None, b: Any = None, *, J: Any
     """
     from chaplygin_nd.symbolic.search import integral_search as fi
     from chaplygin_nd.symbolic.search.command import parse_model
+    from chaplygin_nd.symbolic.search.strategies import make_search
 
     if not isinstance(degree, int) or degree < 1:
         raise ValueError(f"degree = {degree!r}: an integer >= 1")
@@ -383,5 +387,7 @@ def first_integrals(n: int, degree: int, a: Any = None, b: Any = None, *, J: Any
         raise ValueError("k and d_gamma must be integers >= 0")
     Jtext = None if J is None else [str(j) for j in J]
     model = parse_model(n, None if a is None else str(a), None if b is None else str(b), Jtext)
-    return [fi.search_degree(model, d, d + 2 * k if d_gamma is None else d_gamma, k,
-                             include_new=not paper_only) for d in range(1, degree + 1)]
+    if space not in ("weight-zero", "invariant"):
+        raise ValueError(f"space = {space!r}: 'weight-zero' or 'invariant'")
+    search = make_search(model, space, include_new=not paper_only)
+    return search.run([fi.box_for(d, k, d_gamma) for d in range(1, degree + 1)])

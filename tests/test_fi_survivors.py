@@ -1,5 +1,5 @@
 """Values of the first-integral search (row S6:first-integrals) against their definitions: the
-survivors of ``chaplygin mutate-derivations`` (round 24) that the row's rank and span checks cannot
+survivors of ``chaplygin mutate-derivations`` that the row's rank and span checks cannot
 see — a generator's sign or scale, the names and the torus branch of the coordinates, boxes and
 code paths the row's cheap boxes never take (no known product, gamma-degree 0, D^2, a block
 decided by its rank alone, several chunks, no margin of rows) — and the sign of
@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 import sympy as sp
 from chaplygin_nd.symbolic.search import (
+    box_search,
     candidate_basis,
     found_integral,
     known_integrals,
@@ -152,6 +153,9 @@ def _expected(model: sampled_field.Model, M, g, include_new: bool) -> dict:
         if include_new:
             num, den = found_integral.new_integral(M, g, model.a, model.b)
             out["F"] = num / den
+            e = sp.Matrix([0, 0, 0, 0, 1])    # F2 = <v, B(2+B)v>/Delta, B = a E_n E_n^T + b gamma gamma^T
+            Bm = model.a * e * e.T + model.b * g * g.T
+            out["F2"] = (v.T * Bm * (2 * sp.eye(5) + Bm) * v)[0, 0] / den
     return out
 
 
@@ -160,7 +164,7 @@ def test_known_values_are_the_generators_of_the_definition(n, include_new):
     """known_integrals.values at an exact point, column by column, against the definitions over QQ
     reduced mod p: a sign or a scale of one generator (which no rank sees) is caught. The
     coefficients of (-1)^n det(M + sigma gamma gamma^T - lambda), Pf M (n = 4), <v, gamma> with
-    adj(M) = v v^T and F (n = 5), H = <M, Omega>/2 with Omega solved from eq:M-O."""
+    adj(M) = v v^T, F and F2 (n = 5), H = <M, Omega>/2 with Omega solved from eq:M-O."""
     model = sampled_field.axisymmetric(n, A, B)
     M, g, z = _point(n, 11)
     got = known_integrals.values(model, z, P, include_new)[0]
@@ -217,7 +221,7 @@ def test_the_rank_branch_gives_the_nullity_of_the_kernel_branch(monkeypatch):
     does, and the nullities equal the F_p kernel dimensions of the default run."""
     model = sampled_field.axisymmetric(4, A, B)
     kernel = fi.search_degree(model, 2, 4, 1)
-    monkeypatch.setattr(fi, "RECOVERY_MAX", 0)
+    monkeypatch.setattr(box_search, "RECOVERY_MAX", 0)  # the base owns it
     ranked = fi.search_degree(model, 2, 4, 1)
     assert ranked.recovered is None
     assert [b.nullity for b in ranked.blocks] == [b.nullity for b in kernel.blocks]
@@ -275,7 +279,7 @@ def test_prove_symbolic_proves_the_integral_at_the_parameters_given():
     assert seen == [(A, B)]
 
 
-# ---- known_integrals.generators: the degrees of the new integrals (round 25) --------------------------
+# ---- known_integrals.generators: the degrees of the new integrals --------------------------------------
 
 @pytest.mark.parametrize("n, name, integral", [(5, "F", found_integral.new_integral),
                                                (6, "G", found_integral.new_integral_6)])
@@ -294,7 +298,7 @@ def test_the_new_integrals_generators_have_their_numerators_degrees(n, name, int
     assert gen.d_power == 1
 
 
-# ---- found_integral.pfaffian and reduced5_invariants.K_matrix (round 25) -------------------------------
+# ---- found_integral.pfaffian and reduced5_invariants.K_matrix -------------------------------------------
 
 @pytest.mark.parametrize("size", [0, 2, 3, 4, 6])
 def test_fi_new_pfaffian_is_the_definition(size):

@@ -286,7 +286,7 @@ def test_a_block_without_integrals_has_an_empty_kernel_in_its_own_basis():
     """reconstruction.kernel_rref on a block whose kernel is trivial (the M-degree-1,
     gamma-degree-1 block of character 4, n = 4: no linear integral there): a 0-row matrix with one
     column per real column, and the basis and block it was asked for. The tests reached that
-    branch with no such block (round 25's run: a 1-row result survived)."""
+    branch with no such block (a mutation run found a 1-row result survived)."""
     model = sampled_field.axisymmetric(4, A, B)
     R, basis, blk, cols = reconstruction.kernel_rref(model, 1, 1, 0, 4, 0, 1)
     assert R.shape == (0, len(cols)) and len(cols) == blk.columns > 0
@@ -295,7 +295,7 @@ def test_a_block_without_integrals_has_an_empty_kernel_in_its_own_basis():
 
 
 def test_search_is_search_degree_over_its_boxes():
-    """first_integrals.search (no row or test called it; round 25's run): one DegreeResult per
+    """first_integrals.search (no row or test called it): one DegreeResult per
     box, in order, each the search_degree of that box."""
     model = sampled_field.axisymmetric(4, A, B)
     boxes = [(2, 0, 0), (1, 1, 0)]

@@ -1,14 +1,28 @@
 r"""``chaplygin first-integrals``: the exact first-integral search from the command line
-(row S6:first-integrals; symbolic/search/integral_search.py).
+(row S6:first-integrals; symbolic/search/box_search.py and its strategies).
 
     chaplygin first-integrals 5 4 --a -1/3 --b 3/2          # axisymmetric n = 5, M-degree 1..4
     chaplygin first-integrals 3 3 --J 1,3/2,7/3 --b 1/2     # a generic mass tensor
-    chaplygin first-integrals 5 6 --from 6 --d-gamma 6 --k 2 --json out.json
+    chaplygin first-integrals 5 8 --from 6 --d-gamma 8 --k 2 --json out.json
+    chaplygin first-integrals 5 4 --a -1/3 --b 3/2 --space weight-zero
 
-One line per degree: unknowns, the F_p nullity (``found``, an upper bound of the dimension of
-the integrals), the F_p rank of the known algebra (``known``, a lower bound), ``settled`` when
-they agree (then exactly: nothing beyond the known integrals), seconds. Progress per block on
-stderr. Bad input: one line ``error: ...`` and exit status 2; nothing is written.
+``--space``: ``invariant`` (default where the invariant generators are derived: n = 4..7
+axisymmetric, any generic mass tensor; symbolic/search/invariant_search.py) searches the
+$SO(n-1)$-invariant integrals, those of the reduced system; ``weight-zero``
+(symbolic/search/integral_search.py) the larger class of integrals of weight zero for a maximal
+torus, in a much larger space. The first lines name the class and the parameters.
+
+Before the first block: one line per box with its unknowns and the estimated time and memory
+(symbolic/search/cost.py). A box whose estimated memory exceeds what the machine has available
+(or whose estimated time exceeds ``--max-hours``) is refused before anything runs: one line
+``error: ...`` naming the figure and the option that overrides it, exit status 2. Then one line
+per degree: unknowns, the F_p nullity (``found``, an upper bound of the dimension of the
+integrals), the F_p rank of the known algebra (``known``, a lower bound), ``settled`` when they
+agree (then exactly: nothing beyond the known integrals), seconds, and the estimated time left.
+Progress per block on stderr. ``--primes N`` runs every box at N primes and combines the bounds;
+the (box, prime) tasks then run in ``--workers`` processes or on a Dask cluster (``--scheduler
+ADDRESS`` or ``local``), with the same table. Bad input: one line ``error: ...`` and exit status
+2; nothing is written.
 """
 
 from __future__ import annotations
@@ -77,6 +91,22 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--paper-only", action="store_true",
                         help="count only the paper's integrals as known (the new one then shows "
                              "as an excess)")
+    parser.add_argument("--space", choices=("invariant", "weight-zero"), default=None,
+                        help="the unknowns: SO(n-1)-invariant polynomials (default where derived) "
+                             "or weight-zero monomials of a maximal torus")
+    parser.add_argument("--max-memory", type=float, default=None,
+                        help="refuse a box estimated above this many GB (default: the memory "
+                             "available now)")
+    parser.add_argument("--max-hours", type=float, default=24.0,
+                        help="refuse a box estimated above this many hours (default 24)")
+    parser.add_argument("--primes", type=positive_int, default=1,
+                        help="run every box at this many primes and combine the bounds "
+                             "(symbolic/search/multimodular.py; default 1)")
+    parser.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                        help="map the (box, prime) tasks over a Dask scheduler at ADDRESS, or "
+                             "'local' for a local cluster of --workers processes")
+    parser.add_argument("--workers", type=positive_int, default=None,
+                        help="worker processes for --primes / --scheduler local (default 1 / cores)")
     parser.add_argument("--json", type=path_argument,
                         help="write the degree table to this file (atomically)")
     args = parser.parse_args(argv)
@@ -97,18 +127,84 @@ def main(argv: list[str]) -> int:
     import sys
     import time
 
+    from chaplygin_nd.symbolic.search import cost, strategies
     from chaplygin_nd.symbolic.search import integral_search as fi
 
+    try:
+        search = strategies.make_search(model, args.space, include_new=not args.paper_only)
+        boxes = [fi.box_for(d, args.k, args.d_gamma) for d in range(args.start, args.degree + 1)]
+        limit = (args.max_memory * 2**30 if args.max_memory is not None else cost.available_bytes())
+        params = (f"a = {model.a}, b = {model.b}" if model.kind == "axisymmetric"
+                  else f"J = ({', '.join(str(j) for j in model.J)}), b = {model.b}")
+        print(f"n = {model.n} ({model.kind}, {params}); unknowns: {search.invariance}", flush=True)
+        estimates = [cost.estimate(search, box) for box in boxes]
+        for est in estimates:
+            print("  " + est.line(), flush=True)
+        for box, est in zip(boxes, estimates):
+            name = f"box (M-degree {box[0]}, gamma-degree <= {box[1]}, D^{box[2]})"
+            if est.seconds > args.max_hours * 3600:
+                why = (f" (the weight-zero split passes over 2^{model.n} characters)"
+                       if est.split_seconds > est.seconds / 2 else "")
+                raise ValueError(f"{name} needs an estimated {cost.duration(est.seconds)}{why}, "
+                                 f"above --max-hours {args.max_hours:g}; nothing was run "
+                                 f"(--max-hours overrides; a lower degree or n is smaller)")
+            if est.bytes > limit:
+                raise ValueError(f"{name} needs an estimated {est.bytes / 2**30:.1f} GB, above the "
+                                 f"{limit / 2**30:.1f} GB {'allowed' if args.max_memory else 'available'}"
+                                 f"; nothing was run (--max-memory GB overrides, --space invariant "
+                                 f"or a lower degree is smaller)")
+    except ValueError as err:
+        return fail(str(err))
+    if args.primes > 1 or args.scheduler is not None:
+        return _mapped(model, args, boxes, search)
     rows = []
-    for d in range(args.start, args.degree + 1):
-        dg = d + 2 * args.k if args.d_gamma is None else args.d_gamma
+    spent, planned = 0.0, 0.0
+    for i, (box, est) in enumerate(zip(boxes, estimates)):
         t0 = time.perf_counter()
-        r = fi.search_degree(model, d, dg, args.k, include_new=not args.paper_only,
-                             progress=lambda s: print(s, file=sys.stderr, flush=True))
-        rows.append(r.as_dict())
-        print(f"n={model.n} d={d} d_gamma={dg} k={args.k}: {r.unknowns} unknowns, found {r.found}, "
-              f"known {r.known}, {'settled' if r.settled else 'NOT settled (candidates)'}, "
-              f"{time.perf_counter() - t0:.1f} s", flush=True)
+        r = search.run_box(box, progress=lambda s: print(s, file=sys.stderr, flush=True))
+        rows.append({**r.as_dict(), "space": args.space or strategies.default_space(model),
+                     "invariance": search.invariance})
+        took = time.perf_counter() - t0
+        spent, planned = spent + took, planned + est.seconds
+        left = sum(e.seconds for e in estimates[i + 1:]) * (spent / planned if planned else 1.0)
+        print(f"n={model.n} d={box[0]} d_gamma={box[1]} k={box[2]}: {r.unknowns} unknowns, found "
+              f"{r.found}, known {r.known}, {'settled' if r.settled else 'NOT settled (candidates)'}, "
+              f"{took:.1f} s" + (f"; about {left:.0f} s left" if i + 1 < len(boxes) else ""),
+              flush=True)
+    if args.json:
+        from chaplygin_nd.writing import write_atomic
+
+        write_atomic(args.json.absolute(), json.dumps(rows, indent=1, default=str))
+    return 0
+
+
+def _mapped(model, args, boxes, search) -> int:
+    """The boxes at ``--primes`` primes, mapped over processes or Dask (multimodular)."""
+    import os
+    import time
+
+    from chaplygin_nd.symbolic.search import multimodular, strategies
+
+    from chaplygin_nd.console import fail
+
+    count = args.workers or (os.cpu_count() or 1 if args.scheduler == "local" else 1)
+    where = (f"a local Dask cluster of {count} processes" if args.scheduler == "local" else
+             f"Dask scheduler {args.scheduler}" if args.scheduler else
+             f"{count} process{'es' if count > 1 else ''}")
+    print(f"{len(boxes) * args.primes} tasks ({len(boxes)} boxes x {args.primes} primes) on {where}",
+          flush=True)
+    t0 = time.perf_counter()
+    try:
+        rows = multimodular.run(model, args.space, boxes, args.primes, not args.paper_only,
+                                args.scheduler, args.workers)
+    except ValueError as err:
+        return fail(str(err))
+    for r in rows:
+        r.update(space=args.space or strategies.default_space(model), invariance=search.invariance)
+        print(f"n={r['n']} d={r['d']} d_gamma={r['d_gamma']} k={r['k']}: {r['unknowns']} unknowns, "
+              f"found {r['found']}, known {r['known']} (primes {len(r['primes'])}), "
+              f"{'settled' if r['settled'] else 'NOT settled (candidates)'}", flush=True)
+    print(f"{time.perf_counter() - t0:.1f} s", flush=True)
     if args.json:
         from chaplygin_nd.writing import write_atomic
 

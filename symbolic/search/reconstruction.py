@@ -21,8 +21,9 @@ from __future__ import annotations
 import flint
 import numpy as np
 import sympy as sp
-from chaplygin_nd.symbolic.search import candidate_basis, sampled_field
-from chaplygin_nd.symbolic.search import integral_search as fi
+from chaplygin_nd.symbolic.search import backend as backends
+from chaplygin_nd.symbolic.search import candidate_basis, conditions, sampled_field
+from chaplygin_nd.symbolic.search.box_search import MARGIN, BoxSearch
 from chaplygin_nd.symbolic.search.sampled_field import Model
 
 __all__ = ["real_columns", "kernel_rref", "reconstruct", "real_symbols", "to_expression",
@@ -91,77 +92,37 @@ def _real_matrix(A: np.ndarray, cols, p: int, i_p: int) -> np.ndarray:
 
 
 def kernel_rref(model: Model, d: int, d_gamma: int, k: int, character: int, prime_index: int,
-                seed: int = 0):
+                seed: int = 0, backend: str = "flint"):
     """The RREF (rows) of the kernel of the block ``character`` in the real basis, mod p."""
     p = sampled_field.PRIMES[prime_index]
-    i_p = fi._sqrt_minus_one(p)
+    i_p = backends.sqrt_minus_one(p)
     B = candidate_basis.basis(model.n, d, d_gamma, model.planes)
     blk = next(b for b in B.blocks if b.character == character)
     cols = real_columns(B, blk)
     rng = np.random.default_rng([seed, 99, model.n, d, d_gamma, k, prime_index])
-    rows = blk.columns + fi.MARGIN
+    rows = blk.columns + MARGIN
     s = sampled_field.sample(model, rows + rows // 8 + 8, p, rng)
-    cv = fi._coordinate_values(B.coords, s["z"], p, i_p)
-    cd = fi._coordinate_values(B.coords, s["zdot"], p, i_p)
-    good = (cv != 0).all(axis=1)
-    cv, cd, dlog = cv[good][:rows], cd[good][:rows], s["dlogD"][good][:rows]
-    ratio = cd * sampled_field.inv_mod(cv, p) % p
-    Y = fi._monomial_values(B.exponents, cv, p) * ((ratio @ B.exponents.T - k * dlog[:, None]) % p) % p
-    A = _real_matrix(fi._block_apply(Y, blk, p), cols, p, i_p)
-    X, nullity = fi._nmod(A, p).nullspace()
-    K = np.array(X.tolist(), dtype=np.int64)[:, :nullity].T
-    if not nullity:
-        return np.zeros((0, len(cols)), np.int64), B, blk, cols
-    R = fi._nmod(K, p).rref()[0]
-    return np.array(R.tolist(), dtype=np.int64), B, blk, cols
-
-
-def _ratrecon(a: int, m: int):
-    """Rational reconstruction of a mod m with |num|, den <= sqrt(m/2); None if none."""
-    bound = int((m // 2) ** 0.5)
-    r0, r1, s0, s1 = m, a % m, 0, 1
-    while r1 > bound:
-        q = r0 // r1
-        r0, r1, s0, s1 = r1, r0 - q * r1, s1, s0 - q * s1
-    if s1 == 0 or abs(s1) > bound:
-        return None
-    return sp.Rational(r1, s1) if s1 > 0 else sp.Rational(-r1, -s1)
+    cv = conditions.coordinate_values(B.coords, s["z"], p, i_p)
+    cd = conditions.coordinate_values(B.coords, s["zdot"], p, i_p)
+    cv, cd, dlog = conditions.admissible(cv, cd, s["dlogD"], rows)
+    Y = conditions.condition_values(B.exponents, cv, cd, dlog, k, p)
+    A = _real_matrix(conditions.block_apply(Y, blk, p), cols, p, i_p)
+    R = BoxSearch(model, backend=backend).kernel_rref(A, p)
+    return R, B, blk, cols
 
 
 def reconstruct(model: Model, d: int, d_gamma: int, k: int, character: int, primes: int = 4):
-    """Rational kernel RREF of a block from ``primes`` primes (the last one checks)."""
-    mats = []
-    for i in range(primes):
-        R, B, blk, cols = kernel_rref(model, d, d_gamma, k, character, i)
-        mats.append(R)
-    if len({m.shape for m in mats}) != 1:
-        raise ArithmeticError("the kernel dimension differs between primes")
-    ps = [sampled_field.PRIMES[i] for i in range(primes)]
-    modulus = 1
-    for q in ps[:-1]:
-        modulus *= q
-    out = []
-    for r in range(mats[0].shape[0]):
-        row = []
-        for j in range(mats[0].shape[1]):
-            residues = [int(m[r, j]) for m in mats[:-1]]
-            v = _crt(residues, ps[:-1])
-            q = _ratrecon(v, modulus)
-            if q is None:
-                raise ArithmeticError("rational reconstruction failed: more primes needed")
-            if (q.p * pow(q.q, -1, ps[-1]) - int(mats[-1][r, j])) % ps[-1]:
-                raise ArithmeticError("the check prime disagrees: more primes needed")
-            row.append(q)
-        out.append(row)
+    """Rational kernel RREF of a block from ``primes`` primes (the last one checks; the lifting of
+    symbolic/search/box_search.py)."""
+    found = {}
+
+    def at(i):
+        found[i] = kernel_rref(model, d, d_gamma, k, character, i)
+        return found[i][0]
+
+    out = BoxSearch(model).rational_kernel(at, primes)
+    _R, B, blk, cols = found[0]
     return out, B, blk, cols
-
-
-def _crt(res, mods):
-    x, m = 0, 1
-    for r, q in zip(res, mods):
-        t = ((r - x) * pow(m, -1, q)) % q
-        x, m = x + m * t, m * q
-    return x
 
 
 def real_symbols(n: int):

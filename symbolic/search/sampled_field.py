@@ -25,28 +25,16 @@ from functools import lru_cache
 
 import numpy as np
 import sympy as sp
+from chaplygin_nd.symbolic.search import backend
+from chaplygin_nd.symbolic.search.backend import inv_mod
 
-__all__ = ["Model", "axisymmetric", "general", "field_at", "sample", "inv_mod", "PRIMES", "mod"]
+__all__ = ["Model", "axisymmetric", "general", "field_at", "sample", "PRIMES", "mod"]
 
-#: Primes p = 1 mod 4 below 2^28 (a square root of -1 exists; products of two residues fit in int64
-#: with room for sums of 2^7 of them).
-PRIMES = (268435361, 268435337, 268435313, 268435273, 268435157)
-
-
-def inv_mod(x: np.ndarray, p: int) -> np.ndarray:
-    """Elementwise inverse mod p (Fermat); zero maps to zero."""
-    x = np.asarray(x, dtype=np.int64) % p
-    out = np.ones_like(x)
-    base, e = x.copy(), p - 2
-    while e:
-        if e & 1:
-            out = out * base % p
-        base = base * base % p
-        e >>= 1
-    return out
+PRIMES = backend.PRIMES
 
 
 def mod(q, p: int) -> int:
+    """The rational ``q`` as a residue mod ``p`` (ZeroDivisionError when p divides its denominator)."""
     q = sp.Rational(q)
     den = int(q.q) % p
     if den == 0:
