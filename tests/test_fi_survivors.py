@@ -303,7 +303,7 @@ def test_the_new_integrals_generators_have_their_numerators_degrees(n, name, int
 @pytest.mark.parametrize("size", [0, 2, 3, 4, 6])
 def test_fi_new_pfaffian_is_the_definition(size):
     """Against the permutation sum, its sign included (the rows use Pf through v v^T = adj M and
-    quadratic forms, blind to a sign: round 25's run), and 0 for an odd size (a branch no row
+    quadratic forms, blind to a sign), and 0 for an odd size (a branch no row
     takes)."""
     import definitions
     from chaplygin_nd.symbolic.exact import points
@@ -315,7 +315,7 @@ def test_fi_new_pfaffian_is_the_definition(size):
 
 def test_k_matrix_is_the_upper_left_block_and_u_the_last_column():
     """reduction.invariants_n5.K_matrix's docstring: K = (M_ij), i, j < 4, and u = (M_i5), i < 4. A
-    K with a fifth column or row survived the rows (they index it below 4; round 25)."""
+    K with a fifth column or row survived the rows (they index it below 4)."""
     from chaplygin_nd.symbolic.reduction import invariants_n5 as ri
 
     Mm = [[10 * i + j for j in range(5)] for i in range(5)]
@@ -327,7 +327,7 @@ def test_k_matrix_is_the_upper_left_block_and_u_the_last_column():
 def test_the_axisymmetric_model_carries_its_a_and_b():
     """sampled_field.axisymmetric: J = Id + a E_n E_n^T (eq:axisymm), the given b, kind and a. The
     search's counts are the same for every generic (a, b), so S6:first-integrals did not see a and
-    b exchanged (round 25)."""
+    b exchanged."""
     model = sampled_field.axisymmetric(5, A, B)
     assert model.J == (1, 1, 1, 1, 1 + A) and model.b == B and model.a == A
     assert model.kind == "axisymmetric" and model.n == 5 and model.planes == 2
