@@ -44,8 +44,9 @@ and $\mathrm{med}_{W_2} >$ ``FLOOR`` $= -12$ (a constant is $p = 0$, the first d
 $p = -1$). An orbit is
 
 * ``chaotic`` iff $p_2 \le$ ``CHAOTIC_SLOPE`` $= -3$ or $\mathrm{med}_{W_2}\log_{10}\mathrm{GALI}_2
-  \le$ ``FLOOR`` (faster than any power a regular orbit gives at $k = 2$, which is at most
-  $t^{-2}$ when it lies on a closed curve with tangents growing as at a relative equilibrium);
+  \le$ ``FLOOR`` (faster than the power laws of regular motion at $k = 2$: $t^{-1}$ on a closed
+  curve, $t^{-2}$ when the two vectors share a plane with one growing direction, as in the twist
+  map of the study);
 * otherwise its **dimension** is the largest $k \le K$ with GALI$_1 \dots$ GALI$_k$ all flat
   (GALI$_1 \equiv 1$), reported as ``>= K`` when GALI$_K$ is flat (the index cannot see further).
 """

@@ -11,8 +11,12 @@ the $SO(n-1)$ orbits (:mod:`simulate.analysis.gali`), sampled every $dt = 1/2$. 
   "more than $\lfloor n/2\rfloor$");
 * **NAFF** on the two $SO(n-1)$-invariant signals $x + i(M\gamma)_n$, $\|ME_n\|^2 + i\langle ME_n,
   M\gamma\rangle$ (:func:`simulate.analysis.drawn_evidence.observables`; they see only the reduced
-  motion): the number of independent frequencies (|coefficients| $\le 4$) and the diffusion $D$
-  (resolved iff $D < 10^{-5}$);
+  motion): the number of independent frequencies and the diffusion $D$ (resolved iff
+  $D < 10^{-5}$); a count above $\lfloor n/2\rfloor$ is searched again with combinations up to
+  $|c| \le 12$ (:func:`simulate.analysis.combinations.recount`, as every drawn row), and a line whose
+  only explanation is not credible makes the orbit unresolved (``extra["ambiguous"]``). The first
+  run counted with $|c| \le 4$ only and read 4 frequencies on one resolved $n = 7$ orbit; both counts
+  are kept (``extra["count4"]``) and reported;
 * the drift of the proved integrals (:mod:`simulate.analysis.kept`).
 
 The chaos control, shared by the three rows: ``CONTROL_COUNT`` generic orbits of the non-symmetric
@@ -32,7 +36,7 @@ import os
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
-from chaplygin_nd.simulate.analysis import draws, gali_runs, kept, naff
+from chaplygin_nd.simulate.analysis import combinations, draws, gali_runs, kept, naff
 from chaplygin_nd.simulate.analysis import result_cache as rc
 from chaplygin_nd.simulate.analysis.frequencies import REGULAR
 from chaplygin_nd.simulate.dynamics import so
@@ -79,8 +83,8 @@ class TorusOrbit:
 
     @property
     def resolved(self) -> bool:
-        """NAFF resolved: $D <$ ``REGULAR``."""
-        return bool(self.diffusion < REGULAR)
+        """NAFF resolved: $D <$ ``REGULAR`` and no line left ambiguous by the recount."""
+        return bool(self.diffusion < REGULAR and not self.extra.get("ambiguous", 0))
 
 
 def _signals(n: int, ens):
@@ -94,7 +98,8 @@ def _signals(n: int, ens):
     return signals
 
 
-def _measure(system, ens, n: int, K: int, seed: int, symmetric: bool, kind: str, J=()):
+def _measure(system, ens, n: int, K: int, seed: int, symmetric: bool, kind: str, J=(),
+             expected: int = 0):
     y0 = np.concatenate([so.vec(ens.M0), ens.gamma0], -1)
     pars = np.stack([ens.a, ens.b])
     captured: dict = {}
@@ -118,10 +123,19 @@ def _measure(system, ens, n: int, K: int, seed: int, symmetric: bool, kind: str,
         for j, (w, f, h) in enumerate(zip(whole, first, second)):
             k = start + j
             spec = naff.spectrum_from_lines(w, f, h)
+            extra = {"count4": int(spec.count), "ambiguous": 0, "relations": []}
+            if spec.diffusion < REGULAR and spec.count > expected:
+                # as every drawn row (simulate.analysis.drawn_evidence): lines beyond the
+                # |c| <= 4 lattice searched as combinations up to |c| <= 12
+                scale = max(abs(x) for x, _ in spec.lines)
+                basis, info = combinations.recount(spec.lines, spec.tolerance * scale, expected + 2,
+                                                   resolution=2 * np.pi / T)
+                spec = naff.Spectrum(spec.lines, sorted(basis), spec.diffusion, spec.tolerance)
+                extra.update(ambiguous=int(info["ambiguous"]), relations=list(info["relations"]))
             res.append(TorusOrbit(float(ens.a[k]), float(ens.b[k]), float(ens.scale[k]),
                                   out["gali"][k].to_dict(), int(spec.count),
                                   [float(x) for x in spec.frequencies], float(spec.diffusion),
-                                  float(drift[k]), names[k]))
+                                  float(drift[k]), names[k], extra))
     return res
 
 
@@ -149,7 +163,7 @@ def torus_row(n: int, seed: int, count: int | None = None) -> list[TorusOrbit]:
     settings = {"kind": "torus", "n": n, "K": K, "T": T, "dt": DT, "tol": gali_runs.TOL,
                 "draw": ens.describe(), "seed": int(seed)}
     return _cached(f"torus-n{n}", settings,
-                   lambda: _measure(hs.full(n), ens, n, K, seed, True, "full"))
+                   lambda: _measure(hs.full(n), ens, n, K, seed, True, "full", expected=predicted(n)))
 
 
 def control_row(seed: int, count: int | None = None) -> list[TorusOrbit]:
@@ -162,4 +176,4 @@ def control_row(seed: int, count: int | None = None) -> list[TorusOrbit]:
     settings = {"kind": "torus-control", "J": list(J), "K": 2, "T": T, "dt": DT,
                 "tol": gali_runs.TOL, "draw": ens.describe(), "seed": int(seed)}
     return _cached("torus-control", settings,
-                   lambda: _measure(general_system(J), ens, 4, 2, seed, False, "control", J))
+                   lambda: _measure(general_system(J), ens, 4, 2, seed, False, "control", J, expected=99))
