@@ -2,9 +2,9 @@ r"""Beyond the paper: the torus dimension of the reduced motion on $P/SO(n-1)$ f
 read by two independent indicators on the same drawn orbits (rows S6:open-reduced-n6, -n7, -n8).
 
 **What integrability would predict.** $\dim P/SO(n-1) = 2n - 2$; the $n$ invariant integrals of the
-paper (H and the non-constant coefficients of $p(\lambda, \sigma)$) and the family
-$H_2, \dots, H_{\lfloor n/2\rfloor}$ give $2n - 2 - \lfloor n/2\rfloor$ independent invariant
-integrals (S6:wedge-integrals), so the regular reduced level sets have dimension $\lfloor n/2\rfloor$:
+paper (H and the non-constant coefficients of $p(\lambda, \sigma)$) and the family $H_k$ give
+$2n - 2 - \lfloor n/2\rfloor$ independent invariant integrals (S6:wedge-integrals; 7, 9, 10 for
+$n = 6, 7, 8$), so the regular reduced level sets have dimension $\lfloor n/2\rfloor$:
 if the reduced flow is integrable in the sense of quasi-periodic motion on the level sets, its
 orbits lie on tori of dimension $s = \lfloor n/2\rfloor$ (3, 3, 4 for $n = 6, 7, 8$). Chaos, or tori of
 higher dimension on a set of positive measure, would contradict it (more integrals than the
@@ -88,7 +88,7 @@ def torus_verdict(n: int) -> Verdict:
     gali_over = dc.fraction(res, lambda r: not chaotic(r) and r.gali["dimension"] > s)
     gali_exact = dc.fraction(res, lambda r: not chaotic(r) and r.gali["dimension"] == s)
     resolved = [r for r in res if r.resolved]
-    ambiguous = sum(r.diffusion < REGULAR and not r.resolved for r in res)
+    ambiguous = sum(r.diffusion < REGULAR and not r.resolved for r in res)   # unresolved, count <= s
     naff_exact = dc.fraction(resolved, lambda r: r.count == s)
     kept = dc.fraction(res, lambda r: r.drift <= 1e-6)
     d_row = float(np.median([r.diffusion for r in res]))

@@ -14,7 +14,9 @@ the $SO(n-1)$ orbits (:mod:`simulate.analysis.gali`), sampled every $dt = 1/2$. 
   motion): the number of independent frequencies and the diffusion $D$ (resolved iff
   $D < 10^{-5}$); a count above $\lfloor n/2\rfloor$ is searched again with combinations up to
   $|c| \le 12$ (:func:`simulate.analysis.combinations.recount`, as every drawn row), and a line whose
-  only explanation is not credible makes the orbit unresolved (``extra["ambiguous"]``). The first
+  only explanation is not credible makes the orbit unresolved (``extra["ambiguous"]``) unless the
+  count is above $\lfloor n/2\rfloor$ all the same (an excess, as
+  :func:`simulate.analysis.drawn_evidence.classify` decides). The first
   run counted with $|c| \le 4$ only and read 4 frequencies on one resolved $n = 7$ orbit; both counts
   are kept (``extra["count4"]``) and reported;
 * the drift of the proved integrals (:mod:`simulate.analysis.kept`).
@@ -60,8 +62,8 @@ def deep() -> bool:
 
 def predicted(n: int) -> int:
     r"""$\lfloor n/2\rfloor$: $\dim P/SO(n-1) = 2n - 2$ minus the $2n - 2 - \lfloor n/2\rfloor$
-    independent invariant integrals (the $n$ of the paper and $H_2..H_{\lfloor n/2\rfloor}$,
-    S6:wedge-integrals)."""
+    independent invariant integrals of S6:wedge-integrals (the $n$ of the paper and
+    $\lfloor (n-1)/2\rfloor - 1$ of the family $H_k$: 1, 2, 2 for $n = 6, 7, 8$)."""
     return n // 2
 
 
@@ -83,8 +85,11 @@ class TorusOrbit:
 
     @property
     def resolved(self) -> bool:
-        """NAFF resolved: $D <$ ``REGULAR`` and no line left ambiguous by the recount."""
-        return bool(self.diffusion < REGULAR and not self.extra.get("ambiguous", 0))
+        """NAFF resolved: $D <$ ``REGULAR``, and no line left ambiguous by the recount unless the
+        count is above the prediction all the same (then it is an excess, as
+        :func:`simulate.analysis.drawn_evidence.classify` says)."""
+        excess = self.count > self.extra.get("expected", self.count)
+        return bool(self.diffusion < REGULAR and (excess or not self.extra.get("ambiguous", 0)))
 
 
 def _signals(n: int, ens):
@@ -123,7 +128,8 @@ def _measure(system, ens, n: int, K: int, seed: int, symmetric: bool, kind: str,
         for j, (w, f, h) in enumerate(zip(whole, first, second)):
             k = start + j
             spec = naff.spectrum_from_lines(w, f, h)
-            extra = {"count4": int(spec.count), "ambiguous": 0, "relations": []}
+            extra = {"count4": int(spec.count), "ambiguous": 0, "relations": [],
+                     "expected": int(expected)}
             if spec.diffusion < REGULAR and spec.count > expected:
                 # as every drawn row (simulate.analysis.drawn_evidence): lines beyond the
                 # |c| <= 4 lattice searched as combinations up to |c| <= 12
