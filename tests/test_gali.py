@@ -129,3 +129,18 @@ def test_group_directions_stay_group_directions():
     ta.time = 0.0
     ta.propagate_until(40.0)
     assert np.linalg.norm(gl.project(ta.state[d:][None], ta.state[:d], n)) > 1e-3
+
+
+def test_torus_orbit_resolution_follows_the_drawn_rows():
+    """An ambiguous line unresolves an orbit whose count is within the prediction, never an
+    excess (simulate/analysis/torus_rows.py, as simulate/analysis/drawn_evidence.classify)."""
+    from chaplygin_nd.simulate.analysis.torus_rows import TorusOrbit
+
+    def orbit(count, diffusion, ambiguous):
+        return TorusOrbit(0.5, 2.0, 1.0, {"cls": "regular", "dimension": 3}, count, [], diffusion,
+                          0.0, "", {"ambiguous": ambiguous, "expected": 3})
+
+    assert orbit(3, 1e-7, 0).resolved
+    assert not orbit(3, 1e-7, 2).resolved
+    assert orbit(4, 1e-7, 2).resolved                    # an excess stays one
+    assert not orbit(3, 1e-3, 0).resolved
