@@ -25,11 +25,13 @@ The chaos control, shared by the three rows: ``CONTROL_COUNT`` generic orbits of
 $n = 4$ sphere ``CHAOTIC_J[4]`` (the control of the drawn rows), the same integration with 2 vectors
 (GALI$_2$ is all the chaos rule reads) projected onto $TP$ only (no symmetry), the same NAFF on the
 same two signals. (The general-$\mathbb J$ sphere of the row's own $n$ was measured too: at $n = 6$,
-8 of 8 pilot orbits GALI-chaotic, but 68 s for 8 orbits — its field is an $LDL^T$ solve of a
-$15\times 15$ system — against ~6 s at $n = 4$; not affordable in ``make verify``.)
+8 of 8 pilot orbits GALI-chaotic, but 68 s of wall time at load 8 for 8 orbits — its field is an
+$LDL^T$ solve of a $15\times 15$ system — against ~6 s at $n = 4$; not affordable in ``make verify``.)
 
-``make verify`` runs ``COUNTS``; ``make verify-deep`` (``CHAPLYGIN_ND_DEEP=1``) runs ``DEEP_COUNTS``,
-enough drawn orbits for at least 50 resolved by NAFF per $n$.
+``make verify`` runs ``COUNTS``; ``make verify-deep`` (``CHAPLYGIN_ND_DEEP=1``) runs ``DEEP_COUNTS``:
+GALI reads a dimension on all 96 orbits of each $n$, NAFF resolves fewer at $T = 4096$ (42, 48, 17
+for $n = 6, 7, 8$ in the run of the evidence page): 50 NAFF-resolved orbits per $n$ would need
+longer orbits or more of them.
 """
 
 from __future__ import annotations
