@@ -1,0 +1,90 @@
+r"""Orbits with deviation vectors: integrate (heyoka batch mode, runtime parameters ``par[i]``, one
+compiled integrator per system and number of vectors), sample the observables for NAFF and the
+deviation vectors for GALI (:mod:`simulate.analysis.gali`) in the same pass.
+
+:func:`integrate` is the one loop the validation study (:mod:`simulate.analysis.gali_study`) and the
+torus rows (:mod:`simulate.analysis.torus_rows`) share: ``system`` any
+:class:`simulate.integrators.heyoka_systems.System`, orbit $k$ run to $T\cdot f_k$ and sampled every
+$dt\cdot f_k$ (``time_factor`` $f_k$: the energy scale of :mod:`simulate.analysis.draws`), the vectors
+read every ``stride`` samples (GALI needs the trend, not every sample), in time chunks of bounded
+memory.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+from chaplygin_nd.simulate.analysis import gali as gl
+from chaplygin_nd.simulate.integrators.heyoka_systems import System
+
+__all__ = ["integrate", "BATCH", "TOL"]
+
+#: orbits per compiled step (as simulate.analysis.drawn_evidence.BATCH)
+BATCH = 8
+TOL = 1e-10
+#: samples per propagate_grid call (memory: chunk x lanes x state)
+CHUNK = 512
+
+
+def integrate(system: System, y0: np.ndarray, pars: np.ndarray, *, K: int, T: float, dt: float,
+              seed: int, time_factor: np.ndarray | None = None, n: int | None = None,
+              symmetric: bool = True, signals: Callable | None = None, stride: int = 4,
+              tol: float = TOL) -> dict:
+    r"""Every orbit ``y0[k]`` (``(orbits, d)``, parameters ``pars[:, k]``) of ``system`` with ``K``
+    deviation vectors (:func:`simulate.analysis.gali.initial_deviations`, projected transverse to
+    the $SO(n-1)$ orbits when ``n`` is given and ``symmetric``, onto $TP$ only when not).
+    Returns ``{"gali": [GaliResult], "series": (orbits, samples, K) GALI, "t": sample times at
+    scale 1, "signals": (orbits, signals, samples) or None}``; ``signals(Y, lanes)`` maps states
+    ``(samples, lanes, d)`` to complex ``(lanes, signals, samples)``. Domain: ``K >= 2``."""
+    from chaplygin_nd.simulate.integrators.heyoka_taylor import compiled_integrator
+
+    ext = gl.deviation_system(system, K)
+    ta, _, _ = compiled_integrator(ext, "double", tol, compact=True, batch=BATCH)
+    count, d = y0.shape
+    f = np.ones(count) if time_factor is None else np.asarray(time_factor, float)
+    u0 = gl.initial_deviations(y0, K, seed, n, symmetric)
+    steps = int(round(T / dt))
+    t = np.arange(steps + 1) * dt
+    keep = np.arange(0, steps + 1, stride)
+    series = np.empty((count, len(keep), K))
+    sig = None
+    for start in range(0, count, BATCH):
+        idx = np.arange(start, min(start + BATCH, count))
+        used = len(idx)
+        lanes = np.concatenate([idx, np.repeat(idx[-1:], BATCH - used)])
+        state = np.concatenate([y0[lanes], u0[lanes].reshape(BATCH, K * d)], axis=1)
+        ta.state[:] = state.T
+        ta.pars[:] = pars[:, lanes]
+        ta.set_time(0.0)
+        chunks_y, chunks_u = [], []
+        for c0 in range(0, steps + 1, CHUNK):
+            rows = np.arange(c0, min(c0 + CHUNK, steps + 1))
+            # each grid starts at the current time: the previous chunk's last sample, dropped
+            first = rows if c0 == 0 else np.concatenate([[c0 - 1], rows])
+            grid = t[first][:, None] * f[lanes][None, :]
+            _, states = ta.propagate_grid(grid)
+            states = states if c0 == 0 else states[1:]
+            for lane, res in enumerate(ta.propagate_res[:used]):
+                if str(res[0]) != "taylor_outcome.time_limit":
+                    raise RuntimeError(f"{system.name}: heyoka stopped early ({res[0]}) on orbit "
+                                       f"{idx[lane]}")
+            Y = np.moveaxis(states[:, :d, :used], 1, 2)            # (rows, lanes, d)
+            chunks_y.append(Y)
+            sel = np.isin(rows, keep)
+            U = np.moveaxis(states[sel, d:, :used], 1, 2).reshape(sel.sum(), used, K, d)
+            chunks_u.append((Y[sel], U))
+        Y = np.concatenate(chunks_y)
+        if signals is not None:
+            z = signals(Y, idx)
+            if sig is None:
+                sig = np.empty((count,) + z.shape[1:], dtype=z.dtype)
+            sig[idx] = z
+        Yk = np.concatenate([y for y, _ in chunks_u])
+        U = np.concatenate([u for _, u in chunks_u])                 # (samples, lanes, K, d)
+        if n is not None:
+            U = gl.project(U, Yk, n, symmetric)
+        series[idx] = np.moveaxis(gl.gali(U), 0, 1)
+    tk = t[keep]
+    return {"gali": [gl.verdict(tk, series[k]) for k in range(count)], "series": series, "t": tk,
+            "signals": sig}
