@@ -19,10 +19,13 @@ from pathlib import Path
 
 from chaplygin_nd.console import OneLineWarning
 
-__all__ = ["ENV", "CacheWarning", "cache_root", "cache_dir", "unsafe_reason"]
+__all__ = ["ENV", "CacheWarning", "cache_root", "cache_dir", "unsafe_reason", "first_refusal",
+           "forget_refusals"]
 
 #: The environment variable that moves the whole cache.
 ENV = "CHAPLYGIN_ND_CACHE"
+
+_REFUSED: set[tuple[str, str]] = set()
 
 
 class CacheWarning(OneLineWarning):
@@ -67,3 +70,19 @@ def unsafe_reason(path: Path) -> str | None:
         return (f"is writable by group or others (mode {stat.S_IMODE(st.st_mode):04o}); "
                 f"`chmod go-w {path}` makes it private")
     return None
+
+
+def first_refusal(path: Path, reason: str) -> bool:
+    """True the first time in this process that ``path`` is refused for ``reason``
+    (:func:`unsafe_reason`): every cache that meets an unsafe folder (compiled integrators,
+    heyoka's object code, evidence) asks, so the warning is given once, not once per cache."""
+    key = (str(path), reason)
+    if key in _REFUSED:
+        return False
+    _REFUSED.add(key)
+    return True
+
+
+def forget_refusals() -> None:
+    """Forget the refusals reported (for tests: a new cache folder, a new warning)."""
+    _REFUSED.clear()
