@@ -41,7 +41,8 @@ cross-check measures; an output that is 0 at $t_0$ is bounded absolutely):
   copies of the initial point, measured on four seeded random rotations (times 4);
 * **the horizontal forms** (S5:H-linear, S5:H-linear-nD): $x(t) = R\cos(\nu t - \phi)$ and $G$ with
   $\nu^2 = (F_2 - 2bH)/((2+a)(2+a+b))$. The error of $\nu$ follows from those of $F_2$ (rounding)
-  and $H = \tfrac12\langle M_0, \hat\Omega_0\rangle$ (the measured error of $\hat\Omega_0$): the
+  and $H = \tfrac12\langle M_0, \hat\Omega_0\rangle$ as the closed form computes them, each measured
+  against extended precision with the refined $\Omega_0$: the
   formula's conditioning, large when $F_2 \approx 2bH$ (slow rotation). Then $|\delta x| \le
   R\,[(\nu t + 1)\,\delta\nu/\nu + 4\varepsilon\nu t + 8\varepsilon]$, $G$ likewise with amplitude
   $(2+a+b)\nu R$, and $(A, B) = (F_2 - B, F_2x^2 + G^2)$ to first order.
@@ -297,21 +298,40 @@ def relative_equilibrium(X, M0, gamma0, Omega0, dX, dOmega, elapsed: np.ndarray,
     return b
 
 
+def _integral_errors(M0, gamma0, Omega0, dOmega, F2, H, a, b, k: Kernels):
+    r"""Errors of the $F_2 = \lVert M_0\rVert_\kappa^2$ and $H = \tfrac12\langle M_0, \Omega_0\rangle_\kappa$ a
+    horizontal form uses: measured against extended precision with the refined $\Omega_0$
+    (doubled), or a priori without it."""
+    n = M0.shape[-1]
+    d = n * (n - 1) // 2
+    normM = np.sqrt(np.maximum(so.killing(M0, M0), 0.0))
+    if not EXTENDED:
+        return (4 * d * EPS * np.abs(F2),
+                0.5 * math.sqrt(d) * normM * dOmega + 4 * d * EPS * np.abs(H))
+    eps_l = float(np.finfo(np.longdouble).eps)
+    Ml = M0.astype(np.longdouble)
+    Oref, _ = _refined(M0, gamma0, Omega0, a, b, k)
+    F2l = 0.5 * np.sum(Ml * Ml, axis=(-1, -2))
+    Hl = 0.25 * np.sum(Ml * Oref, axis=(-1, -2))
+    dF2 = 2 * np.abs(F2 - F2l).astype(float) + 8 * d * eps_l * np.abs(F2)
+    dH = 2 * np.abs(H - Hl).astype(float) + 64 * d * eps_l * normM ** 2 / min(2.0, 2.0 + a)
+    return dF2, dH
+
+
 def horizontal(M0, gamma0, Omega0, dOmega, a: float, b: float, span: float, outputs,
-               model: str) -> Bound:
+               model: str, k: Kernels) -> Bound:
     """The bound of the horizontal closed forms (``horizontal``: $(x, G, A, B)$ any $n$;
     ``horizontal-4D``: the reduced invariants) for the batch ``M0, gamma0, Omega0`` (module
     docstring)."""
-    n = M0.shape[-1]
-    d = n * (n - 1) // 2
     x0 = gamma0[:, -1]
     G0 = np.einsum("ei,ei->e", M0[:, :, -1], gamma0)
-    F2 = so.killing(M0, M0)
-    H = 0.5 * so.killing(M0, Omega0)
-    normM = np.sqrt(np.maximum(F2, 0.0))
+    if model == "horizontal-4D":  # F2, H as the closed form takes them: the reduced integrals
+        F = k.require("reduced_integrals")(so.reduced_invariants(M0, gamma0), a, b)
+        F2, H = F[..., 1], F[..., 3]
+    else:
+        F2, H = so.killing(M0, M0), 0.5 * so.killing(M0, Omega0)
     c = 2.0 + a + b
-    dF2 = 4 * d * EPS * F2
-    dH = 0.5 * math.sqrt(d) * normM * dOmega + 4 * d * EPS * np.abs(H)
+    dF2, dH = _integral_errors(M0, gamma0, Omega0, dOmega, F2, H, a, b, k)
     num = F2 - 2 * b * H
     nu2 = num / ((2.0 + a) * c)
     nu = np.sqrt(np.maximum(nu2, 0.0))
@@ -368,4 +388,4 @@ def closed_form(model: str, scene, Omega0: np.ndarray, k: Kernels) -> Bound:
                                         scene.outputs,
                                         bool(set(scene.outputs) & {"orientation", "contact_path"}),
                                         scene.radius, model)
-        return horizontal(M0, gamma0, Omega0, dOmega, a, b, span, scene.outputs, model)
+        return horizontal(M0, gamma0, Omega0, dOmega, a, b, span, scene.outputs, model, k)

@@ -277,5 +277,8 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
             return make("full", "frequencies on P (the reconstruction) need the full system "
                         "eq:motion-general; the 'reduced' frequencies come from eq:red-system and "
                         "the 'control' from the generic-J sphere (simulate/scene/tori.py)")
+    if missed:
+        return make("full", "the closed form's float64 error bound at the horizon misses "
+                    "accuracy.target (not used, below): the full system eq:motion-general")
     return make("full", "no closed form or reduction applies to these initial conditions "
                 "and outputs: the full system eq:motion-general")

@@ -75,6 +75,7 @@ from chaplygin_nd.simulate.dynamics.ball import (
     from_moments,
     parameter_violations,
 )
+from chaplygin_nd.simulate.integrators.settings import FLOAT64_REACH
 from chaplygin_nd.simulate.scene import budget
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -403,6 +404,10 @@ def loads(text: str, source: str = "<scene>", force: bool = False) -> Scene | Fr
     target = _number(acc, "target", fail, default=1e-10, where="accuracy.target")
     if not 0 < target < 1:
         fail("accuracy.target", f"target = {target} is not in (0, 1)", "use e.g. 1e-10")
+    if target < FLOAT64_REACH:  # the outputs are float64 arrays (simulate/integrators/settings.py)
+        fail("accuracy.target", f"target = {target:g} is below what float64 outputs can carry "
+             f"(relative {FLOAT64_REACH:.2g}: every output is stored and derived in float64)",
+             f"use a target >= {FLOAT64_REACH:.2g}")
     method = acc.get("method", "auto")
     if method not in METHODS:
         fail("accuracy.method", f"unknown method {method!r}", f"use one of {', '.join(METHODS)}")
