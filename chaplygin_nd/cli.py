@@ -135,6 +135,10 @@ def main(argv: list[str] | None = None, *, program: bool = False) -> int:
         status = _main(argv)
     except KeyboardInterrupt:
         status = console.fail("interrupted", 130)
+    except BaseException:  # noqa: BLE001 - after a signal, whatever a library made of it
+        if signals.received() is None or isinstance(sys.exc_info()[1], SystemExit):
+            raise
+        status = console.fail("interrupted", 130)
     finally:
         if program:
             for sig in (signal.SIGINT, signal.SIGTERM):
