@@ -19,7 +19,7 @@ from pathlib import Path
 
 from chaplygin_nd.console import OneLineWarning
 
-__all__ = ["ENV", "CacheWarning", "cache_root", "cache_dir", "unsafe_reason", "first_refusal",
+__all__ = ["ENV", "CacheWarning", "cache_root", "cache_dir", "unsafe_reason", "first_refusal", "place_matplotlib_cache",
            "forget_refusals"]
 
 #: The environment variable that moves the whole cache.
@@ -86,3 +86,20 @@ def first_refusal(path: Path, reason: str) -> bool:
 def forget_refusals() -> None:
     """Forget the refusals reported (for tests: a new cache folder, a new warning)."""
     _REFUSED.clear()
+
+
+def place_matplotlib_cache() -> None:
+    """Before matplotlib is imported: its font cache goes to the ``matplotlib/`` subfolder of the
+    cache folder (``MPLCONFIGDIR``, created private), not to ``~/.cache/matplotlib`` or, when that
+    cannot be written, a new folder in the temporary directory at every run. A ``MPLCONFIGDIR``
+    the user set is kept; a cache folder that cannot be created leaves matplotlib's choice."""
+    if os.environ.get("MPLCONFIGDIR") or "matplotlib" in sys.modules:
+        return
+    folder = cache_dir("matplotlib")
+    try:
+        folder.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
+        folder.mkdir(exist_ok=True, mode=0o700)
+    except OSError:
+        return
+    if unsafe_reason(folder) is None and unsafe_reason(folder.parent) is None:
+        os.environ["MPLCONFIGDIR"] = str(folder)
