@@ -231,3 +231,22 @@ def test_stated_bound_holds_against_60_digits(label, model, text, T):
             if key in row and row[key][1] > 1e-9:
                 assert row[key][0] <= TIGHT * row[key][1], (label, key, row[key])
     TABLE[(label, T)] = row
+
+
+def test_a_closed_form_whose_bound_misses_the_target_is_not_taken(tmp_path, capsys):
+    """vertical5d's point at T = 1e6 and 1e12: the closed form's bound passes 1e-12, so the plan
+    says why it is not used; at 1e12 nothing can meet the target in time, and the one line of the
+    refusal names the closed form's bound and the target (exit 2, nothing written)."""
+    from chaplygin_nd.simulate.scene import cli
+
+    text = CASES[5][2]
+    for T in (1e6, 1e12):
+        scene = loads(text + f"[times]\nt_end = {T}\nsamples = 11\n[accuracy]\ntarget = 1e-12\n")
+        p = plan(scene)
+        assert p.model == "full" and p.missed and "vertical closed form: float64 bound" in p.missed[0]
+    path = tmp_path / "v.toml"
+    path.write_text(text + "[times]\nt_end = 1e12\nsamples = 11\n[accuracy]\ntarget = 1e-12\n")
+    assert cli.main([str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "vertical closed form: float64 bound" in err[0], err
+    assert "accuracy.target 1e-12" in err[0] and not (tmp_path / "o").exists()

@@ -66,6 +66,8 @@ def summary(scene, p, traj, arrays, seconds, check=None, out=None, *, with_headi
     drift = max_drift(arrays)
     if drift:
         lines.append("drift   " + ", ".join(f"{k} {v:.2e}" for k, v in drift.items()))
+    if getattr(p, "bound", None) is not None:  # a closed form keeps its integrals exactly
+        lines.append(f"bound   {p.bound.describe()}; a drift cannot show a phase error")
     if check is not None:
         lines.append(check.describe())
     if out is not None:
@@ -102,6 +104,7 @@ def main(argv: list[str] | None = None) -> int:
     start = time.perf_counter()
     out = args.out  # a Path (path_argument refuses an empty one), or None: out/<scene name>
     folder = None
+    p = None  # the plan, once made (a refusal after it names the closed forms it ruled out)
     with interruptible():
         try:
             scene = find(args.scene, force=args.force)
@@ -145,8 +148,12 @@ def main(argv: list[str] | None = None) -> int:
                 write(folder, arrays, text, plots=plots, extra=extra)
             except OSError as exc:
                 return fail(f"writing --out {out}: {exc.strerror or exc}")
-        except (SceneError, OutputError, RunStopped) as exc:
+        except (SceneError, OutputError) as exc:
             return fail(str(exc))
+        except RunStopped as exc:  # name the closed form the target ruled out, if one was
+            missed = p.missed if p is not None else None
+            return fail(str(exc) + (f" (not taken: the {'; the '.join(missed)})"
+                                    if missed and "closed form" not in str(exc) else ""))
         except KernelMissing as exc:
             return fail(str(exc), 3)
         except OSError as exc:

@@ -89,6 +89,7 @@ class Plan:
     accuracy: accuracy.Settings | None = None  # the calibrated settings (simulate.scene.accuracy)
     predicted_seconds: float | None = None  # the chosen candidate's predicted total (simulate.scene.cost)
     bound: bounds.Bound | None = None  # a closed form's error bound at the horizon (simulate.scene.bounds)
+    missed: list[str] = field(default_factory=list)  # closed forms whose bound misses the target
 
     def describe(self) -> str:
         """One paragraph: model, why, and what was ruled out."""
@@ -198,7 +199,7 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
         method = chosen.method if chosen else "closed form"
         return Plan(model, reason, reconstruct, method, Omega0, skipped, list(scene.notes),
                     detail=chosen.describe() if chosen else method, accuracy=chosen,
-                    compact=compact, costs=costs, predicted_seconds=predicted)
+                    compact=compact, costs=costs, predicted_seconds=predicted, missed=missed)
 
     if force_full:
         return make("full", "forced (cross-check)")
