@@ -92,14 +92,17 @@ def place_matplotlib_cache() -> None:
     """Before matplotlib is imported: its font cache goes to the ``matplotlib/`` subfolder of the
     cache folder (``MPLCONFIGDIR``, created private), not to ``~/.cache/matplotlib`` or, when that
     cannot be written, a new folder in the temporary directory at every run. A ``MPLCONFIGDIR``
-    the user set is kept; a cache folder that cannot be created leaves matplotlib's choice."""
+    the user set is kept; a cache folder that cannot be created or may not be trusted leaves
+    matplotlib's choice."""
     if os.environ.get("MPLCONFIGDIR") or "matplotlib" in sys.modules:
         return
     folder = cache_dir("matplotlib")
     try:
         folder.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
+        if unsafe_reason(folder.parent) is not None:  # nothing is created in an unsafe root
+            return
         folder.mkdir(exist_ok=True, mode=0o700)
     except OSError:
         return
-    if unsafe_reason(folder) is None and unsafe_reason(folder.parent) is None:
+    if unsafe_reason(folder) is None:
         os.environ["MPLCONFIGDIR"] = str(folder)

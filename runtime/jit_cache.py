@@ -182,8 +182,10 @@ def place_heyoka_cache(hy) -> str:
     folder = project_cache.cache_dir("heyoka-llvm")
     try:
         folder.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
-        folder.mkdir(exist_ok=True, mode=0o700)
-        unsafe = _chain_unsafe(folder)
+        reason = unsafe_reason(folder.parent)  # nothing is created in an unsafe root
+        if reason is None:
+            folder.mkdir(exist_ok=True, mode=0o700)
+        unsafe = _chain_unsafe(folder) if reason is None else (folder.parent, reason)
     except OSError as exc:
         unsafe = (folder, f"cannot be created ({exc.strerror or exc})")
     if unsafe is None:
@@ -281,6 +283,10 @@ def _store(path: Path, key: dict, obj, source) -> None:
         return
     try:
         path.parent.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
+        root_reason = unsafe_reason(path.parent.parent)
+        if root_reason is not None:  # nothing is created in an unsafe root
+            _refuse(path.parent.parent, root_reason)
+            return
         path.parent.mkdir(exist_ok=True, mode=0o700)
         unsafe = _chain_unsafe(path.parent)
         if unsafe is not None:
