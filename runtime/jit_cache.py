@@ -186,8 +186,12 @@ def place_heyoka_cache(hy) -> str:
         if reason is None:
             folder.mkdir(exist_ok=True, mode=0o700)
         unsafe = _chain_unsafe(folder) if reason is None else (folder.parent, reason)
-    except OSError as exc:
-        unsafe = (folder, f"cannot be created ({exc.strerror or exc})")
+    except OSError as exc:  # the same words as a store that fails: one warning for both
+        state.set_diskcache_enabled(False)
+        _warn(project_cache.cache_root(), f"cannot be written ({exc.strerror or exc})",
+              "running uncached")
+        _PLACED.append("")
+        return ""
     if unsafe is None:
         state.set_diskcache_path(str(folder))
         state.set_diskcache_enabled(True)

@@ -223,3 +223,21 @@ def test_a_group_writable_cache_is_warned_about_once(cache_root, monkeypatch):
     lines = [str(w.message) for w in record if issubclass(w.category, Warning)]
     assert len(lines) == 1 and "writable by group" in lines[0], lines
     assert fake.llvm_state.enabled is False
+
+
+def test_a_cache_variable_naming_a_file_is_one_warning_with_heyoka_too(tmp_path, monkeypatch):
+    """With heyoka loaded (its own cache is placed before the compile), a cache that cannot be
+    created is still one warning, the one a failed store gives."""
+    fake = type("hy", (), {"llvm_state": _FakeState()})
+    monkeypatch.setitem(__import__("sys").modules, "heyoka", fake)
+    target = tmp_path / "a-file"
+    target.write_text("mine")
+    monkeypatch.setenv(jit_cache.ENV, str(target))
+    jit_cache.forget_memory()
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always")
+        assert jit_cache.load_or_build(KEY, Builder())[2] == "cold compile"
+    lines = [str(w.message) for w in record]
+    assert len(lines) == 1 and "cannot be written" in lines[0], lines
+    assert fake.llvm_state.enabled is False
+    jit_cache.forget_memory()
