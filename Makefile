@@ -1,4 +1,4 @@
-# Every target installs what it needs into its own .venv first.
+# Every target installs what it needs into the one .venv of the checkout first.
 PYTHON ?= python3
 VENV := .venv
 PY := $(VENV)/bin/python

@@ -19,10 +19,13 @@ from pathlib import Path
 
 from chaplygin_nd.console import OneLineWarning
 
-__all__ = ["ENV", "CacheWarning", "cache_root", "cache_dir", "unsafe_reason"]
+__all__ = ["ENV", "CacheWarning", "cache_root", "cache_dir", "unsafe_reason", "first_refusal", "place_matplotlib_cache",
+           "forget_refusals"]
 
 #: The environment variable that moves the whole cache.
 ENV = "CHAPLYGIN_ND_CACHE"
+
+_REFUSED: set[tuple[str, str]] = set()
 
 
 class CacheWarning(OneLineWarning):
@@ -67,3 +70,39 @@ def unsafe_reason(path: Path) -> str | None:
         return (f"is writable by group or others (mode {stat.S_IMODE(st.st_mode):04o}); "
                 f"`chmod go-w {path}` makes it private")
     return None
+
+
+def first_refusal(path: Path, reason: str) -> bool:
+    """True the first time in this process that ``path`` is refused for ``reason``
+    (:func:`unsafe_reason`): every cache that meets an unsafe folder (compiled integrators,
+    heyoka's object code, evidence) asks, so the warning is given once, not once per cache."""
+    key = (str(path), reason)
+    if key in _REFUSED:
+        return False
+    _REFUSED.add(key)
+    return True
+
+
+def forget_refusals() -> None:
+    """Forget the refusals reported (for tests: a new cache folder, a new warning)."""
+    _REFUSED.clear()
+
+
+def place_matplotlib_cache() -> None:
+    """Before matplotlib is imported: its font cache goes to the ``matplotlib/`` subfolder of the
+    cache folder (``MPLCONFIGDIR``, created private), not to ``~/.cache/matplotlib`` or, when that
+    cannot be written, a new folder in the temporary directory at every run. A ``MPLCONFIGDIR``
+    the user set is kept; a cache folder that cannot be created or may not be trusted leaves
+    matplotlib's choice."""
+    if os.environ.get("MPLCONFIGDIR") or "matplotlib" in sys.modules:
+        return
+    folder = cache_dir("matplotlib")
+    try:
+        folder.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
+        if unsafe_reason(folder.parent) is not None:  # nothing is created in an unsafe root
+            return
+        folder.mkdir(exist_ok=True, mode=0o700)
+    except OSError:
+        return
+    if unsafe_reason(folder) is None:
+        os.environ["MPLCONFIGDIR"] = str(folder)

@@ -18,10 +18,16 @@ import their module only when chosen, so ``chaplygin --version`` imports neither
 
 from __future__ import annotations
 
+import errno
 import importlib
 import sys
 
 from chaplygin_nd import __version__
+
+#: Errors of the storage (full disk, quota, read-only, permissions, I/O) that a subcommand did not
+#: turn into its own one-line message: :func:`main` says them in one line too, never a traceback.
+STORAGE_ERRORS = frozenset({errno.ENOSPC, errno.EDQUOT, errno.EROFS, errno.EFBIG, errno.EIO,
+                            errno.EACCES, errno.EPERM})
 
 #: subcommand -> (module, its function ``f(argv) -> exit status`` that runs it, one-line help)
 COMMANDS = {
@@ -129,6 +135,10 @@ def main(argv: list[str] | None = None, *, program: bool = False) -> int:
         status = _main(argv)
     except KeyboardInterrupt:
         status = console.fail("interrupted", 130)
+    except BaseException:  # noqa: BLE001 - after a signal, whatever a library made of it
+        if signals.received() is None or isinstance(sys.exc_info()[1], SystemExit):
+            raise
+        status = console.fail("interrupted", 130)
     finally:
         if program:
             for sig in (signal.SIGINT, signal.SIGTERM):
@@ -193,7 +203,14 @@ def _main(argv: list[str] | None) -> int:
         return fail("chaplygin verify: takes no ids (use `chaplygin prove ID ...`)")
     module, function, _ = COMMANDS[name]
     run = getattr(importlib.import_module(module), function)  # Ctrl-C here: one line too (see main)
-    return int(run(rest) or 0)
+    try:
+        return int(run(rest) or 0)
+    except OSError as exc:
+        if exc.errno not in STORAGE_ERRORS:
+            raise
+        # every writer writes whole files or none (chaplygin_nd.writing): only the line is missing
+        where = f"{exc.filename}: " if exc.filename else ""
+        return fail(f"chaplygin {name}: {where}{exc.strerror or exc} (nothing was half-written)")
 
 
 def _is_option_value(args: list[str], value: str) -> bool:

@@ -36,7 +36,7 @@ from chaplygin_nd.signals import Interrupted, forget_received, received, take_si
 from chaplygin_nd.signals import handler as _raise
 
 __all__ = ["Interrupted", "say", "fail", "interruptible", "take_signals", "received",
-           "forget_received", "usable_backend", "ascii_text",
+           "forget_received", "usable_backend", "ascii_text", "shortlist",
            "OneLineParser", "path_argument", "OneLineWarning"]
 
 _ASCII = str.maketrans({"—": "-", "–": "-", "−": "-", "×": "x", "≤": "<=", "≥": ">=",
@@ -47,6 +47,14 @@ _ASCII = str.maketrans({"—": "-", "–": "-", "−": "-", "×": "x", "≤": "<
 BACKENDS = {"gtk3agg", "gtk3cairo", "gtk4agg", "gtk4cairo", "macosx", "nbagg", "notebook",
             "qtagg", "qtcairo", "qt5agg", "qt5cairo", "tkagg", "tkcairo", "webagg", "wx",
             "wxagg", "wxcairo", "agg", "cairo", "pdf", "pgf", "ps", "svg", "template", "inline"}
+
+
+def shortlist(items: list[str], shown: int = 5, width: int = 60) -> str:
+    """``items`` for a one-line message: the first ``shown`` (each cut at ``width`` characters)
+    and how many more, so that an error naming 5 000 unknown names stays one short line."""
+    cut = [i if len(i) <= width else i[:width - 3] + "..." for i in items[:shown]]
+    rest = len(items) - len(cut)
+    return "; ".join(cut) + (f" and {rest} more ({len(items)} in all)" if rest > 0 else "")
 
 
 def ascii_text(text: str) -> str:
@@ -109,7 +117,12 @@ def interruptible():
 
 
 def usable_backend() -> None:
-    """Replace an ``MPLBACKEND`` matplotlib would refuse by ``Agg`` (see the module docstring)."""
+    """Replace an ``MPLBACKEND`` matplotlib would refuse by ``Agg`` (see the module docstring),
+    and keep matplotlib's font cache in the project's cache folder
+    (:func:`chaplygin_nd.cache.place_matplotlib_cache`)."""
+    from chaplygin_nd.cache import place_matplotlib_cache
+
+    place_matplotlib_cache()
     name = os.environ.get("MPLBACKEND")
     if name is None or name.lower() in BACKENDS or name.startswith("module://"):
         return

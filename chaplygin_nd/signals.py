@@ -11,6 +11,12 @@ moment :func:`take_signals` has run (the ``chaplygin`` program's first statement
 * A signal whose exception cannot propagate (it landed in a weakref callback or a ``__del__``, where
   Python prints "Exception ignored in ..." with a traceback) is not printed: :func:`take_signals`
   installs an unraisable hook that raises it again in the main thread a moment later.
+* Once a signal was received, nothing the interrupt leaves behind is printed: an object it cut
+  half-way through its constructor can fail in its ``__del__`` (matplotlib's first figure builds
+  its mathtext grammar with pyparsing, outside any import: a ``Forward`` cut there says "no
+  attribute 'expr'"), and a library may turn the interrupt into another exception on its way out.
+  The unraisable hook drops the first; :func:`chaplygin_nd.cli.main` says ``interrupted`` for any
+  exception once a signal was received.
 * :func:`received` remembers the first signal, so none is lost even if something on the way
   swallows the exception; the program exits 128 + its number (130 Ctrl-C, 143 SIGTERM).
 """
@@ -83,6 +89,8 @@ def _unraisable(unraisable) -> None:
             _waiting.append(_received[0])
             _thread.start_new_thread(_again, (_received[0],))
         return
+    if _received:  # the debris of an interrupt: an object half-built when it landed
+        return  # (pyparsing's Forward.__del__: "no attribute 'expr'"); the run says `interrupted`
     _previous_hook(unraisable)
 
 

@@ -123,6 +123,10 @@ def _declared_ids() -> set[str]:
     return ids
 
 
+#: Unknown ids an error describes; the rest are counted.
+SHOWN = 5
+
+
 def resolve(ids: list[str]) -> list[str]:
     """The ledger ids named by ``ids`` (surrounding blanks stripped; each once, in the order first
     named), checked before any proof is imported; an unknown one raises ``KeyError`` with one line naming the nearest ids
@@ -133,6 +137,8 @@ def resolve(ids: list[str]) -> list[str]:
     lower: dict[str, list[str]] = {}
     for i in sorted(known):
         lower.setdefault(i.lower(), []).append(i)
+    from chaplygin_nd.console import shortlist
+
     out, bad = [], []
     for raw in ids:
         name = raw.strip()
@@ -140,10 +146,15 @@ def resolve(ids: list[str]) -> list[str]:
             if name not in out:
                 out.append(name)
             continue
+        if len(bad) >= SHOWN:  # counted, not described: the message stays one short line
+            bad.append(raw)
+            continue
         near = lower.get(name.lower(), []) or [
-            i for k in difflib.get_close_matches(name.lower(), list(lower), n=3, cutoff=0.6)
+            i for k in difflib.get_close_matches(name.lower()[:200], list(lower), n=3, cutoff=0.6)
             for i in lower[k]]
-        bad.append(f"{raw!r}" + (f" (did you mean {', '.join(near[:3])}?)" if near else ""))
+        shown = repr(raw) if len(raw) <= 60 else repr(raw[:57]) + "..."
+        bad.append(shown + (f" (did you mean {', '.join(near[:3])}?)" if near else ""))
     if bad:
-        raise KeyError(f"unknown ledger id {'; '.join(bad)}; `chaplygin prove --list` lists them")
+        raise KeyError(f"unknown ledger id {shortlist(bad, SHOWN, width=200)}; "
+                       "`chaplygin prove --list` lists them")
     return out

@@ -129,7 +129,9 @@ def select(ids: Sequence[str] = ()) -> list[Row]:
     by_id = {r.id: r for r in rows}
     unknown = [i for i in ids if i not in by_id]
     if unknown:
-        raise KeyError(f"unknown ledger id(s): {', '.join(unknown)}")
+        from chaplygin_nd.console import shortlist
+
+        raise KeyError(f"unknown ledger id(s): {shortlist(unknown)}")
     return [by_id[i] for i in ids]
 
 

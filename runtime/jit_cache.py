@@ -26,10 +26,14 @@ Every warning names the path and the variable ``CHAPLYGIN_ND_CACHE`` that moves 
 given once per process and path. Folders are created private (0700), files 0600, writes atomic
 (a temporary file in the same folder, then ``os.replace``).
 
-heyoka >= 7 also keeps its own cache of compiled object code (``~/.cache/heyoka``), keyed by the
-LLVM IR; a hit there still rebuilds the decomposition and the IR. Measured (2 shared cores):
-n = 4 full field, tol 1e-11 — construction with a heyoka disk-cache hit 54 ms, our unpickle 17 ms;
-a cold compile is 1–20 s. Both caches are left on.
+heyoka >= 7.10 also keeps its own cache of compiled object code (an SQLite file ``cache.db``, by
+default in ``~/.cache/heyoka``), keyed by the LLVM IR; a hit there still rebuilds the decomposition
+and the IR. Measured (2 shared cores): n = 4 full field, tol 1e-11 — construction with a heyoka
+disk-cache hit 54 ms, our unpickle 17 ms; a cold compile is 1–20 s. Both caches are on, and both
+live in the project's cache folder: before the first compile :func:`place_heyoka_cache` points
+heyoka's at ``heyoka-llvm/`` there (``llvm_state.set_diskcache_path``), or turns it off
+(``set_diskcache_enabled(False)``) when that folder may not be trusted or created — heyoka loads
+and runs the object code it finds there, so it gets the trust rule of our own entries.
 
 Folder: the ``heyoka/`` subfolder of the project's one cache folder (:mod:`chaplygin_nd.cache`).
 """
@@ -39,6 +43,7 @@ from __future__ import annotations
 import hashlib
 import json
 import pickle
+import sys
 import time
 import warnings
 from collections.abc import Callable
@@ -48,7 +53,7 @@ from pathlib import Path
 from chaplygin_nd import cache as project_cache
 from chaplygin_nd.writing import write_atomic
 
-__all__ = ["cache_dir", "load_or_build", "memory_hit", "CacheWarning", "code_version", "forget_memory",
+__all__ = ["cache_dir", "load_or_build", "place_heyoka_cache", "memory_hit", "CacheWarning", "code_version", "forget_memory",
            "cache_state", "unsafe_reason"]
 
 ENV = project_cache.ENV
@@ -78,7 +83,7 @@ def code_version() -> str:
     the file's compiled objects nor leaves its own for them. Cached: whoever replaces code calls
     ``code_version.cache_clear()`` (the mutation tools clear every cache)."""
     import importlib.util
-    import sys
+
     from types import FunctionType
 
     h = hashlib.sha256()
@@ -96,6 +101,17 @@ def code_version() -> str:
                 h.update(f"{attr}:{code.co_filename}".encode() + code.co_code
                          + repr(code.co_names).encode())
     return h.hexdigest()[:16]
+
+
+def _refuse(where: Path, reason: str) -> None:
+    """The one warning for a cache folder or file that may not be trusted: given once per process
+    and place, whether reading, writing or placing heyoka's own cache met it first, or the
+    evidence cache (:func:`chaplygin_nd.cache.first_refusal`)."""
+    if not project_cache.first_refusal(where, reason):
+        return
+    _warn(where, f"{reason}; refused (nothing is read from or written to a folder another user "
+                 "could write: make it private, chmod 700, owned by you)",
+          "running uncached, heyoka's own object-code cache off")
 
 
 def _warn(path: Path, problem: str, what: str) -> None:
@@ -148,6 +164,45 @@ def cache_state(key: dict, use_disk: bool = True) -> str:
     return "cold"
 
 
+_PLACED: list[str] = []
+
+
+def place_heyoka_cache(hy) -> str:
+    """Put heyoka's own disk cache of object code (module docstring) in the ``heyoka-llvm/``
+    subfolder of the project's cache folder, created private (0700), or turn it off when that
+    folder cannot be created or may not be trusted (:func:`unsafe_reason` on it and on the cache
+    root); once per process. Returns the path used, or ``""`` when turned off. Never raises
+    because of the cache."""
+    if _PLACED:
+        return _PLACED[0]
+    state = getattr(hy, "llvm_state", None)
+    if state is None or not hasattr(state, "set_diskcache_path"):  # heyoka < 7.10: no disk cache
+        _PLACED.append("")
+        return ""
+    folder = project_cache.cache_dir("heyoka-llvm")
+    try:
+        folder.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
+        reason = unsafe_reason(folder.parent)  # nothing is created in an unsafe root
+        if reason is None:
+            folder.mkdir(exist_ok=True, mode=0o700)
+        unsafe = _chain_unsafe(folder) if reason is None else (folder.parent, reason)
+    except OSError as exc:  # the same words as a store that fails: one warning for both
+        state.set_diskcache_enabled(False)
+        _warn(project_cache.cache_root(), f"cannot be written ({exc.strerror or exc})",
+              "running uncached")
+        _PLACED.append("")
+        return ""
+    if unsafe is None:
+        state.set_diskcache_path(str(folder))
+        state.set_diskcache_enabled(True)
+        _PLACED.append(str(folder))
+    else:
+        state.set_diskcache_enabled(False)
+        _refuse(*unsafe)
+        _PLACED.append("")
+    return _PLACED[0]
+
+
 def memory_hit(token: tuple):
     """The object stored in memory under ``token`` (see :func:`load_or_build`), or None: the
     cheapest warm lookup, before a key is even made."""
@@ -185,6 +240,8 @@ def _load_or_build(key, mkey, build, use_disk, source, expect):
             _MEMORY[mkey] = obj
             return obj, time.perf_counter() - start, "warm load"
         start = time.perf_counter()
+    if "heyoka" in sys.modules:  # imported by whoever builds: its own cache placed before a compile
+        place_heyoka_cache(sys.modules["heyoka"])
     obj = build()
     seconds = time.perf_counter() - start
     if use_disk:
@@ -203,8 +260,7 @@ def _load(path: Path, key: dict, expect: tuple[type, ...]):
     unsafe = _chain_unsafe(path)
     if unsafe is not None:
         where, reason = unsafe
-        _warn(where, f"{reason}; refused (nothing is unpickled from a folder another user could "
-                     "write; make it private: chmod 700, owned by you)", "running uncached")
+        _refuse(where, reason)
         return None
     problem = None
     try:
@@ -231,12 +287,15 @@ def _store(path: Path, key: dict, obj, source) -> None:
         return
     try:
         path.parent.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
+        root_reason = unsafe_reason(path.parent.parent)
+        if root_reason is not None:  # nothing is created in an unsafe root
+            _refuse(path.parent.parent, root_reason)
+            return
         path.parent.mkdir(exist_ok=True, mode=0o700)
         unsafe = _chain_unsafe(path.parent)
         if unsafe is not None:
             where, reason = unsafe
-            _warn(where, f"{reason}; refused (the cache folder must be private: chmod 700, owned "
-                         "by you)", "running uncached")
+            _refuse(where, reason)
             return
         _write_atomic(path, payload)
     except OSError as exc:
@@ -248,4 +307,6 @@ def forget_memory() -> None:
     """Drop the in-process copies and the record of warnings given (for tests and benchmarks)."""
     _MEMORY.clear()
     _WARNED.clear()
+    _PLACED.clear()
+    project_cache.forget_refusals()
 

@@ -182,3 +182,62 @@ def test_unwritable_cache_warns_once_and_runs_uncached(cache_root, monkeypatch, 
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         assert jit_cache.load_or_build(dict(KEY, tol="1e-12"), Builder())[2] == "cold compile"
+
+
+class _FakeState:
+    """Stands for ``heyoka.llvm_state``'s disk-cache controls (heyoka >= 7.10)."""
+
+    def __init__(self):
+        self.path, self.enabled = None, True
+
+    def set_diskcache_path(self, path):
+        self.path = path
+
+    def set_diskcache_enabled(self, flag):
+        self.enabled = flag
+
+
+def test_heyokas_own_cache_lives_in_the_project_cache(cache_root, monkeypatch):
+    """heyoka's object-code cache goes to heyoka-llvm/ in the project's folder, private."""
+    fake = type("hy", (), {"llvm_state": _FakeState()})
+    monkeypatch.setitem(__import__("sys").modules, "heyoka", fake)
+    jit_cache.load_or_build(KEY, Builder())
+    assert fake.llvm_state.path == str(cache_root / "heyoka-llvm") and fake.llvm_state.enabled
+    assert stat.S_IMODE((cache_root / "heyoka-llvm").stat().st_mode) & 0o077 == 0
+
+
+def test_a_group_writable_cache_is_warned_about_once(cache_root, monkeypatch):
+    """Placing heyoka's cache, storing an entry and the evidence cache all meet the same unsafe
+    root: one warning in all, and heyoka's own cache is turned off."""
+    from chaplygin_nd.simulate.analysis import result_cache
+
+    fake = type("hy", (), {"llvm_state": _FakeState()})
+    monkeypatch.setitem(__import__("sys").modules, "heyoka", fake)
+    cache_root.mkdir(mode=0o700)
+    os.chmod(cache_root, 0o770)
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always")
+        jit_cache.load_or_build(KEY, Builder())
+        jit_cache.load_or_build(dict(KEY, tol="1e-12"), Builder())
+        assert result_cache.private_folder("evidence") is None
+    lines = [str(w.message) for w in record if issubclass(w.category, Warning)]
+    assert len(lines) == 1 and "writable by group" in lines[0], lines
+    assert fake.llvm_state.enabled is False
+
+
+def test_a_cache_variable_naming_a_file_is_one_warning_with_heyoka_too(tmp_path, monkeypatch):
+    """With heyoka loaded (its own cache is placed before the compile), a cache that cannot be
+    created is still one warning, the one a failed store gives."""
+    fake = type("hy", (), {"llvm_state": _FakeState()})
+    monkeypatch.setitem(__import__("sys").modules, "heyoka", fake)
+    target = tmp_path / "a-file"
+    target.write_text("mine")
+    monkeypatch.setenv(jit_cache.ENV, str(target))
+    jit_cache.forget_memory()
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always")
+        assert jit_cache.load_or_build(KEY, Builder())[2] == "cold compile"
+    lines = [str(w.message) for w in record]
+    assert len(lines) == 1 and "cannot be written" in lines[0], lines
+    assert fake.llvm_state.enabled is False
+    jit_cache.forget_memory()

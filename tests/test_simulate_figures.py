@@ -202,3 +202,37 @@ def test_no_plots_leaves_out_the_poincare_figure_too(tmp_path, capsys, no_plots)
     assert (out / "x.csv").exists()
     line = next(s for s in capsys.readouterr().out.splitlines() if s.startswith("poincare"))
     assert ("not drawn" in line) == no_plots and ("poincare.png" in line) != no_plots
+
+
+def _inside(fig) -> bool:
+    """Whether everything ``fig`` draws (texts, legends, tick labels shown) lies on the canvas."""
+    fig.canvas.draw()
+    box = fig.get_tightbbox(fig.canvas.get_renderer())  # inches
+    w, h = fig.get_size_inches()
+    return box.x0 >= 0 and box.y0 >= 0 and box.x1 <= w and box.y1 <= h
+
+
+@pytest.mark.parametrize("name,arr", [
+    ("drift.energy", 6e-17 * (1 + np.sin(np.arange(41))[:, None] ** 2)),
+    ("drift.gamma_norm2", 2.2e-16 * np.abs(np.cos(np.arange(41)))[:, None] + 1e-17),
+    ("drift.p", 1e-16 * np.abs(np.sin(np.arange(41 * 12))).reshape(41, 1, 6, 2) + 1e-18),
+    ("x", np.sin(T)[:, None]),
+    ("M", skew_series(6)),
+])
+def test_no_label_or_legend_is_cut_at_an_edge(tmp_path, name, arr):
+    """What plot() saves has every text inside the canvas (a log axis' wide tick labels pushed
+    the y-label out at the left; long legend entries ran out at the right)."""
+    from chaplygin_nd.simulate.scene import figures
+
+    fig = figure(name, T, arr)
+    figures._fit(fig)
+    assert _inside(fig)
+
+
+def test_numbers_on_dark_zeta_cells_are_white():
+    Z = np.array([[[0.0, 1.0, -0.05], [-1.0, 0.0, 0.5], [0.05, -0.5, 0.0]]])
+    fig = figure("zeta", T, Z)
+    ax = fig.axes[0]
+    colours = {t.get_text(): matplotlib.colors.to_hex(t.get_color()) for t in ax.texts}
+    assert colours["1"] == colours["-1"] == "#ffffff"  # the darkest red and blue cells
+    assert colours["0"] == colours["-0.05"] == "#000000"  # near-white cells

@@ -209,3 +209,31 @@ def test_a_killed_runs_temporary_files_are_its_own(tmp_path, scene, capsys):
     assert not [p for p in out.iterdir() if ".tmp" in p.name]
     (out / ".thesis.tex.abc.tmp.tex").write_text("not ours")  # not a name in the manifest
     _refused(capsys, scene, out, "thesis")
+
+
+def test_the_lock_lives_beside_the_folder_and_goes_with_the_run(tmp_path):
+    """The lock is a hidden sibling while a run holds it (a second claim is refused), and it is
+    removed when the run ends; missing parents made for it are removed again if left empty."""
+    from chaplygin_nd.simulate.scene.outdir import lock_file
+
+    out = tmp_path / "deep" / "er" / "result"
+    first = claim(out, "s")
+    lock = lock_file(out)
+    assert lock.parent == tmp_path / "deep" / "er" and lock.read_text().split()[0] == str(os.getpid())
+    with pytest.raises(OutputError, match="another run is writing"):
+        claim(out, "s")
+    first.release()
+    assert sorted(tmp_path.iterdir()) == []  # no lock, no empty parents
+    again = claim(out, "s")  # free again
+    again.write({"a.txt": lambda p: p.write_text("x")})
+    assert sorted(p.name for p in out.parent.iterdir()) == ["result"]
+
+
+def test_a_run_refused_after_the_claim_leaves_no_lock(tmp_path, capsys):
+    """A run refused after --out was claimed (at T = 1e12 the closed form's bound misses the
+    target and an integrator would take years): exit 2, and nothing is left."""
+    scene = tmp_path / "s.toml"
+    scene.write_text(SCENE.replace("t_end = 1.0", "t_end = 1e12"))
+    out = tmp_path / "o"
+    assert cli.main([str(scene), "--out", str(out), "--no-plots"]) == 2
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["s.toml"], capsys.readouterr().err

@@ -79,12 +79,6 @@ def read_entry(path: Path, parse):
         return None
 
 
-def _unsafe(path: Path) -> str | None:
-    """Why the folder ``path`` must not be trusted, or None (:func:`chaplygin_nd.cache.unsafe_reason`)."""
-    reason = project_cache.unsafe_reason(path)
-    return None if reason is None else f"{path} {reason}"
-
-
 def private_folder(kind: str) -> Path | None:
     """The subfolder ``kind`` of the project's cache folder, created private (0700) if needed;
     None (after one warning) when it cannot be created or written or is not private."""
@@ -96,9 +90,10 @@ def private_folder(kind: str) -> Path | None:
                 warn_once(f"the cache folder {folder} is not a folder; running uncached")
                 return None
             folder.mkdir(mode=0o700, parents=True, exist_ok=True)
-            problem = _unsafe(folder)
-            if problem:
-                warn_once(f"the cache folder {problem}: refused, running uncached")
+            reason = project_cache.unsafe_reason(folder)
+            if reason is not None:
+                if project_cache.first_refusal(folder, reason):  # once, whichever cache met it
+                    warn_once(f"the cache folder {folder} {reason}: refused, running uncached")
                 return None
         if not os.access(sub, os.W_OK | os.X_OK):
             warn_once(f"the cache folder {sub} is not writable; running uncached")

@@ -20,6 +20,7 @@ import numpy as np
 
 __all__ = [
     "so_dim", "pairs", "vec", "unvec", "wedge", "commutator", "killing", "expm_skew_t", "expm_integral",
+    "skew_modes",
     "hat", "split4", "join4", "rotation_to", "expm_small", "reduced_invariants",
 ]
 
@@ -82,15 +83,34 @@ def _spectral(X: np.ndarray):
     return lam, V
 
 
+def skew_modes(X: np.ndarray):
+    r"""The modes of one real skew ``X`` as $e^{Xt}$ uses them: ``(P0, lam, V)`` with
+    $P_0$ the real projector on the eigenvalues of $iX$ at most ``4 eps max|lambda|`` in size
+    (exactly 0 for a real skew matrix of odd size or deficient rank; rounding makes them
+    $\pm\varepsilon\lVert X\rVert$), and the positive eigenvalues ``lam`` with their eigenvectors ``V``.
+    The negative ones are taken as $-\lambda$ with $\bar v$, as they are for a real $X$; so
+
+    .. math:: e^{Xt} = P_0 + 2\,\mathrm{Re}\sum_{\lambda > 0} e^{-i\lambda t}\,v v^*
+
+    is real and orthogonal to rounding at every $t$ (a zero eigenvalue computed as $10^{-17}$
+    would otherwise turn by $10^{-5}$ rad at $t = 10^{12}$ and break orthogonality)."""
+    lam, V = _spectral(X)
+    tol = 4 * np.finfo(float).eps * (float(np.max(np.abs(lam))) if lam.size else 0.0)
+    zero = np.abs(lam) <= tol
+    P0 = np.real(V[:, zero] @ V[:, zero].conj().T)
+    pos = lam > tol
+    return P0, lam[pos], V[:, pos]
+
+
 def expm_skew_t(X: np.ndarray, t: np.ndarray) -> np.ndarray:
     r"""$e^{Xt}$ for one skew ``X`` (``(n, n)``) at every time of ``t``; shape ``(len(t), n, n)``.
 
-    From one Hermitian eigendecomposition $iX = V\Lambda V^*$: $e^{Xt} = Ve^{-i\Lambda t}V^*$,
-    orthogonal to rounding for every $t$ (no scaling and squaring, so no error growth with
-    $\|Xt\|$ beyond the phase error $\varepsilon\,|\lambda| t$ inherent in $t$)."""
-    lam, V = _spectral(X)
+    From one Hermitian eigendecomposition $iX = V\Lambda V^*$ paired as a real matrix needs
+    (:func:`skew_modes`): orthogonal to rounding for every $t$ (no scaling and squaring, so no
+    error growth with $\|Xt\|$ beyond the phase error $\varepsilon\,|\lambda| t$ inherent in $t$)."""
+    P0, lam, V = skew_modes(X)
     phase = np.exp(-1j * np.outer(np.asarray(t, dtype=float), lam))
-    return np.real(np.einsum("ik,tk,jk->tij", V, phase, V.conj()))
+    return P0 + 2 * np.real(np.einsum("ik,tk,jk->tij", V, phase, V.conj()))
 
 
 def expm_small(X: np.ndarray) -> np.ndarray:
@@ -119,13 +139,14 @@ def expm_small(X: np.ndarray) -> np.ndarray:
 
 def expm_integral(W: np.ndarray, v: np.ndarray, t: np.ndarray) -> np.ndarray:
     r"""$\int_0^{t} e^{Ws}\,ds\; v$ for one skew ``W`` (``(n, n)``), ``v`` (``(n,)``), at each time of
-    ``t``; returns ``(len(t), n)``. With $iW = V\Lambda V^*$: $\int_0^te^{-i\lambda s}ds =
-    t\,e^{-i\lambda t/2}\operatorname{sinc}(\lambda t/2\pi)$ (no $0/0$ at $\lambda = 0$)."""
-    lam, V = _spectral(W)
+    ``t``; returns ``(len(t), n)``. With the modes of :func:`skew_modes`: $tP_0v$ plus, per
+    $\lambda > 0$, $2\,\mathrm{Re}\,\int_0^te^{-i\lambda s}ds\,vv^*$, $\int_0^te^{-i\lambda s}ds =
+    t\,e^{-i\lambda t/2}\operatorname{sinc}(\lambda t/2\pi)$ (no $0/0$ at small $\lambda$)."""
+    P0, lam, V = skew_modes(W)
     t = np.asarray(t, dtype=float)
     lt = np.outer(t, lam)
     weight = t[:, None] * np.exp(-0.5j * lt) * np.sinc(lt / (2 * np.pi))
-    return np.real(np.einsum("ik,tk,jk,j->ti", V, weight, V.conj(), v))
+    return t[:, None] * (P0 @ v) + 2 * np.real(np.einsum("ik,tk,jk,j->ti", V, weight, V.conj(), v))
 
 
 def hat(w: np.ndarray) -> np.ndarray:

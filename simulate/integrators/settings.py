@@ -19,10 +19,14 @@ from collections import UserDict
 from dataclasses import dataclass
 
 __all__ = ["Settings", "Tolerance", "Step", "Digits", "Calibration", "SAFETY", "MEASURED",
-           "ROUNDING", "FLOORS", "CALIBRATED_SPAN", "tolerance", "step", "digits"]
+           "ROUNDING", "FLOORS", "CALIBRATED_SPAN", "FLOAT64_REACH", "tolerance", "step", "digits"]
 
 #: Factor between the measured worst ratio and the ratio a run assumes.
 SAFETY = 4.0
+#: Smallest relative error float64 outputs can carry: the arrays are stored in float64 (half an
+#: ulp) and the derived outputs (Omega, the integrals) are computed in it (a few ulps more). A
+#: target below it is refused (simulate.scene.spec); no method promises less.
+FLOAT64_REACH = 4 * 2.0 ** -52
 #: Longest horizon of the calibration (tori4d cut to T = 128); beyond it K grows linearly with the
 #: span (measured: tori4d, DOP853 at the T = 128 calibration missed by 1.9x at T = 2048).
 CALIBRATED_SPAN = 128.0
@@ -156,12 +160,16 @@ def step_error(s: Settings, span: float = 1.0) -> float:
     return MEASURED[s.method] * s.h ** 4 * span
 
 
-def digits(method: str, target: float, least: int) -> Digits:
-    """max(least, digits of the target + 6) decimal digits."""
-    return Digits(method, target, True, dps=max(least, math.ceil(-math.log10(target)) + 6))
+def digits(method: str, target: float, least: int, span: float = 1.0) -> Digits:
+    """max(least, digits of the target + 6, plus the digits the horizon costs: log10 of
+    span/CALIBRATED_SPAN past the calibrated horizon) decimal digits."""
+    longer = math.ceil(math.log10(span / CALIBRATED_SPAN)) if span > CALIBRATED_SPAN else 0
+    return Digits(method, target, True,
+                  dps=max(least, math.ceil(-math.log10(target)) + 6 + longer))
 
 
 def digits_error(s: Settings, span: float = 1.0) -> float:
-    """10^(2 - dps)."""
+    """10^(2 - dps), times span/CALIBRATED_SPAN past the calibrated horizon (the error of a phase
+    grows linearly in time, as for the other methods)."""
     assert isinstance(s, Digits)
-    return 10.0 ** (-s.dps + 2)
+    return 10.0 ** (-s.dps + 2) * max(1.0, span / CALIBRATED_SPAN)

@@ -205,7 +205,7 @@ def _run(f, y0, t, s: Digits, *, checked, progress=None, compact=None) -> Soluti
 REFERENCE = register(Integrator(
     "reference", Digits, _run,
     calibrate=lambda target, span, step=0.01, dps=30, precision="double":
-        settings.digits("reference", target, dps),
+        settings.digits("reference", target, dps, span),
     error=settings.digits_error,
     describe=lambda s: f"mpmath Taylor, {s.dps} digits",
     reduced=False, auto=2, reference=2))  # acts on (M, gamma) only

@@ -28,17 +28,22 @@ against heyoka in ``real128`` at tolerance $10^{-28}$. A run uses
 :class:`Tolerance`, :class:`Step`, :class:`Digits`; each integrator's calibration is registered in
 :mod:`simulate.integrators.registry`, its constants are :mod:`simulate.integrators.settings`); for ``method = "auto"``
 the planner tries heyoka, then DOP853, then the mpmath Taylor method, and takes the first that
-honours the target. A method the scene *names* runs even when it cannot honour the target (the
+honours the target. No method promises less than :data:`FLOAT64_REACH` (4 ulps, 8.9e-16): the
+outputs are float64 arrays whatever the arithmetic of the run (heyoka's ``real128``, the mpmath
+Taylor method), and a target below it is refused when the scene is read. A method the scene *names* runs even when it cannot honour the target (the
 plan line says what it promises instead); a method chosen automatically never does — when none
 honours the target the run is refused (:class:`Unattainable`, exit 2).
 """
 
 from __future__ import annotations
 
+import dataclasses
+
 from chaplygin_nd.simulate.integrators import registry
 from chaplygin_nd.simulate.integrators.heyoka_taylor import WITHOUT_HEYOKA
 from chaplygin_nd.simulate.integrators.settings import (
     CALIBRATED_SPAN,
+    FLOAT64_REACH,
     FLOORS,
     MEASURED,
     ROUNDING,
@@ -75,7 +80,11 @@ def choose(method: str, target: float, span: float, step: float = 0.01, dps: int
     :mod:`simulate.integrators.registry`) for relative error ``target`` over a time span ``span``
     (rules in the module docstring). Domain: the integrators of eq:motion-general and
     eq:red-system; ``0 < target < 1``."""
-    return registry.get(method).calibrate(target, span, step=step, dps=dps, precision=precision)
+    s = registry.get(method).calibrate(target, span, step=step, dps=dps, precision=precision)
+    if s.promised < FLOAT64_REACH:  # the outputs are float64 arrays, whatever the arithmetic
+        s = dataclasses.replace(s, promised=FLOAT64_REACH,
+                                honoured=s.honoured and target >= FLOAT64_REACH)
+    return s
 
 
 def automatic(target: float, span: float, dps: int, reduced: bool) -> Settings:

@@ -76,6 +76,7 @@ def main(argv: list[str] | None = None) -> int:
     start = time.perf_counter()
     out = args.out  # a Path (path_argument refuses an empty one), or None: out/<scene name>
     folder = None
+    p = None  # the plan, once made (a refusal after it names the closed forms it ruled out)
     with interruptible():
         try:
             scene = find(args.scene, force=args.force)
@@ -119,8 +120,12 @@ def main(argv: list[str] | None = None) -> int:
                 write(folder, arrays, text, plots=plots, extra=extra)
             except OSError as exc:
                 return fail(f"writing --out {out}: {exc.strerror or exc}")
-        except (SceneError, OutputError, RunStopped) as exc:
+        except (SceneError, OutputError) as exc:
             return fail(str(exc))
+        except RunStopped as exc:  # name the closed form the target ruled out, if one was
+            missed = p.missed if p is not None else None
+            return fail(str(exc) + (f" (not taken: the {'; the '.join(missed)})"
+                                    if missed and "closed form" not in str(exc) else ""))
         except KernelMissing as exc:
             return fail(str(exc), 3)
         except OSError as exc:

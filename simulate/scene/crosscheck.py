@@ -1,8 +1,8 @@
 r"""``--cross-check``: judge a run against a reference at least 100 times more accurate.
 
 The run promises a relative error ``promised`` (:mod:`simulate.scene.accuracy`: ``accuracy.target``, or
-what a method the scene named reaches when it cannot honour the target; ``target`` for a closed
-form). The reference integrates the full system eq:motion-general with the first of
+what a method the scene named reaches when it cannot honour the target; for a closed form its
+bound at the horizon, :mod:`simulate.scene.bounds`). The reference integrates the full system eq:motion-general with the first of
 
 1. DOP853, 2. heyoka in double, 3. the mpmath Taylor method (:mod:`simulate.integrators.taylor`,
    an independent route to $L_\gamma^{-1}$, at the digits the target needs plus 6)
@@ -41,7 +41,9 @@ MARGIN = 100.0
 
 def promised(scene, main_plan) -> float:
     """The relative error the run stands for (see the module docstring)."""
-    return main_plan.accuracy.promised if main_plan.accuracy is not None else scene.target
+    if main_plan.accuracy is not None:
+        return main_plan.accuracy.promised
+    return main_plan.bound.value if main_plan.bound is not None else scene.target
 
 
 def reference_settings(scene, main_plan) -> accuracy.Settings:

@@ -336,8 +336,11 @@ def _zeta_figure(plt, arr):
     lim = float(np.max(np.abs(Z))) or 1.0
     im = ax.imshow(Z, cmap="RdBu_r", vmin=-lim, vmax=lim)
     for i in range(n):
-        for j in range(n):
-            ax.text(j, i, f"{Z[i, j]:.3g}", ha="center", va="center", fontsize=8)
+        for j in range(n):  # white on dark cells, black on light ones (relative luminance)
+            r, g, b, _ = im.cmap(im.norm(Z[i, j]))
+            dark = 0.2126 * r + 0.7152 * g + 0.0722 * b < 0.45
+            ax.text(j, i, f"{Z[i, j]:.3g}", ha="center", va="center", fontsize=8,
+                    color="white" if dark else "black")
     ax.set_xticks(range(n), [str(j + 1) for j in range(n)])
     ax.set_yticks(range(n), [str(i + 1) for i in range(n)])
     ax.set_xlabel("column j")
@@ -392,11 +395,36 @@ def figure(name: str, t: np.ndarray, arr: np.ndarray):
     return draw(_pyplot(), name, t, arr)
 
 
+def _fit(fig, pad: float = 0.08) -> None:
+    r"""Grow a fixed-layout figure (:func:`_fixed_layout`) by whatever its texts overflow — a
+    y-label pushed left by wide log-axis tick labels ($6\times10^{-17}$), a legend with long
+    entries — keeping every axes' size in inches, so nothing is cut at an edge. Constrained
+    layouts fit themselves."""
+    if fig.get_layout_engine() is not None:
+        return
+    box = fig.get_tightbbox(fig.canvas.get_renderer())  # inches
+    w, h = fig.get_size_inches()
+    left, right = max(0.0, pad - box.x0), max(0.0, box.x1 - (w - pad))
+    bottom, top = max(0.0, pad - box.y0), max(0.0, box.y1 - (h - pad))
+    if not (left or right or bottom or top):
+        return
+    sp = fig.subplotpars
+    W, H = w + left + right, h + bottom + top
+    edges = dict(left=(sp.left * w + left) / W, right=(sp.right * w + left) / W,
+                 bottom=(sp.bottom * h + bottom) / H, top=(sp.top * h + bottom) / H)
+    fig.set_size_inches(W, H)
+    fig.subplots_adjust(**edges)
+    for text in fig.texts:  # the suptitle: same height above the axes
+        if text is getattr(fig, "_suptitle", None):
+            text.set_y(1 - (1 - text.get_position()[1]) * h / H)
+
+
 def plot(path: str | Path, t: np.ndarray, arr: np.ndarray, name: str) -> None:
-    """Draw :func:`figure` and save it as a PNG at ``path``."""
+    """Draw :func:`figure`, fit it (:func:`_fit`) and save it as a PNG at ``path``."""
     plt = _pyplot()
     fig = figure(name, t, arr)
     try:
+        _fit(fig)
         fig.savefig(path, dpi=100, pil_kwargs={"compress_level": 1})  # zlib level 6: 2x the encode time
     finally:
         plt.close(fig)

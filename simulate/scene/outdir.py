@@ -10,9 +10,13 @@ nothing):
   (``/dev/null``), a folder holding files the program did not write (a user's ``thesis.tex``,
   or ``.`` with its contents), a folder that belongs to another scene, a read-only folder, a path
   under an existing file, a read-only parent, a name longer than the file system allows;
-* one run at a time: :func:`claim` takes an exclusive lock keyed by the folder's real path (a
-  file in a private folder of the temporary directory, never in the user's folders); a second run
-  into the same folder is refused with one line while the first holds it.
+* one run at a time: :func:`claim` takes an exclusive lock keyed by the folder's real path: a
+  hidden file ``.NAME.chaplygin-lock`` beside the folder (where the staging sibling goes too), or,
+  when that parent is read-only, a ``flock`` on the existing folder itself (no file at all). The
+  lock file is removed when the run ends, written or refused (nothing is left outside the output
+  folder and the project's cache); a second run into the same folder is refused with one line
+  while the first holds it. The place depends only on the parent's writability, so every run
+  into one folder looks in the same place whatever its environment (``TMPDIR``, the cache).
 
 Writes (:meth:`OutputFolder.write`), whole or nothing:
 
@@ -37,7 +41,6 @@ import ctypes
 import ctypes.util
 import errno
 import fcntl
-import hashlib
 import json
 import os
 import tempfile
@@ -124,12 +127,15 @@ def _exchange(a: Path, b: Path) -> bool:
     raise OSError(err, os.strerror(err), str(b))
 
 
+LOCK = ".chaplygin-lock"
+
+
 def lock_file(path: str | Path) -> Path:
-    """The file whose exclusive ``flock`` marks a run writing into the output folder ``path``
-    (keyed by its real path); while held it holds ``"<pid> <real path>"``."""
-    real = os.path.realpath(path)
-    folder = Path(tempfile.gettempdir()) / f"chaplygin-nd-locks-{os.getuid()}"
-    return folder / (hashlib.sha256(os.fsencode(real)).hexdigest()[:24] + ".lock")
+    """The file whose exclusive ``flock`` marks a run writing into the output folder ``path``: a
+    hidden sibling of its real path (module docstring); while held it holds ``"<pid> <real
+    path>"``, and it is removed when the run ends."""
+    real = Path(os.path.realpath(path))
+    return real.parent / f".{real.name}{LOCK}"
 
 
 class _Lock:
@@ -137,28 +143,73 @@ class _Lock:
 
     def __init__(self, path: Path, given: str):
         real = os.path.realpath(path)
-        self.file = lock_file(path)
-        folder = self.file.parent
-        folder.mkdir(mode=0o700, exist_ok=True)
-        if folder.stat().st_uid != os.getuid() or folder.is_symlink():
-            raise OutputError(f"--out {given}: the lock folder {folder} belongs to another user; "
-                              "remove it or set TMPDIR")
-        self.fd: int | None = os.open(self.file, os.O_RDWR | os.O_CREAT, 0o600)
+        self.file: Path | None = lock_file(path)
+        self.fd: int | None = None
+        self.created: list[Path] = []  # missing parents made for the lock, removed if left empty
+        missing = []
+        for folder in self.file.parents:
+            if folder.exists():
+                break
+            missing.append(folder)
+        try:
+            for folder in reversed(missing):
+                folder.mkdir()  # 0o777 & ~umask, as the write would make it
+                self.created.append(folder)
+        except OSError as exc:
+            self.release()
+            raise OutputError(f"--out {given}: cannot create {folder} ({exc.strerror or exc}); "
+                              "give a path under a writable folder") from None
+        busy = OutputError(f"--out {given}: another run is writing into this folder now; "
+                           "wait for it to end or give another folder")
+        if not _probe_writable(self.file.parent):  # a read-only parent: lock the folder itself
+            self.file = None
+            self.fd = os.open(real, os.O_RDONLY | getattr(os, "O_DIRECTORY", 0))
+            if not self._flock():
+                raise busy
+            return
+        while True:
+            fd = os.open(self.file, os.O_RDWR | os.O_CREAT | getattr(os, "O_CLOEXEC", 0), 0o600)
+            self.fd = fd
+            if not self._flock():
+                raise busy
+            try:  # the file may have been removed by the run that held it: lock the new one
+                same = os.path.samestat(os.fstat(fd), os.stat(self.file))
+            except FileNotFoundError:
+                same = False
+            if same:
+                break
+            os.close(fd)
+            self.fd = None
+        os.ftruncate(fd, 0)
+        os.write(fd, f"{os.getpid()} {real}\n".encode())
+
+    def _flock(self) -> bool:
+        assert self.fd is not None
         try:
             fcntl.flock(self.fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except OSError:
             os.close(self.fd)
             self.fd = None
-            raise OutputError(f"--out {given}: another run is writing into this folder now; "
-                              "wait for it to end or give another folder") from None
-        os.ftruncate(self.fd, 0)
-        os.write(self.fd, f"{os.getpid()} {real}\n".encode())
+            return False
+        return True
 
     def release(self) -> None:
+        """Remove the lock file (still holding it, so no other run has it yet) and drop the lock."""
         fd = getattr(self, "fd", None)
         if fd is not None:
-            os.close(fd)  # closing drops the flock; the small file stays for the next run
+            if self.file is not None:
+                try:
+                    self.file.unlink()
+                except OSError:
+                    pass  # gone already, or the parent turned read-only: the flock still ends
+            os.close(fd)
             self.fd = None
+        for folder in reversed(getattr(self, "created", [])):
+            try:
+                folder.rmdir()  # only if the run left it empty (refused or interrupted)
+            except OSError:
+                break
+        self.created = []
 
     __del__ = release
 

@@ -28,6 +28,12 @@ predicted cost — compile or cache load plus run (:mod:`simulate.scene.cost`); 
 with what, and prints every prediction. A scene may ask for ``heyoka``, ``dop853``, ``lie`` or
 ``reference`` explicitly.
 
+A closed form is taken only when its float64 error bound at the scene's horizon
+(:mod:`simulate.scene.bounds`: the phase error grows like $|\lambda| T\varepsilon$, and the rotation
+rate's own error is measured) is at most ``accuracy.target``; otherwise the next model is tried,
+and when no model meets the target the run stops with one line naming the closed form's bound,
+what the integrators reach and the target.
+
 The reconstruction ($g$, contact path) is added only when ``orientation`` or ``contact_path`` is
 asked for; the closed forms 1–2 reconstruct in closed form (:mod:`simulate.dynamics.closed_forms`), the
 reduced models cannot (they forget the $SO(3)$ orbit), so those outputs force ``full``. A model
@@ -43,7 +49,7 @@ from chaplygin_nd.simulate.dynamics import families
 from chaplygin_nd.simulate.integrators import registry
 from chaplygin_nd.simulate.integrators.stops import check_finite
 from chaplygin_nd.simulate.kernels import Kernels, active
-from chaplygin_nd.simulate.scene import accuracy, output_registry
+from chaplygin_nd.simulate.scene import accuracy, bounds, output_registry
 from chaplygin_nd.simulate.scene.spec import Scene
 
 __all__ = ["Plan", "plan", "MODELS"]
@@ -77,6 +83,8 @@ class Plan:
     costs: str = ""  # the cost model's predictions (plan line)
     accuracy: accuracy.Settings | None = None  # the calibrated settings (simulate.scene.accuracy)
     predicted_seconds: float | None = None  # the chosen candidate's predicted total (simulate.scene.cost)
+    bound: bounds.Bound | None = None  # a closed form's error bound at the horizon (simulate.scene.bounds)
+    missed: list[str] = field(default_factory=list)  # closed forms whose bound misses the target
 
     def describe(self) -> str:
         """One paragraph: model, why, and what was ruled out."""
@@ -127,11 +135,17 @@ def method_detail(scene: Scene, method: str, model: str = "full") -> str:
 
 
 def _make(scene: Scene, model: str, reason: str, reconstruct: bool, Omega0: np.ndarray,
-          skipped: list[str]) -> Plan:
+          skipped: list[str], missed: list[str]) -> Plan:
     """The :class:`Plan` of ``model``: its calibrated settings and, for an integrated model of a
-    method the cost model knows, the method of least predicted cost (compile + run)."""
+    method the cost model knows, the method of least predicted cost (compile + run). ``missed``:
+    the closed forms whose bound at the horizon missed the target (named if no method meets it)."""
     method = _method(scene, model)
-    chosen = settings(scene, method, model)  # calibrated; "auto": the first that honours it
+    try:
+        chosen = settings(scene, method, model)  # calibrated; "auto": the first that honours it
+    except accuracy.Unattainable as exc:
+        if not missed:
+            raise
+        raise accuracy.Unattainable(f"{exc}; and the {'; the '.join(missed)}") from None
     compact, costs, predicted = None, "", None
     if model in ("full", "reduced-7D") and chosen is not None \
             and registry.get(chosen.method).costed:
@@ -149,7 +163,7 @@ def _make(scene: Scene, model: str, reason: str, reconstruct: bool, Omega0: np.n
     method = chosen.method if chosen else "closed form"
     return Plan(model, reason, reconstruct, method, Omega0, skipped, list(scene.notes),
                 detail=chosen.describe() if chosen else method, accuracy=chosen,
-                compact=compact, costs=costs, predicted_seconds=predicted)
+                compact=compact, costs=costs, predicted_seconds=predicted, missed=missed)
 
 
 def _tol(s: accuracy.Settings | None) -> float:
@@ -193,8 +207,23 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
     tol = min(scene.tolerance, APPLIES)
     skipped: list[str] = []
 
+    missed: list[str] = []  # closed forms whose bound at the horizon misses the target
+
+    def closed(model, reason) -> Plan | None:
+        """The closed form ``model`` if its bound at the horizon meets the target, else None."""
+        bound = bounds.closed_form(model, scene, Omega0, k)
+        if not bound.value <= scene.target:
+            text = (f"{model} closed form: float64 bound {bound.value:.2g} at T = "
+                    f"{bound.span:.3g} (worst output {bound.worst}) > accuracy.target "
+                    f"{scene.target:g}")
+            skipped.append(text)
+            missed.append(text)
+            return None
+        return Plan(model, reason, reconstruct, "closed form", Omega0, skipped,
+                    list(scene.notes), detail=f"closed form; {bound.describe()}", bound=bound)
+
     def make(model, reason):
-        return _make(scene, model, reason, reconstruct, Omega0, skipped)
+        return _make(scene, model, reason, reconstruct, Omega0, skipped, missed)
 
     if force_full:
         return make("full", "forced (cross-check)")
@@ -206,22 +235,30 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
         "max |M0 gamma0|/|M0|",
         [families.claim_residual("vertical", M, g) for M, g in zip(scene.M0, scene.gamma0)], tol)
     if scene.a == 0.0:
-        return make("constant-Omega", "a = 0: spherical inertia, Omega is constant "
+        p = closed("constant-Omega", "a = 0: spherical inertia, Omega is constant "
                     "(eq:M-O-axi-symm: a = 0 implies dOmega/dt = 0); M(t) = exp(-Omega0 (t - t0)) M0 exp(Omega0 (t - t0))")
+        if p is not None:
+            return p
     if scene.n == 4:
         steady, s_text = _residual_test("max |eta0 x xi0|/(|eta0||xi0|)",
                                         [families.steady_residual(O) for O in Omega0], tol)
         if steady:
-            return make("constant-Omega", f"n = 4 and eta0 x xi0 = 0 ({s_text}): steady rotation "
+            p = closed("constant-Omega", f"n = 4 and eta0 x xi0 = 0 ({s_text}): steady rotation "
                         "(P:steady-rot), M(t) = exp(-Omega0 (t - t0)) M0 exp(Omega0 (t - t0)), "
                         "gamma(t) = exp(-Omega0 (t - t0)) gamma0")
-        skipped.append(f"steady rotation (P:steady-rot): {s_text}")
+            if p is not None:
+                return p
+        else:
+            skipped.append(f"steady rotation (P:steady-rot): {s_text}")
     if is_vertical:
         if k.has("zeta"):
-            return make("vertical", f"M0 gamma0 = 0 ({v_text}): vertical momentum, relative "
-                        "equilibrium M(t) = exp(zeta (t - t0)) M0 exp(-zeta (t - t0)), "
-                        "gamma(t) = exp(zeta (t - t0)) gamma0 (Th:Re)")
-        skipped.append("vertical closed form (Th:Re): the zeta kernel is not in generated/")
+            p = closed("vertical", f"M0 gamma0 = 0 ({v_text}): vertical momentum, relative "
+                     "equilibrium M(t) = exp(zeta (t - t0)) M0 exp(-zeta (t - t0)), "
+                     "gamma(t) = exp(zeta (t - t0)) gamma0 (Th:Re)")
+            if p is not None:
+                return p
+        else:
+            skipped.append("vertical closed form (Th:Re): the zeta kernel is not in generated/")
     else:
         skipped.append(f"vertical closed form (Th:Re): {v_text}")
     reduced_only = wants <= output_registry.where("reduced") and scene.n == 4
@@ -234,17 +271,21 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
         if not is_horizontal:
             skipped.append(f"horizontal closed form (S5:H-linear): {h_text}")
         elif all(k.has(x) for x in ("horizontal", "horizontal_A", "reduced_integrals")):
-            return make("horizontal-4D", f"n = 4, horizontal momentum ({h_text}) and only "
-                        "reduced outputs: the linear system for (x, G) (S5:H-linear)")
+            p = closed("horizontal-4D", f"n = 4, horizontal momentum ({h_text}) and only "
+                     "reduced outputs: the linear system for (x, G) (S5:H-linear)")
+            if p is not None:
+                return p
         else:
             skipped.append("horizontal closed form (S5:H-linear): its kernels are not in generated/")
     if wants <= output_registry.where("horizontal"):
         if not is_horizontal:
             skipped.append(f"horizontal closed form (S5:H-linear-nD): {h_text}")
         elif all(k.has(x) for x in ("horizontal", "horizontal_blocks")):
-            return make("horizontal", f"n = {scene.n}, horizontal momentum ({h_text}) and only x, "
-                        "(x, G, A, B) asked: the linear system for (x, G) holds for every n "
-                        "(S5:H-linear-nD)")
+            p = closed("horizontal", f"n = {scene.n}, horizontal momentum ({h_text}) and only x, "
+                     "(x, G, A, B) asked: the linear system for (x, G) holds for every n "
+                     "(S5:H-linear-nD)")
+            if p is not None:
+                return p
         else:
             skipped.append("horizontal closed form (S5:H-linear-nD): its kernels are not in generated/")
     if reduced_only:
@@ -260,5 +301,8 @@ def plan(scene: Scene, kernels: Kernels | None = None, force_full: bool = False)
         for name in sorted(wants):
             if output_registry.get(name).full_reason:
                 return make("full", output_registry.get(name).full_reason)
+    if missed:
+        return make("full", "the closed form's float64 error bound at the horizon misses "
+                    "accuracy.target (not used, below): the full system eq:motion-general")
     return make("full", "no closed form or reduction applies to these initial conditions "
                 "and outputs: the full system eq:motion-general")

@@ -37,6 +37,8 @@ def summary(scene, p, traj, arrays, seconds, check=None, out=None, *, with_headi
     drift = max_drift(arrays)
     if drift:
         lines.append("drift   " + ", ".join(f"{k} {v:.2e}" for k, v in drift.items()))
+    if getattr(p, "bound", None) is not None:  # a closed form keeps its integrals exactly
+        lines.append(f"bound   {p.bound.describe()}; a drift cannot show a phase error")
     if check is not None:
         lines.append(check.describe())
     if out is not None:

@@ -67,6 +67,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from chaplygin_nd.simulate.dynamics import families
 from chaplygin_nd.simulate.dynamics.ball import Ball
+from chaplygin_nd.simulate.integrators.settings import FLOAT64_REACH
 from chaplygin_nd.simulate.scene import budget, initial
 from chaplygin_nd.simulate.scene import times as sample_times
 from chaplygin_nd.simulate.scene.body import body
@@ -368,6 +369,10 @@ def _accuracy(raw: dict, fail) -> tuple[float, str, int, float]:
     target = _number(acc, "target", fail, default=1e-10, where="accuracy.target")
     if not 0 < target < 1:
         fail("accuracy.target", f"target = {target} is not in (0, 1)", "use e.g. 1e-10")
+    if target < FLOAT64_REACH:  # the outputs are float64 arrays (simulate/integrators/settings.py)
+        fail("accuracy.target", f"target = {target:g} is below what float64 outputs can carry "
+             f"(relative {FLOAT64_REACH:.2g}: every output is stored and derived in float64)",
+             f"use a target >= {FLOAT64_REACH:.2g}")
     method = acc.get("method", "auto")
     allowed = methods()
     if method not in allowed:

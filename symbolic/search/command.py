@@ -208,5 +208,9 @@ def _mapped(model, args, boxes, search) -> int:
     if args.json:
         from chaplygin_nd.writing import write_atomic
 
-        write_atomic(args.json.absolute(), json.dumps(rows, indent=1, default=str))
+        try:
+            write_atomic(args.json.absolute(), json.dumps(rows, indent=1, default=str))
+        except OSError as exc:  # full disk, quota, read-only: the table is printed above
+            return fail(f"--json {args.json}: cannot write it ({exc.strerror or exc}); nothing "
+                        "written, the degree table is printed above")
     return 0
