@@ -83,7 +83,6 @@ def code_version() -> str:
     the file's compiled objects nor leaves its own for them. Cached: whoever replaces code calls
     ``code_version.cache_clear()`` (the mutation tools clear every cache)."""
     import importlib.util
-
     from types import FunctionType
 
     h = hashlib.sha256()

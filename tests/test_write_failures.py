@@ -13,6 +13,7 @@ import errno
 import os
 
 import pytest
+
 from chaplygin_nd import cli, writing
 
 FAULTS = [errno.ENOSPC, errno.EDQUOT, errno.EROFS]

@@ -171,11 +171,7 @@ def main(argv: list[str]) -> int:
               f"{r.found}, known {r.known}, {'settled' if r.settled else 'NOT settled (candidates)'}, "
               f"{took:.1f} s" + (f"; about {left:.0f} s left" if i + 1 < len(boxes) else ""),
               flush=True)
-    if args.json:
-        from chaplygin_nd.writing import write_atomic
-
-        write_atomic(args.json.absolute(), json.dumps(rows, indent=1, default=str))
-    return 0
+    return _write_json(args, rows)
 
 
 def _mapped(model, args, boxes, search) -> int:
@@ -205,12 +201,19 @@ def _mapped(model, args, boxes, search) -> int:
               f"found {r['found']}, known {r['known']} (primes {len(r['primes'])}), "
               f"{'settled' if r['settled'] else 'NOT settled (candidates)'}", flush=True)
     print(f"{time.perf_counter() - t0:.1f} s", flush=True)
+    return _write_json(args, rows)
+
+
+def _write_json(args, rows) -> int:
+    """Write the degree table to ``--json`` atomically (if asked): 0, or one line and exit 1 on a
+    full disk, a quota or a read-only folder (the table is printed above; nothing half-written)."""
     if args.json:
+        from chaplygin_nd.console import fail
         from chaplygin_nd.writing import write_atomic
 
         try:
             write_atomic(args.json.absolute(), json.dumps(rows, indent=1, default=str))
-        except OSError as exc:  # full disk, quota, read-only: the table is printed above
+        except OSError as exc:
             return fail(f"--json {args.json}: cannot write it ({exc.strerror or exc}); nothing "
                         "written, the degree table is printed above")
     return 0
