@@ -124,8 +124,8 @@ _TOTALS = re.compile(r"\(([0-9.]+) s of proof time\); wall ([0-9.]+) s")
 
 def whole(env: dict[str, str]) -> dict:
     """``chaplygin verify --check-generated`` in ``env``: :func:`measure` and the proof time and
-    wall the run printed, and its verdicts (from verification.json, written into a temporary
-    report folder)."""
+    wall the run printed, and each row's verdict and seconds (from verification.json, written
+    into a temporary report folder)."""
     with tempfile.TemporaryDirectory(prefix="verify-report-") as rep:
         cmd = [sys.executable, "-m", "chaplygin_nd", "verify", "--check-generated", "--report-dir", rep]
         log = os.path.join(rep, "stdout.txt")
@@ -137,8 +137,9 @@ def whole(env: dict[str, str]) -> dict:
         try:
             data = json.loads(Path(rep, "verification.json").read_text(encoding="utf-8"))
             m["verdicts"] = {r["id"]: r["verdict"] for r in data["rows"]}
+            m["seconds"] = {r["id"]: r["seconds"] for r in data["rows"]}
         except (OSError, KeyError, ValueError, TypeError):
-            m["verdicts"] = {}
+            m["verdicts"], m["seconds"] = {}, {}
     return m
 
 
