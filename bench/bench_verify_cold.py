@@ -85,7 +85,8 @@ def cold_env(folder: str) -> dict[str, str]:
 
 def profile(claim_id: str, env: dict[str, str]) -> dict:
     """One row decided alone in a new process under the profiler (:mod:`bench.row_profile`): its
-    stages, verdict, the process's wall time and the load before it."""
+    stages, verdict, the process's wall and CPU time (on a shared machine compare CPU) and the
+    load before it."""
     with tempfile.TemporaryDirectory(prefix="row-profile-") as tmp:
         out = os.path.join(tmp, "row.json")
         m = measure([sys.executable, "-m", "chaplygin_nd.bench.row_profile", claim_id, out], env)
@@ -94,7 +95,7 @@ def profile(claim_id: str, env: dict[str, str]) -> dict:
                     "loadavg": m["load_before"]}
         with open(out, encoding="utf-8") as fh:
             record = json.load(fh)
-    record.update(process=m["wall"], loadavg=m["load_before"])
+    record.update(process=m["wall"], cpu=m["user"] + m["sys"], loadavg=m["load_before"])
     return record
 
 
@@ -116,7 +117,7 @@ def _line(r: dict) -> str:
         return f"FAILED {r['failed']}"
     return (f"{r['wall']:6.1f} s ({r['status']}): "
             + ", ".join(f"{k} {r[k]:.1f}" for k in STAGES if r.get(k, 0.0) >= 0.05)
-            + f"; load average {r['loadavg']:.1f}")
+            + f"; CPU {r['cpu']:.1f} s; load average {r['loadavg']:.1f}")
 
 
 _TOTALS = re.compile(r"\(([0-9.]+) s of proof time\); wall ([0-9.]+) s")
@@ -149,8 +150,8 @@ def markdown(result: dict) -> str:
              f"{result['machine']}", "",
              "Per row, decided alone in a new process (seconds of wall time; a row alone pays for "
              "the ensembles it shares; `import` is before the row and not in its wall):", "",
-             "| row | run | wall | " + " | ".join(STAGES) + " | import | verdict | load average |",
-             "|---|---|---:|" + "---:|" * len(STAGES) + "---:|---|---:|"]
+             "| row | run | wall | " + " | ".join(STAGES) + " | import | CPU | verdict | load average |",
+             "|---|---|---:|" + "---:|" * len(STAGES) + "---:|---:|---|---:|"]
     for r in result["rows"]:
         for run in ("cold", "warm"):
             x = r[run]
@@ -159,7 +160,7 @@ def markdown(result: dict) -> str:
                 continue
             lines.append(f"| {r['id']} | {run} | {x['wall']:.1f} | "
                          + " | ".join(f"{x.get(k, 0.0):.1f}" for k in STAGES)
-                         + f" | {x['imported']:.1f} | {x['status']} | {x['loadavg']:.1f} |")
+                         + f" | {x['imported']:.1f} | {x['cpu']:.1f} | {x['status']} | {x['loadavg']:.1f} |")
     for run in ("cold", "warm"):
         w = result.get("whole", {}).get(run)
         if w:
