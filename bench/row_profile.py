@@ -46,6 +46,7 @@ STAGES = (
     ("megno", "simulate/analysis/chaos.py", "megno_ladder", True),
     ("integrals", "simulate/analysis/kept.py", "drift", True),
     ("measure", "simulate/analysis/drawn_evidence.py", "_measure", True),
+    ("measure", "simulate/analysis/continuation.py", "compute", True),  # the ladder's longer runs
     ("integrate_all", "simulate/analysis/drawn_evidence.py", "_integrate", True),
     ("cached", "simulate/analysis/result_cache.py", "cached_json", True),
     ("draws", "simulate/analysis/draws.py", "draw", True),
