@@ -45,7 +45,8 @@ def _parser() -> argparse.ArgumentParser:
         epilog=f"benchmarks: {names} (default: {', '.join(DEFAULT)}). "
                "Example: chaplygin bench throughput --quick")
     p.add_argument("names", nargs="*", metavar="NAME",
-                   help="benchmarks to run (default: see below); 'bench_' prefix optional")
+                   help="benchmarks to run (default: see below); 'bench_' prefix optional, '-' "
+                        "for '_' (verify-cold)")
     p.add_argument("--quick", action="store_true",
                    help="smoke run: short horizons, few sizes and tolerances (numbers not meaningful)")
     p.add_argument("--cold", action="store_true",
@@ -77,7 +78,8 @@ def _main(argv: list[str] | None) -> int:
     if args.list:
         print("\n".join(known))
         return 0
-    names = [n.removeprefix("bench_") for n in args.names] or [n for n in DEFAULT if n in known]
+    names = [n.removeprefix("bench_").replace("-", "_") for n in args.names] or \
+        [n for n in DEFAULT if n in known]
     unknown = [n for n in names if n not in known]
     if unknown:
         parser.print_usage(sys.stderr)

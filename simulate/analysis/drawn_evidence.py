@@ -44,13 +44,18 @@ from chaplygin_nd.simulate.analysis.draws import Ensemble
 from chaplygin_nd.simulate.analysis.frequencies import REGULAR
 from chaplygin_nd.simulate.dynamics import so
 
-__all__ = ["Setting", "OrbitResult", "measure", "classify", "summary", "schedule", "BATCH"]
+__all__ = ["Setting", "OrbitResult", "measure", "classify", "summary", "schedule", "BATCH",
+           "analyse"]
 
 #: orbits per compiled step of heyoka's batch mode (one compiled integrator per system). 8, not
 #: heyoka's recommended SIMD width 4: measured per orbit (CPU, n = 5 / 7 tangent systems, one
 #: batch of equal orbits) 0.087 / 0.136 s at 4, 0.050 / 0.084 s at 8, 0.047 / 0.085 s at 16. The
 #: lanes are independent, so the width changes no orbit (bit-identical, tests/test_naff_projections.py).
 BATCH = 8
+#: LLVM's optimisation level of the compiled integrators: 1 compiles faster than heyoka's default 3
+#: and gives bit-identical orbits at the same speed in compact mode
+#: (:func:`simulate.integrators.heyoka_taylor.compiled_integrator`)
+OPT_LEVEL = 1
 
 
 @dataclass(frozen=True)
@@ -179,23 +184,34 @@ def schedule(ens: Ensemble) -> np.ndarray:
     return np.lexsort((ens.scale, ens.b, ens.a))
 
 
-def _integrate(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int):
-    """Signals ``(count, signals, samples)``, MEGNO and Lyapunov estimates per orbit (draw order)."""
+def _integrate(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int, first: int = 0,
+               anchor: np.ndarray | None = None):
+    """Signals ``(count, signals, samples)``, MEGNO and Lyapunov estimates per orbit (draw order),
+    and in ``extra`` the ladder, the tangent's growth, the drift of the integrals and ``final``:
+    each orbit's state at the last sample. ``first``: the index of the first sample (1: the
+    samples dt, 2 dt, ..., T of a continuation from ``y0``, whose time is taken as 0 — the
+    fields are autonomous); ``anchor``: the states the integrals' drift is measured from (default
+    ``y0``; a continuation passes the orbits' initial states)."""
     from chaplygin_nd.simulate.integrators.heyoka_taylor import compiled_integrator
 
     system = _system(s)
-    ta, _, _ = compiled_integrator(system, "double", s.tol, compact=True, batch=BATCH)
+    ta, _, _ = compiled_integrator(system, "double", s.tol, compact=True, batch=BATCH,
+                                   opt_level=OPT_LEVEL)
     d = y0.shape[1]
     u0 = chaos.initial_tangents(len(y0), d, seed)
     if s.tangent == "V":
         u0 = v_tangents(u0, y0, s.n)
     order = schedule(ens)
     ens, y0, u0 = subset(ens, order), y0[order], u0[order]
-    t = np.arange(int(round(s.T / s.dt)) + 1) * s.dt
+    anchor = y0 if anchor is None else anchor[order]
+    t = np.arange(int(round(s.T / s.dt)) + 1) * s.dt     # heyoka's grid starts at the start
     sig, megno, lyap = None, np.empty(len(y0)), np.empty(len(y0))
+    final = np.empty_like(y0)
     ladder, power = np.empty((len(y0), len(chaos.LADDER))), np.empty(len(y0))
     drift, drift_of = np.empty(len(y0)), [""] * len(y0)
     stride = max(1, (len(t) - 1) // 1024)                 # the integrals at <= 1025 samples
+    if first and s.tangent != "none":
+        raise ValueError("a continuation carries no tangent vector (MEGNO is that of the first run)")
     for start in range(0, len(y0), BATCH):
         sl = slice(start, min(start + BATCH, len(y0)))
         used = sl.stop - sl.start
@@ -216,8 +232,9 @@ def _integrate(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int):
         for lane, res in enumerate(ta.propagate_res[:used]):
             if str(res[0]) != "taylor_outcome.time_limit":
                 raise RuntimeError(f"{s.name}: heyoka stopped early ({res[0]}) on orbit {where[lane]}")
-        states = states[:, :, :used]
+        states = states[first:, :, :used]                    # a continuation drops its start
         Y = np.moveaxis(states[:, :d, :], 1, 2)              # (samples, lanes, dim)
+        final[where] = Y[-1]
         z = observables(s, Y, ens.a[sl], ens.b[sl])
         if sig is None:
             sig = np.empty((len(y0),) + z.shape[1:], dtype=z.dtype)
@@ -230,12 +247,13 @@ def _integrate(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int):
             ladder[where] = chaos.megno_ladder(grid[:, :used], states[:, -1, :]).T
             half = (len(t) - 1) // 2
             power[where] = (states[-1, -2, :] - states[half, -2, :]) / np.log(2.0)
-        dr, names = kept.drift(s.system, Y[::stride], ens.a[sl], b_lane, ens.scale[sl], s.n, s.J)
+        kept_at = Y[::stride] if not first else np.concatenate([anchor[None, sl], Y[::stride]])
+        dr, names = kept.drift(s.system, kept_at, ens.a[sl], b_lane, ens.scale[sl], s.n, s.J)
         drift[where] = dr
         for w, name in zip(where, names):
             drift_of[w] = name
     return sig, megno, lyap, {"ladder": ladder, "power": power, "drift": drift,
-                              "drift_of": drift_of}
+                              "drift_of": drift_of, "final": final}
 
 
 def v_tangents(u0: np.ndarray, y0: np.ndarray, n: int) -> np.ndarray:
@@ -305,14 +323,16 @@ def _decode(stored) -> list[OrbitResult]:
 
 
 def measure(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int,
-            use_cache: bool = True) -> list[OrbitResult]:
+            use_cache: bool = True, on_signals=None) -> list[OrbitResult]:
     """Every orbit of ``ens`` (initial states ``y0`` ``(count, dim)``) through setting ``s``:
     MEGNO over the horizon ladder, Lyapunov estimate, the drift of the integrals, NAFF count,
     diffusion, class. Cached (:func:`simulate.analysis.result_cache.cached_json`; a damaged entry
-    is recomputed, one warning line)."""
+    is recomputed, one warning line). ``on_signals(Z, final)``: called with the signals and end
+    states when they are computed (not when read from the cache): the frequency ladder keeps them
+    for its continuations (:mod:`simulate.analysis.continuation`)."""
     out, _ = rc.cached_json(
         "evidence", f"drawn-{s.name}", settings(s, ens, y0, seed),
-        lambda: _measure(s, ens, y0, seed),
+        lambda: _measure(s, ens, y0, seed, on_signals),
         encode=lambda res: [r.to_dict() for r in res], decode=_decode,
         use_cache=use_cache, heyoka=True)
     if len(out) != len(y0):
@@ -330,8 +350,18 @@ def _limited(spec: naff.Spectrum, limit: int) -> naff.Spectrum:
     return naff.Spectrum(spec.lines, sorted(abs(f) for f in basis), spec.diffusion, spec.tolerance)
 
 
-def _measure(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int) -> list[OrbitResult]:
+def _measure(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int,
+             on_signals=None) -> list[OrbitResult]:
     Z, megno, lyap, extra = _integrate(s, ens, y0, seed)
+    if on_signals is not None:
+        on_signals(Z, extra["final"])
+    return analyse(s, ens, Z, megno, lyap, extra)
+
+
+def analyse(s: Setting, ens: Ensemble, Z: np.ndarray, megno, lyap, extra) -> list[OrbitResult]:
+    """The records of the orbits of ``ens`` from their signals ``Z`` ``(count, signals, samples)``
+    sampled at ``s.dt`` over ``s.T``, and the chaos indicators and drift of :func:`_integrate`:
+    NAFF, the integer-relation counts and the class of the module docstring."""
     specs, inv = [], []
     for start in range(0, len(Z), 32):                       # bounded memory
         whole, first, second = naff.lines_batch(Z[start:start + 32], s.dt)

@@ -58,21 +58,33 @@ def run_with_rerun(setting: Setting, ens, y0: np.ndarray, seed: int, rerun: int 
                    ) -> dict:
     """The horizon ladder of the frequencies: every orbit at ``T``; the unresolved ones (all, or
     the first ``rerun``) again at ``2T`` and those still unresolved at ``4T`` (frequency-only
-    re-runs, :func:`simulate.analysis.drawn_evidence.merge_longer`: the chaos indicator stays that
-    of ``T``). ``{"results": the merged records, "at_T": the records at T, "rerun_index": the
-    orbits re-run, "rerun": their merged records, "ladder": {factor: orbits run at it}}``."""
-    results = measure(setting, ens, y0, seed)
-    todo = [k for k, r in enumerate(results) if r.cls == "unresolved"]
-    todo = todo if rerun is None else todo[:rerun]
-    first, merged, ladder = list(todo), list(results), {}
-    for factor in LADDER_FACTORS:
-        if not todo:
-            break
-        ladder[factor] = len(todo)
-        longer = measure(setting.longer(factor, tangent="none"), subset(ens, todo), y0[todo], seed)
-        for k, r in zip(todo, longer):
-            merged[k] = merge_longer(merged[k], r, factor)
-        todo = [k for k in todo if merged[k].cls == "unresolved"]
+    runs continued from the state at the shorter horizon, :mod:`simulate.analysis.continuation`;
+    :func:`simulate.analysis.drawn_evidence.merge_longer`: the chaos indicator stays that of ``T``).
+    ``{"results": the merged records, "at_T": the records at T, "rerun_index": the orbits re-run,
+    "rerun": their merged records, "ladder": {factor: orbits run at it}}``."""
+    from chaplygin_nd.simulate.analysis import continuation
+    from chaplygin_nd.simulate.analysis.drawn_evidence import settings
+
+    base = settings(setting, ens, y0, seed)
+    try:
+        results = measure(setting, ens, y0, seed, on_signals=lambda Z, final: continuation.remember(
+            base, 1.0, range(len(y0)), Z, final))
+        todo = [k for k, r in enumerate(results) if r.cls == "unresolved"]
+        todo = todo if rerun is None else todo[:rerun]
+        first, merged, ladder = list(todo), list(results), {}
+        previous = 1.0
+        for factor in LADDER_FACTORS:
+            continuation.retain(base, previous, todo)
+            if not todo:
+                break
+            ladder[factor] = len(todo)
+            longer = continuation.extend(setting, ens, y0, seed, factor, todo)
+            for k, r in zip(todo, longer):
+                merged[k] = merge_longer(merged[k], r, factor)
+            todo = [k for k in todo if merged[k].cls == "unresolved"]
+            previous = factor
+    finally:
+        continuation.forget(base)
     return {"results": merged, "at_T": results, "rerun_index": first,
             "rerun": [merged[k] for k in first], "ladder": ladder}
 
