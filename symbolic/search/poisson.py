@@ -250,7 +250,8 @@ def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None) -
     res.groebner = gb
     res.outcome = "excluded (Jacobi)" if gb == [1] else "solutions"
     if res.outcome == "solutions":
-        res.solution = {"P0": P0, "K": Ks, "groebner": gb, "gens": ring_gens, "coords": ans.coords}
+        res.solution = {"groebner": gb, "gens": ring_gens, "cols": cols, "part": part,
+                        "kernel": kernel, "ansatz": ans}
     res.seconds = time.perf_counter() - t0
     return res
 
