@@ -26,7 +26,7 @@ verify: setup
 ## verify-deep: the heavy boxes of the first-integral search (S6:first-integrals: n = 5 to
 ## M-degree 6, n = 6, 7) and the symbolic n = 5 proof of the new integral; tens of minutes.
 verify-deep: setup
-	CHAPLYGIN_ND_DEEP=1 $(CLI) prove S6:first-integrals $(if $(SEED),--seed $(SEED))
+	CHAPLYGIN_ND_DEEP=1 $(CLI) prove S6:first-integrals S7:poisson-n4 S7:poisson-n5 $(if $(SEED),--seed $(SEED))
 
 ## test: the pytest suite (engine, proofs, kernels against mpmath, hard cases) without the checks
 ## marked `slow`, on every core (pytest-xdist; each worker has its own caches: tests/conftest.py).
