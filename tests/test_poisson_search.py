@@ -79,10 +79,14 @@ def test_free_body_control_is_the_lie_poisson_bracket_of_e4():
     assert (P - LP).applyfunc(sp.expand) == sp.zeros(m + n, m + n)
 
 
-def test_an_n4_box_is_excluded_exactly():
-    """n = 4, box (1, 1): the linear stage leaves candidates, Jacobi excludes them (basis {1})."""
+def test_n4_boxes_are_excluded_exactly():
+    """n = 4: box (1, 1) has no solution of the linear stage; box (2, 1) has an affine space of
+    candidates that the Jacobi stage excludes (Groebner basis {1})."""
     r = ps.search_box(4, 1, 1, A, B, seed=5)
-    assert r.outcome.startswith("excluded") and r.unknowns > r.independent > 0
+    assert r.outcome == "excluded (linear)" and r.unknowns > r.independent > 0
+    r = ps.search_box(4, 2, 1, A, B, seed=5)
+    assert r.free > 0 and r.jacobi_equations > 0 and r.groebner == [1]
+    assert r.outcome == "excluded (Jacobi)"
 
 
 def test_command_bad_input_gives_one_line(capsys):
