@@ -24,9 +24,10 @@ verify: setup
 	$(CLI) verify --check-generated $(if $(SEED),--seed $(SEED))
 
 ## verify-deep: the heavy boxes of the first-integral search (S6:first-integrals: n = 5 to
-## M-degree 6, n = 6, 7) and the symbolic n = 5 proof of the new integral; tens of minutes.
+## M-degree 6, n = 6, 7), the symbolic n = 5 proof of the new integral, and the heavy boxes of
+## the Hamiltonisation and symmetry-field searches (S7:poisson-n4, -n5, S7:symmetry-fields); tens of minutes.
 verify-deep: setup
-	CHAPLYGIN_ND_DEEP=1 $(CLI) prove S6:first-integrals S7:poisson-n4 S7:poisson-n5 $(if $(SEED),--seed $(SEED))
+	CHAPLYGIN_ND_DEEP=1 $(CLI) prove S6:first-integrals S7:poisson-n4 S7:poisson-n5 S7:symmetry-fields $(if $(SEED),--seed $(SEED))
 
 ## test: the pytest suite (engine, proofs, kernels against mpmath, hard cases) without the checks
 ## marked `slow`, on every core (pytest-xdist; each worker has its own caches: tests/conftest.py).
