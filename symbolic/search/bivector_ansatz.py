@@ -102,7 +102,7 @@ def block_bivectors(n: int, M, gamma) -> list[sp.Matrix]:
     point $(M, \gamma)$ (symbolic or rational): $MM$ blocks first, then $M\gamma$ blocks."""
     basis = so_basis(n)
     m, N, E = len(basis), len(basis) + n, _E(n)
-    mm = [[None] * m for _ in range(m)]
+    mm: list[list] = [[None] * m for _ in range(m)]
     for p in range(m):
         for q in range(p + 1, m):
             mm[p][q] = mm_blocks(basis[p], basis[q], M, gamma, E)
@@ -171,6 +171,7 @@ def _invariant_dimension(n: int, shape: str, gamma0: sp.Matrix) -> int:
     def ad(Y):
         return sp.Matrix([coords(Y * b - b * Y) for b in basis]).T
 
+    idx: list[tuple]
     if shape == "mm":  # T[c, p, q], p < q: linear in M (index c), skew in (xi, eta)
         idx = [(c, p, q) for c in range(m) for p in range(m) for q in range(p + 1, m)]
     else:  # T[p, k]: so(n) -> R^n
@@ -192,7 +193,7 @@ def _invariant_dimension(n: int, shape: str, gamma0: sp.Matrix) -> int:
         V = Y if kind == "lie" else refl
         for key in idx:
             if shape == "mm":
-                c, p, q = key
+                c, p, q = key[0], key[1], key[2]
                 # (g.T)[c,p,q] = sum A[c,c'] A[p,p'] A[q,q'] T[c',p',q'] (contragredient = same: orthogonal)
                 if kind == "lie":
                     val = (sum(A[c, cc] * tensor((cc, p, q)) for cc in range(m) if A[c, cc] != 0)
@@ -203,7 +204,7 @@ def _invariant_dimension(n: int, shape: str, gamma0: sp.Matrix) -> int:
                               for cc in range(m) for pp in range(m) for qq in range(m)
                               if A[c, cc] != 0 and A[p, pp] != 0 and A[q, qq] != 0) - tensor(key)
             else:
-                p, k = key
+                p, k = key[0], key[1]
                 if kind == "lie":
                     val = (sum(A[p, pp] * tensor((pp, k)) for pp in range(m) if A[p, pp] != 0)
                            + sum(V[k, kk] * tensor((p, kk)) for kk in range(n) if V[k, kk] != 0))

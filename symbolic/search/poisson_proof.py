@@ -35,7 +35,10 @@ __all__ = ["solution_values", "structure_matrix", "lift_symbolic", "prove_struct
 def solution_values(res: BoxResult) -> dict | None:
     """Rational values of (t_i, sigma) solving the box's Gröbner basis, the unknowns it leaves
     free set to 0; None when the basis is not linear (then the solution set is not read off)."""
-    gb, gens = res.solution["groebner"], res.solution["gens"]
+    sol = res.solution
+    if sol is None:
+        return None
+    gb, gens = sol["groebner"], sol["gens"]
     if any(sp.Poly(g, *gens).total_degree() > 1 for g in gb):
         return None
     free = [v for v in gens if v not in set().union(*(sp.sympify(g).free_symbols for g in gb))]
@@ -53,6 +56,8 @@ def solution_values(res: BoxResult) -> dict | None:
 def structure_matrix(res: BoxResult, values: dict) -> sp.Matrix:
     """The symbolic bivector P of the solution (entries polynomial in the coordinates)."""
     s = res.solution
+    if s is None:
+        raise ValueError("the box has no solution to assemble")
     ans: ba.Ansatz = s["ansatz"]
     ts = [v for v in s["gens"] if v != sigma]
     coeffs = [sp.Rational(int(c.p), int(c.q)) for c in s["part"]]
@@ -66,7 +71,7 @@ def structure_matrix(res: BoxResult, values: dict) -> sp.Matrix:
     return P.applyfunc(sp.expand)
 
 
-def symbolic_field(n: int, a, b) -> tuple[sp.Matrix, list, list, sp.Expr]:
+def symbolic_field(n: int, a, b) -> tuple[sp.Matrix, sp.Matrix, list, list, sp.Expr]:
     r"""Symbolic $M, \gamma$, $dH$ and $X$ on the sphere (derived inverse, eq:M-O) and $\Delta(\gamma_n)$."""
     M, gamma, _ = ba.coordinates(n)
     Om = inverse_closed_form(M, gamma, a, b)
@@ -88,6 +93,8 @@ def lift_symbolic(res: BoxResult, values: dict, a=None, b=None) -> sp.Matrix:
     a = sa if a is None else a
     b = sb if b is None else b
     s = res.solution
+    if s is None:
+        raise ValueError("the box has no solution to lift")
     ans: ba.Ansatz = s["ansatz"]
     n, N = res.n, len(ans.coords)
     cols = s["cols"]

@@ -127,6 +127,8 @@ class FieldBox:
     excess: int = 0
     orbit_proved: int = 0
     outcome: str = ""
+    kernel: list | None = None
+    columns: list | None = None
     seconds: float = 0.0
 
     def as_dict(self) -> dict:
