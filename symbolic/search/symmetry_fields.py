@@ -274,7 +274,10 @@ def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
     _, kernel = _rref_solve(rows, [flint.fmpq(0)] * len(rows))
     res.solutions = len(kernel)
     res.kernel, res.columns = kernel, [(labels[u], cols[i]) for i, u in enumerate(keep)]
-    exact_trivial = sum(1 for u, t in enumerate(triv) if t and (labels[keep[u]][0] != "D X" or s == tau - 1))
+    counted = [u for u, t in enumerate(triv) if t and (labels[keep[u]][0] != "D X" or s == tau - 1)]
+    if any(row[u] != 0 for row in rows for u in counted):
+        raise ArithmeticError("a trivial field fails a sampled condition: the conditions are wrong")
+    exact_trivial = len(counted)
     others = [v for v in kernel if not _is_trivial_unit(v, triv)]
     res.orbit_proved = len(_orbit_fields(n, z, cols, others, seed)) if others else 0
     res.trivial = exact_trivial + res.orbit_proved
