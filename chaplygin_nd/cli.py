@@ -41,6 +41,10 @@ COMMANDS = {
                            "mutation testing of the derivations and the runtime"),
     "first-integrals": ("chaplygin_nd.symbolic.search.command", "main",
                         "exact search for first integrals, degree by degree"),
+    "poisson": ("chaplygin_nd.symbolic.search.poisson_command", "main",
+                "exact search for a Hamiltonisation on P, box by box"),
+    "symmetry-fields": ("chaplygin_nd.symbolic.search.fields_command", "main",
+                        "exact search for commuting symmetry fields, box by box"),
     "docs": ("chaplygin_nd.cli", "docs", "build the reading site (a source checkout)"),
 }
 

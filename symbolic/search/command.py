@@ -33,7 +33,9 @@ from fractions import Fraction
 __all__ = ["main", "parse_model"]
 
 
-def _rational(text: str, name: str):
+def parse_rational(text: str, name: str):
+    """The command-line value ``text`` of the parameter ``name`` (a, b, J_i, ...) as an exact SymPy
+    rational ("-1/3", "0.4" = 2/5); ``ValueError`` naming the parameter otherwise."""
     import sympy as sp
 
     try:
@@ -52,19 +54,19 @@ def parse_model(n: int, a, b, J):
         raise ValueError(f"n = {n!r}: the sphere needs an integer n >= 3")
     if b is None:
         raise ValueError("b is required (b = m r^2 > 0, eq:M-O)")
-    b = _rational(str(b), "b")
+    b = parse_rational(str(b), "b")
     if b <= 0:
         raise ValueError(f"b = {b} is outside the domain b > 0 (eq:M-O)")
     if J is not None:
         if a is not None:
             raise ValueError("give either a (axisymmetric) or J (a diagonal mass tensor), not both")
-        Js = [_rational(str(j), "J") for j in (J.split(",") if isinstance(J, str) else J)]
+        Js = [parse_rational(str(j), "J") for j in (J.split(",") if isinstance(J, str) else J)]
         if len(Js) != n or any(j <= 0 for j in Js):
             raise ValueError(f"J must be {n} positive rationals (the diagonal mass tensor, eq:Inertia)")
         return sampled_field.general(Js, b)
     if a is None:
         raise ValueError("give a (axisymmetric, eq:axisymm) or J (a diagonal mass tensor)")
-    a = _rational(str(a), "a")
+    a = parse_rational(str(a), "a")
     if a < -1:
         raise ValueError(f"a = {a} is outside the domain a >= -1 (eq:axisymm)")
     return sampled_field.axisymmetric(n, a, b)

@@ -257,7 +257,7 @@ def _g_general(M, g, model: Model, p: int) -> np.ndarray:
     return num * backend.inv_mod(delta, p) % p
 
 
-def _gradients_at(model: Model, M: sp.Matrix, gamma: sp.Matrix) -> sp.Matrix:
+def gradients_at(model: Model, M: sp.Matrix, gamma: sp.Matrix) -> sp.Matrix:
     r"""Exact gradients in $(\mathrm{vec}\,M, \gamma)$ at a rational point of the non-constant
     coefficients of $p$ (Jacobi's formula over $\mathbb{Q}[\lambda, \sigma]$) and of $H$
     ($\partial_M H = \Omega$, $\partial_{\gamma_k}H = -\frac12\omega^T(\partial_k L)\omega$)."""
@@ -326,7 +326,7 @@ def jacobian_rank(model: Model, seed: int, include_new: bool = False) -> dict:
     rng = points.generator(seed, "S6:first-integrals", model.n, model.kind)
     gamma = points.sphere_point(rng, model.n)
     M = points.skew_matrix(rng, model.n)
-    G = _gradients_at(model, M, gamma)
+    G = gradients_at(model, M, gamma)
     if include_new and model.kind == "axisymmetric" and model.n % 2:
         G = G.col_join(sp.Matrix([_new_gradient(model, M, gamma)]))
     dim = model.n * (model.n - 1) // 2

@@ -1,0 +1,359 @@
+r"""Exact search for a Hamiltonisation of eq:motion-general on $P = \mathfrak{so}(n)\times S^{n-1}$
+(row S7:poisson-search; the paper's first open problem).
+
+**What is searched.** A bivector $\Pi = \Delta^\sigma P$ with $P = \sum_u c_u\, x^{k_u} B_{j_u}$ in the
+box of degree $d$ of symbolic/search/bivector_ansatz.py ($O(n-1)$-equivariant, weight $-1$), and a
+multiplier $\rho = \Delta^{\sigma + e}$ ($e \in \mathbb{Z}$; $\sigma$ free, half-integers included),
+such that on $P$
+
+.. math::
+    P\,dH = \Delta^{e} X, \qquad P\,d\|\gamma\|^2 = 0, \qquad
+    \Delta\,[P, P]_{ijk} + \sigma \textstyle\sum_{\mathrm{cyc}} P_{jk}\,(P\,d\Delta)_i = 0,
+
+where $[P, P]_{ijk} = \sum_l P_{il}\partial_l P_{jk} + \mathrm{cyc}$ is the Jacobiator. The last
+condition is Jacobi for $\Pi = \Delta^\sigma P$ (for $\phi = \Delta^\sigma$,
+$[\phi P, \phi P] = \phi^2 [P, P] + \phi \sum_{\mathrm{cyc}} P_{jk} (P\,d\phi)_i$, times
+$\Delta^{1-2\sigma}$). With $\Pi\,d\|\gamma\|^2 = 0$ on the sphere, $\Pi$ is tangent to $P$ and all
+three conditions are identities modulo $\|\gamma\|^2 = 1$; then $\{\cdot,\cdot\}_\Pi$ is a Poisson
+bracket on $P$ and $\rho X$ is its Hamiltonian field of $H$.
+
+**Exactness (the sandwich).** Every condition is evaluated at seeded rational points of
+$\mathfrak{so}(n)\times S^{n-1}$ with exact rationals (FLINT ``fmpq``), for fixed rational $a, b$.
+A true solution satisfies every sampled equation, so the sampled solution set *contains* the true
+one: an inconsistent sampled linear system, or a Gröbner basis $\{1\}$ of the sampled Jacobi
+equations over $\mathbb{Q}$ on the sampled affine space, *proves* that the box holds no
+Hamiltonisation. Block dependencies (syzygies) that the points suggest are each proved as exact
+identities modulo the sphere before a column is dropped. A solution found is proved by exact
+identities (symbolic/exact, SymPy and FLINT) in :func:`prove_structure`.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import flint
+import sympy as sp
+from chaplygin_nd.symbolic.algebra import vec
+from chaplygin_nd.symbolic.axisymmetric import Delta, mass_tensor
+from chaplygin_nd.symbolic.exact.points import generator, skew_matrix, sphere_point
+from chaplygin_nd.symbolic.model import L_matrix_derivative, angular_velocity
+from chaplygin_nd.symbolic.search import bivector_ansatz as ba
+
+__all__ = ["BoxResult", "field_data", "flint_bivectors", "search_box", "estimate",
+           "jacobi_residual", "sigma"]
+
+#: the exponent of the conformal factor $\Delta^\sigma$, an unknown of the Jacobi stage
+sigma = sp.Symbol("sigma")
+
+
+def field_data(n: int, a, b, M: sp.Matrix, gamma: sp.Matrix) -> dict:
+    r"""At a rational point of $P$: $dH$ ($\partial_{M_{ij}}H = \Omega_{ij}$,
+    $\partial_{\gamma_k}H = -\tfrac12\langle\Omega, \partial_{\gamma_k}L_\gamma\,\Omega\rangle$ for the
+    extension $H = \tfrac12\langle M, L_\gamma^{-1}M\rangle$ of eq:M-O to $\mathbb{R}^n$), $X$ of
+    eq:motion-general ($[M, \Omega]$, $-\Omega\gamma$) and $\Delta(x)$, $\Delta'(x)$ (eq:Delta), exact."""
+    Om = angular_velocity(M, gamma, mass_tensor(n, a), b)
+    w = vec(Om)
+    dH = list(w) + [-(w.T * L_matrix_derivative(gamma, b, k) * w)[0, 0] / 2 for k in range(n)]
+    X = list(vec(M * Om - Om * M)) + list(-Om * gamma)
+    xs = sp.Symbol("x")
+    D = Delta(xs, a, b)
+    x = gamma[n - 1]
+    return {"dH": dH, "X": X, "Delta": D.subs(xs, x), "dDelta": sp.diff(D, xs).subs(xs, x)}
+
+
+def _ctx(coords):
+    return flint.fmpq_mpoly_ctx.get(tuple(str(c) for c in coords), "lex")
+
+
+def _fq(v) -> flint.fmpq:
+    v = sp.Rational(v)
+    return flint.fmpq(int(v.p), int(v.q))
+
+
+def flint_bivectors(ans: ba.Ansatz) -> list[dict]:
+    """Each basis bivector of the box as {(row, col): fmpq_mpoly} over its upper-triangle entries."""
+    ctx = _ctx(ans.coords)
+    out = []
+    for B in ans.bivectors:
+        entries = {}
+        for i in range(B.rows):
+            for j in range(i + 1, B.cols):
+                if B[i, j] != 0:
+                    poly = sp.Poly(B[i, j], *ans.coords)
+                    entries[(i, j)] = ctx.from_dict({m: _fq(c) for m, c in poly.as_dict().items()})
+        out.append(entries)
+    return out
+
+
+def _points(n: int, count: int, seed: int, label: str):
+    rng = generator(seed, "poisson", label, n)
+    return [(skew_matrix(rng, n), sphere_point(rng, n)) for _ in range(count)]
+
+
+def _values(entries: dict, pt: list, N: int) -> list[list]:
+    V = [[flint.fmpq(0)] * N for _ in range(N)]
+    for (i, j), f in entries.items():
+        v = f(*pt)
+        V[i][j], V[j][i] = v, -v
+    return V
+
+
+@dataclass
+class BoxResult:
+    """One box (n, degree d, e) at (a, b): sizes, the outcome and the seconds it took."""
+
+    n: int
+    degree: int
+    e: int
+    a: object
+    b: object
+    unknowns: int = 0
+    independent: int = 0
+    syzygies: int = 0
+    linear: str = ""            # "inconsistent" or "affine space of dimension k"
+    free: int = -1              # dimension of the sampled affine space (-1: empty)
+    jacobi_equations: int = 0
+    groebner: list = field(default_factory=list)
+    outcome: str = ""           # "excluded (linear)", "excluded (Jacobi)", "solutions"
+    seconds: float = 0.0
+    solution: dict | None = None
+
+    def as_dict(self) -> dict:
+        return {"n": self.n, "degree": self.degree, "e": self.e, "a": str(self.a), "b": str(self.b),
+                "unknowns": self.unknowns, "independent": self.independent,
+                "syzygies": self.syzygies, "linear": self.linear, "free": self.free,
+                "jacobi_equations": self.jacobi_equations,
+                "groebner": [str(g) for g in self.groebner][:8], "outcome": self.outcome,
+                "seconds": round(self.seconds, 2)}
+
+
+def estimate(n: int, degree: int) -> str:
+    """A one-line size and time estimate of a box before it runs (scale measured on a loaded
+    2-core machine: n = 4, d = 6 about 18 s; n = 5, d = 2 about 12 s)."""
+    blocks = len(ba.MM_NAMES) + len(ba.MG_NAMES)
+    unknowns = blocks * (degree + 1)
+    N = n * (n - 1) // 2 + n
+    cost = unknowns * N * N * 1e-3 + 1
+    return (f"n={n} degree={degree}: {unknowns} unknowns, {N}x{N} bivectors, "
+            f"about {cost:.0f} s and < 1 GB")
+
+
+def _rref_solve(rows: list[list], rhs: list) -> tuple[list | None, list[list]]:
+    """Exact solution set of rows * c = rhs over QQ: (particular solution or None, kernel basis)."""
+    m = len(rows[0])
+    A = flint.fmpq_mat(len(rows), m + 1, [v for r, h in zip(rows, rhs) for v in (*r, h)])
+    R, rank = A.rref()
+    pivots = []
+    for i in range(rank):
+        j = next(j for j in range(m + 1) if R[i, j] != 0)
+        if j == m:
+            return None, []
+        pivots.append(j)
+    free = [j for j in range(m) if j not in pivots]
+    part = [flint.fmpq(0)] * m
+    for i, j in enumerate(pivots):
+        part[j] = R[i, m]
+    kernel = []
+    for f in free:
+        v = [flint.fmpq(0)] * m
+        v[f] = flint.fmpq(1)
+        for i, j in enumerate(pivots):
+            v[j] = -R[i, f]
+        kernel.append(v)
+    return part, kernel
+
+
+def _independent_columns(ans: ba.Ansatz, fb: list[dict], seed: int) -> tuple[list[int], int]:
+    """Columns of the box that are independent as functions on P; every dependency the sampled
+    points suggest is proved as an exact identity modulo the sphere before its column is dropped."""
+    n = ans.n
+    N = len(ans.coords)
+    keys = sorted({k for e in fb for k in e})
+    cols = len(fb)
+    pts = _points(n, max(4, cols // max(1, len(keys)) + 4), seed, "columns")
+    rows = []
+    for M, g in pts:
+        pt = [_fq(v) for v in list(vec(M)) + list(g)]
+        vals = [{k: f(*pt) for k, f in e.items()} for e in fb]
+        for k in keys:
+            rows.append([vals[u].get(k, flint.fmpq(0)) for u in range(cols)])
+    _, kernel = _rref_solve(rows, [flint.fmpq(0)] * len(rows))
+    gam = list(ans.coords[N - n:])
+    for v in kernel:  # prove each syzygy exactly: sum v_u B_u = 0 modulo |gamma|^2 = 1
+        comb = sp.zeros(N, N)
+        for u, c in enumerate(v):
+            if c != 0:
+                comb += sp.Rational(int(c.p), int(c.q)) * ans.bivectors[u]
+        for entry in comb:
+            if entry != 0 and _sphere_reduce(sp.expand(entry), gam) != 0:
+                raise ArithmeticError("a sampled syzygy of the box is not an identity; more points")
+    dropped = set()
+    for v in kernel:  # the free column of each kernel vector (rref: one per vector)
+        dropped.add(max(u for u, c in enumerate(v) if c != 0))
+    return [u for u in range(cols) if u not in dropped], len(kernel)
+
+
+def _sphere_reduce(expr: sp.Expr, gamma: list) -> sp.Expr:
+    """Normal form of a polynomial modulo $\\|\\gamma\\|^2 - 1$ (powers of $\\gamma_n^2$ replaced)."""
+    g = gamma[-1]
+    rest = 1 - sum(v**2 for v in gamma[:-1])
+    return sp.expand(sp.rem(sp.Poly(expr, g), sp.Poly(g**2 - rest, g)).as_expr())
+
+
+def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None) -> BoxResult:
+    """Decide one box exactly (module docstring): the linear stage over QQ, then the Jacobi
+    stage by a Gröbner basis over QQ in the remaining unknowns and sigma."""
+    t0 = time.perf_counter()
+    a, b = sp.Rational(a), sp.Rational(b)
+    res = BoxResult(n, degree, e, a, b)
+    ans = ba.ansatz(n, degree)
+    fb = flint_bivectors(ans)
+    res.unknowns = len(fb)
+    cols, res.syzygies = _independent_columns(ans, fb, seed)
+    res.independent = len(cols)
+    N = len(ans.coords)
+    m = N - n
+    rows, rhs = [], []
+    pts = _points(n, 2 * (len(cols) // N) + 6, seed, "linear")
+    for M, g in pts:
+        fd = field_data(n, a, b, M, g)
+        pt = [_fq(v) for v in list(vec(M)) + list(g)]
+        dH = [_fq(v) for v in fd["dH"]]
+        De = _fq(fd["Delta"] ** e)
+        Vs = [_values(fb[u], pt, N) for u in cols]
+        for i in range(N):
+            rows.append([sum((V[i][j] * dH[j] for j in range(N)), flint.fmpq(0)) for V in Vs])
+            rhs.append(De * _fq(fd["X"][i]))
+        gg = [2 * _fq(v) for v in g]
+        for i in range(m):
+            rows.append([sum((V[i][m + k] * gg[k] for k in range(n)), flint.fmpq(0)) for V in Vs])
+            rhs.append(flint.fmpq(0))
+    part, kernel = _rref_solve(rows, rhs)
+    if progress:
+        progress(f"  n={n} d={degree} e={e}: linear stage done ({time.perf_counter() - t0:.1f} s)")
+    if part is None:
+        res.linear, res.outcome = "inconsistent", "excluded (linear)"
+        res.seconds = time.perf_counter() - t0
+        return res
+    res.free = len(kernel)
+    res.linear = f"affine space of dimension {len(kernel)}"
+    ctx = _ctx(ans.coords)
+    P0 = _combine(fb, cols, part, ctx)
+    Ks = [_combine(fb, cols, k, ctx) for k in kernel]
+    eqs, ring_gens = jacobi_equations(n, a, b, P0, Ks, seed, ctx)
+    res.jacobi_equations = len(eqs)
+    if not eqs:
+        gb = []
+    else:
+        gb = list(sp.groebner(eqs, *ring_gens, order="grevlex", domain=sp.QQ).exprs)
+    res.groebner = gb
+    res.outcome = "excluded (Jacobi)" if gb == [1] else "solutions"
+    if res.outcome == "solutions":
+        res.solution = {"groebner": gb, "gens": ring_gens, "cols": cols, "part": part,
+                        "kernel": kernel, "ansatz": ans}
+    res.seconds = time.perf_counter() - t0
+    return res
+
+
+def _combine(fb, cols, coeffs, ctx) -> dict:
+    out: dict = {}
+    for u, c in zip(cols, coeffs, strict=True):
+        if c == 0:
+            continue
+        for k, f in fb[u].items():
+            out[k] = out.get(k, ctx.from_dict({})) + c * f
+    return {k: f for k, f in out.items() if f != 0}
+
+
+def jacobi_equations(n: int, a, b, P0: dict, Ks: list[dict], seed: int, ctx, points: int | None = None):
+    r"""The Jacobi condition of the module docstring at seeded rational points of $P$, for
+    $P = P_0 + \sum_i t_i K_i$: polynomials in $t_i$ and $\sigma$ over $\mathbb{Q}$ (a basis of
+    their span), and the generators $(t_1, \dots, t_r, \sigma)$."""
+    ts = sp.symbols(f"t1:{len(Ks) + 1}")
+    gens = (*ts, sigma)
+    R, *rg = sp.ring(gens, sp.QQ)
+    N = ctx.nvars()
+    parts = [P0, *Ks]
+    coef = [R(1), *rg[:-1]]
+    s = rg[-1]
+    count = points if points is not None else 3 + len(Ks) // 4
+    eqs = []
+    for M, g in _points(n, count, seed, "jacobi"):
+        pt = [_fq(v) for v in list(vec(M)) + list(g)]
+        fd = field_data(n, a, b, M, g)
+        D, dD = R(R.domain.from_sympy(sp.Rational(fd["Delta"]))), R(R.domain.from_sympy(sp.Rational(fd["dDelta"])))
+        V = [[R(0)] * N for _ in range(N)]
+        dV = [[[R(0)] * N for _ in range(N)] for _ in range(N)]
+        for part, c in zip(parts, coef, strict=True):
+            for (i, j), f in part.items():
+                v = c * _qr(R, f(*pt))
+                V[i][j] += v
+                V[j][i] -= v
+                for l in range(N):
+                    dv = f.derivative(l)
+                    if dv != 0:
+                        w = c * _qr(R, dv(*pt))
+                        dV[l][i][j] += w
+                        dV[l][j][i] -= w
+        PdD = [V[i][N - 1] * dD for i in range(N)]
+        for i in range(N):
+            for j in range(i + 1, N):
+                for k in range(j + 1, N):
+                    jac = R(0)
+                    for (p, q, r) in ((i, j, k), (j, k, i), (k, i, j)):
+                        jac += sum((V[p][l] * dV[l][q][r] for l in range(N) if V[p][l] and dV[l][q][r]), R(0))
+                    extra = V[j][k] * PdD[i] + V[k][i] * PdD[j] + V[i][j] * PdD[k]
+                    val = D * jac + s * extra
+                    if val != 0:
+                        eqs.append(val)
+    return _span_basis(eqs, R), gens
+
+
+def _q(v: flint.fmpq):
+    return sp.Rational(int(v.p), int(v.q))
+
+
+def _qr(R, v: flint.fmpq):
+    return R(R.domain.from_sympy(_q(v)))
+
+
+def _span_basis(eqs: list, R) -> list[sp.Expr]:
+    """A basis (over QQ) of the span of the sampled equations, as SymPy expressions."""
+    if not eqs:
+        return []
+    monos = sorted({mono for e in eqs for mono in e.keys()})
+    pos = {mono: i for i, mono in enumerate(monos)}
+    A = flint.fmpq_mat(len(eqs), len(monos))
+    for r, e in enumerate(eqs):
+        for mono, c in e.items():
+            A[r, pos[mono]] = _fq(R.domain.to_sympy(c))
+    Rr, rank = A.rref()
+    out = []
+    for i in range(rank):
+        poly = R({monos[j]: R.domain.from_sympy(sp.Rational(int(Rr[i, j].p), int(Rr[i, j].q)))
+                  for j in range(len(monos)) if Rr[i, j] != 0})
+        out.append(poly.as_expr())
+    return out
+
+
+def jacobi_residual(Pmat: sp.Matrix, coords, n: int, a, b, sig) -> list[sp.Expr]:
+    r"""The Jacobi condition of the module docstring for a symbolic bivector $P$ (entries
+    polynomial in the coordinates): $\Delta[P,P]_{ijk} + \sigma\sum_{\mathrm{cyc}}P_{jk}(P\,d\Delta)_i$,
+    one polynomial per triple $i<j<k$ (an identity modulo the sphere when $\Pi$ is Poisson)."""
+    N = len(coords)
+    x = coords[-1]
+    D = Delta(x, a, b)
+    dD = sp.diff(D, x)
+    dP = [[[sp.diff(Pmat[j, k], coords[l]) for k in range(N)] for j in range(N)] for l in range(N)]
+    out = []
+    for i in range(N):
+        for j in range(i + 1, N):
+            for k in range(j + 1, N):
+                jac = 0
+                for (p, q, r) in ((i, j, k), (j, k, i), (k, i, j)):
+                    jac += sum(Pmat[p, l] * dP[l][q][r] for l in range(N))
+                extra = (Pmat[j, k] * Pmat[i, N - 1] + Pmat[k, i] * Pmat[j, N - 1]
+                         + Pmat[i, j] * Pmat[k, N - 1]) * dD
+                out.append(sp.expand(D * jac + sig * extra))
+    return out

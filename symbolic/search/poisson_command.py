@@ -1,0 +1,74 @@
+r"""``chaplygin poisson``: the exact Hamiltonisation search from the command line (rows
+S7:poisson-controls, S7:poisson-n4, S7:poisson-n5; symbolic/search/poisson.py).
+
+    chaplygin poisson 3 2 --a 1/3 --b 2/5            # n = 3, degrees 0..2, e in -1..3
+    chaplygin poisson 4 6 --from 4 --e 1,2 --a 1/3 --b 2/5 --json out.json
+
+Before each box: one line with its size and a time estimate (stderr). Then one line per box:
+the linear stage (inconsistent, or the dimension of the sampled affine space), the Gröbner basis
+of the Jacobi stage, the outcome (``excluded (linear)``, ``excluded (Jacobi)`` — both exact —
+or ``solutions``), seconds. Bad input: one line ``error: ...`` and exit status 2.
+"""
+
+from __future__ import annotations
+
+import json
+
+__all__ = ["main"]
+
+
+def main(argv: list[str]) -> int:
+    """Run the search; exit status 0, or 2 on bad input (one line)."""
+    from chaplygin_nd.symbolic.search.command import parse_rational
+
+    from chaplygin_nd.console import OneLineParser, fail, path_argument, positive_int
+
+    parser = OneLineParser(prog="chaplygin poisson",
+                           description="Exact search for a Hamiltonisation Pi = Delta^sigma P, "
+                                       "rho = Delta^(sigma+e), box by box (rows S7:poisson-*).")
+    parser.add_argument("n", type=positive_int, help="the dimension n >= 3")
+    parser.add_argument("degree", type=int, help="the highest degree d in x = gamma_n searched")
+    parser.add_argument("--from", dest="start", type=int, default=0, help="the lowest degree (default 0)")
+    parser.add_argument("--e", default="-1,0,1,2,3", help="the exponents e, comma-separated")
+    parser.add_argument("--a", default="1/3", help="J = Id + a E_n E_n^T, a >= -1 (default 1/3)")
+    parser.add_argument("--b", default="2/5", help="b >= 0 (default 2/5; b = 0 is the free body)")
+    parser.add_argument("--seed", type=int, default=None, help="the seed of the sampled points")
+    parser.add_argument("--json", type=path_argument, help="write the table to this file")
+    args = parser.parse_args(argv)
+    try:
+        if args.n < 3:
+            raise ValueError(f"n = {args.n}: the sphere needs n >= 3")
+        if args.degree < 0 or args.start < 0 or args.start > args.degree:
+            raise ValueError(f"degrees {args.start}..{args.degree}: need 0 <= --from <= degree")
+        a, b = parse_rational(args.a, "a"), parse_rational(args.b, "b")
+        if a < -1 or b < 0:
+            raise ValueError(f"(a, b) = ({a}, {b}) is outside a >= -1, b >= 0")
+        try:
+            es = [int(v) for v in args.e.split(",")]
+        except ValueError:
+            raise ValueError(f"--e {args.e!r}: comma-separated integers, e.g. 0,1,2") from None
+        if args.json is not None and not args.json.absolute().parent.is_dir():
+            raise ValueError(f"--json {args.json}: no folder {args.json.absolute().parent}")
+    except ValueError as err:
+        return fail(str(err))
+    import sys
+
+    from chaplygin_nd.symbolic.exact.points import ledger_seed
+    from chaplygin_nd.symbolic.search import poisson as ps
+
+    seed = ledger_seed() if args.seed is None else args.seed
+    rows = []
+    for d in range(args.start, args.degree + 1):
+        print(f"box: {ps.estimate(args.n, d)} per e", file=sys.stderr, flush=True)
+        for e in es:
+            r = ps.search_box(args.n, d, e, a, b, seed=seed,
+                              progress=lambda s: print(s, file=sys.stderr, flush=True))
+            rows.append(r.as_dict())
+            gb = [str(g) for g in r.groebner][:6]
+            print(f"n={args.n} d={d} e={e} a={a} b={b}: {r.independent} unknowns, linear "
+                  f"{r.linear}, Groebner {gb}, {r.outcome}, {r.seconds:.1f} s", flush=True)
+    if args.json:
+        from chaplygin_nd.writing import write_atomic
+
+        write_atomic(args.json.absolute(), json.dumps(rows, indent=1, default=str))
+    return 0
