@@ -235,11 +235,11 @@ def _bitwise_equal(x, y) -> bool:
 
 
 def _exact_or_bitwise(x, y) -> bool:
-    """Exact equality (SymPy values, :func:`ledger.mutate._same`), bit-for-bit for arrays."""
-    from chaplygin_nd.ledger.mutate import _same
+    """Exact equality (SymPy values, :func:`.equivalence.same`), bit-for-bit for arrays."""
+    from chaplygin_nd.ledger.mutation.equivalence import same
 
     try:
-        return bool(_same(x, y))
+        return bool(same(x, y))
     except Exception:  # noqa: BLE001 - e.g. NumPy arrays: compared bit for bit
         return _bitwise_equal(x, y)
 
@@ -289,7 +289,7 @@ def equivalence(fn, mutant_code, tests: list[str], fresh: bool, same=_bitwise_eq
             sys.settrace(saved)
         return want
 
-    from chaplygin_nd.ledger.mutate_replay import calls_through
+    from chaplygin_nd.ledger.mutation.replay import calls_through
 
     with calls_through(fn, hook), _cache_root(fresh):
         _pytest(tests)
