@@ -44,17 +44,17 @@ from types import FunctionType
 from typing import Any
 
 from chaplygin_nd.ledger.catalog import ROOT
-from chaplygin_nd.ledger.mutation import checks
+from chaplygin_nd.ledger.mutation import cache_scope, checks
 from chaplygin_nd.ledger.mutation import runtime as mr
 from chaplygin_nd.ledger.mutation.argued import argued
 from chaplygin_nd.ledger.mutation.equivalence import settle
-from chaplygin_nd.ledger.mutation.operators import Mutant, all_mutants, compile_mutant
+from chaplygin_nd.ledger.mutation.operators import Mutant, all_mutants, compile_mutant, source_digest
 from chaplygin_nd.ledger.mutation.record import plural
 from chaplygin_nd.ledger.mutation.replay import Recording, mutated_position, replay
 from chaplygin_nd.ledger.mutation.replay import record as record_calls
 from chaplygin_nd.ledger.mutation.runtime import runtime_functions
 from chaplygin_nd.ledger.phase import Phase
-from chaplygin_nd.ledger.reach import clear_caches, derivation_functions, load, load_derived
+from chaplygin_nd.ledger.reach import derivation_functions, load, load_derived
 
 OUT_PATH = ROOT / "mutation-derivations.json"
 SEED = 20261123
@@ -98,15 +98,19 @@ def _evaluate(task: Task) -> dict:
     m = task.mutant
     record: dict[str, Any] = {"target": task.target, "function": m.function, "index": m.index,
                               "mutation": f"{m.operator}: {m.description}", "row": None,
-                              "outcome": "", "reason": ""}
-    start = time.perf_counter()
+                              "outcome": "", "reason": "", "source": _digest(m.function, fn)}
+    start, cpu = time.perf_counter(), time.process_time()
     try:
         code = compile_mutant(fn, m)
     except Exception as err:  # noqa: BLE001 - a mutant that does not compile is not a test
         record.update(outcome="killed", reason=f"does not compile: {type(err).__name__}")
         return record
     try:
-        clear_caches()
+        if task.target == "derivations":  # the caches fn cannot reach stay warm (cache_scope)
+            cache_scope.begin(m.function, fn)
+        else:
+            cache_scope.end()
+        cache_scope.clear()
         if task.target == "runtime":
             record = mr.evaluate(fn, code, m.function, task.rows, record)
         elif not task.rows:
@@ -124,8 +128,20 @@ def _evaluate(task: Task) -> dict:
         return record
     finally:
         fn.__code__ = original
-        clear_caches()
+        cache_scope.clear()
         record["seconds"] = round(time.perf_counter() - start, 2)
+        record["cpu seconds"] = round(time.process_time() - cpu, 2)
+
+
+_DIGESTS: dict[tuple, str] = {}
+
+
+def _digest(key: str, fn) -> str:
+    """:func:`.operators.source_digest` of ``fn``, once per process and code object."""
+    memo = (key, fn.__code__)
+    if memo not in _DIGESTS:
+        _DIGESTS[memo] = source_digest(fn)
+    return _DIGESTS[memo]
 
 
 #: This worker's recordings of one function's calls in each check ((function, check) -> Recording);
@@ -194,7 +210,7 @@ def _run_check(fn, code, original, check: str, base, seconds: float) -> tuple[bo
         return got != base, note or (checks.difference(base, got) if got != base else "")
     finally:
         fn.__code__ = original
-        clear_caches()
+        cache_scope.clear()
 
 
 def _decide_by_rows(task: Task, fn, code, record: dict) -> dict:

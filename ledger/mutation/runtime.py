@@ -182,9 +182,9 @@ def _watch(functions: dict[str, FunctionType], reached: dict, phase=None):
 
 
 def _empty_caches() -> None:
-    from chaplygin_nd.ledger.reach import clear_caches
+    from chaplygin_nd.ledger.mutation.cache_scope import clear
 
-    clear_caches()
+    clear()
 
 
 def test_map(functions: dict[str, FunctionType] | None = None,
@@ -299,7 +299,7 @@ def equivalence(fn, mutant_code, tests: list[str], fresh: bool, same=_bitwise_eq
 def _pytest_with(fn, code, key: str, args: list[str], none_ok: bool = False) -> tuple[int, str]:
     """:func:`_pytest` with ``code`` in place of ``fn``'s (restored, and the caches cleared, after:
     e.g. jit_cache.code_version, computed with the mutant in place)."""
-    from chaplygin_nd.ledger.reach import clear_caches
+    from chaplygin_nd.ledger.mutation.cache_scope import clear
 
     original = fn.__code__
     fn.__code__ = code
@@ -308,7 +308,7 @@ def _pytest_with(fn, code, key: str, args: list[str], none_ok: bool = False) -> 
             return _pytest(args, none_ok=none_ok)
     finally:
         fn.__code__ = original
-        clear_caches()
+        clear()
 
 
 def kill(fn, code, key: str, tests: tuple[str, ...]) -> str | None:
@@ -337,7 +337,7 @@ def kill_slow(fn, code, key: str) -> str | None:
 def evaluate(fn, code, key: str, tests: tuple[str, ...], record: dict) -> dict:
     """Decide one mutant (``code`` for ``fn``) against ``tests`` alone (the ids that reach it,
     fastest first); fills and returns ``record``. The caller clears the functools caches."""
-    from chaplygin_nd.ledger.reach import clear_caches
+    from chaplygin_nd.ledger.mutation.cache_scope import clear
 
     if not tests:
         record.update(outcome="survived", row="tests",
@@ -354,7 +354,7 @@ def evaluate(fn, code, key: str, tests: tuple[str, ...], record: dict) -> dict:
     same, calls, ran = equivalence(fn, code, list(tests), key.startswith("runtime.jit_cache."),
                                    _bitwise_equal if runtime else _exact_or_bitwise,
                                    int(found.group(1)) if found else None)
-    clear_caches()
+    clear()
     how = "bit-for-bit" if runtime else "exactly (SymPy) or bit-for-bit (arrays)"
     passed = f"the {len(tests)} tests that reach it passed"
     if same and ran:
