@@ -318,17 +318,26 @@ def kill(fn, code, key: str, tests: tuple[str, ...]) -> str | None:
     return note if status != 0 else None
 
 
+#: ``(function, its code, test files) -> whether its slow tests pass unmutated``, per process: the
+#: same for every mutant of the function (a run of h2_residual's took a minute per mutant).
+_SLOW_UNMUTATED: dict[tuple, bool] = {}
+
+
 def kill_slow(fn, code, key: str) -> str | None:
     """The last resort for a survivor: the tests marked ``slow`` of the files naming its module
     (:func:`mentioning`), ``pytest -x``, with ``code`` in place of ``fn``'s: the first failure's
     line, or None (every one passed, there is none, or one fails unmutated: it tells nothing;
     round 25, one killed 11 mutants spuriously). Not run per mutant otherwise (too long):
-    ``family.wedge_n6.h2_residual``'s symbolic check is one (round 25)."""
+    ``family.wedge_n6.h2_residual``'s symbolic check is one (round 25). The unmutated run is made
+    once per process and function (:data:`_SLOW_UNMUTATED`)."""
     files = mentioning([key])
     if not files:
         return None
     args = ["-x", "-m", "slow and not site", *files]
-    if _pytest_with(fn, fn.__code__, key, args, none_ok=True)[0] != 0:
+    memo = (key, fn.__code__, files)
+    if memo not in _SLOW_UNMUTATED:
+        _SLOW_UNMUTATED[memo] = _pytest_with(fn, fn.__code__, key, args, none_ok=True)[0] == 0
+    if not _SLOW_UNMUTATED[memo]:
         return None
     status, note = _pytest_with(fn, code, key, args, none_ok=True)
     return note if status != 0 else None
