@@ -355,3 +355,33 @@ def test_a_survivor_meets_the_slow_tests_of_its_module_last(tmp_path, monkeypatc
     broken.write_text("import pytest\n\n\n@pytest.mark.slow\ndef test_broken():\n    assert False\n")
     monkeypatch.setattr(mr, "mentioning", lambda keys: (str(broken),))
     assert mr.kill_slow(fn, code, key) is None
+
+
+def test_resume_names_stale_records_and_keeps_each_mutant_once(monkeypatch, capsys):
+    """--resume keeps a record only for the code as it is now: one decided on another source of
+    its function (its digest differs) is stale and decided again, a mutant recorded twice keeps
+    its latest record, a record without a digest (written before digests were kept) is kept and
+    stamped, and every kept record takes its mutant's index now."""
+    key = "reduction.reduced_n4.horizontal_frequency_squared"
+    fn = md.functions("derivations")[key]
+    mutants = [m for m, _ in operators.all_mutants(key, fn)]
+    monkeypatch.setattr(md, "sample", lambda target, size, seed=md.SEED: mutants)
+    digest = operators.source_digest(fn)
+
+    def rec(m, **extra):
+        return {"target": "derivations", "function": key, "index": 99, "outcome": "killed",
+                "mutation": f"{m.operator}: {m.description}", "source": digest, **extra}
+
+    fresh, stale = rec(mutants[0]), rec(mutants[1], source="0" * 16)
+    older, latest = rec(mutants[2], outcome="equivalent"), rec(mutants[2])
+    assert record.current([fresh, stale, older, latest]) == [fresh, latest]
+    assert fresh["index"] == mutants[0].index and latest["index"] == mutants[2].index
+    out = capsys.readouterr().out
+    assert f"dropped 1 record decided on another source of their function ({key})" in out
+    assert f"dropped 1 record of a mutant recorded twice ({key})" in out
+    unstamped = {k: v for k, v in rec(mutants[3]).items() if k != "source"}
+    assert record.current([dict(unstamped)]) == [dict(unstamped, index=mutants[3].index,
+                                                      source=digest)]
+    assert "written without the digest of their function's source" in capsys.readouterr().out
+    found = record.consistency([fresh], targets=("derivations",))
+    assert not found["gone"] and not found["stale"] and len(found["undecided"]) == len(mutants) - 1

@@ -83,8 +83,8 @@ def _now(targets) -> dict[tuple[str, str, str], tuple[int, str]]:
 
 
 def _sorted_by_kind(records: list[dict], now: dict) -> dict[str, list[dict]]:
-    """The kept records of :func:`current`, sorted into ``kept``, ``gone``, ``stale``, ``twice``
-    and ``unstamped`` (a record is in ``kept`` and, when it has no digest, in ``unstamped`` too)."""
+    """The records of :func:`current`, sorted into ``kept``, ``gone``, ``stale``, ``twice`` and
+    ``unstamped`` (a record is in ``kept`` and, when it has no digest, in ``unstamped`` too)."""
     kinds: dict[str, list[dict]] = {k: [] for k in ("kept", "gone", "stale", "twice", "unstamped")}
     seen: set[tuple[str, str, str]] = set()
     for r in reversed(records):  # the last record of a mutant is the latest decision
@@ -93,7 +93,7 @@ def _sorted_by_kind(records: list[dict], now: dict) -> dict[str, list[dict]]:
             kinds["gone"].append(r)
         elif key in seen:
             kinds["twice"].append(r)
-        elif "source" in r and r["source"] != now[key][1]:
+        elif r.get("source", now[key][1]) != now[key][1]:
             kinds["stale"].append(r)
         else:
             seen.add(key)
