@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import sys
 from types import FunctionType
+from typing import Any
 
 from chaplygin_nd.ledger.reach import clear_caches
 
@@ -79,12 +80,12 @@ def _state(wrapper) -> tuple[int, int]:
 _SCOPE: _Scope | None = None
 
 
-def _caches() -> dict[str, object]:
+def _caches() -> dict[str, Any]:
     """``{"module:name": wrapper}`` for every ``functools`` cache of the loaded modules of
     ``symbolic/`` whose wrapped function is a plain function (the others are always emptied),
     each once (a cache imported into another module is the same cache); their ``cache_clear`` is
     made to count (:data:`_EMPTIED`)."""
-    out: dict[str, object] = {}
+    out: dict[str, Any] = {}
     seen: set[int] = set()
     for name, mod in sorted(sys.modules.items()):
         if not name.startswith(SCOPED_PREFIX) or mod is None:
@@ -156,7 +157,7 @@ class watching:
     the state the run left it."""
 
     def __init__(self):
-        self._saved: dict[str, object] = {}
+        self._saved: dict[str, Any] = {}
 
     def __enter__(self) -> watching:
         scope = _SCOPE

@@ -257,7 +257,8 @@ def _write(args: argparse.Namespace, records: list[dict], selection: list, secon
     line = f"engines {engine_label(active_engines())}: {line}"
     if args.sample:
         line += f" (seeded sample of {len(selection)} mutants)"
-    differ = _compare(records, compared_outcomes(args.compare)) if args.compare else []
+    theirs = compared_outcomes(args.compare) if args.compare else {}
+    differ = _compare(records, theirs) if isinstance(theirs, dict) else []
     write_json_atomic({"summary": line, "engines": args.engines, "mutants": records,
                        "differs_from_compared": differ}, args.out)
     print(line)

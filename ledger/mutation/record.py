@@ -130,8 +130,9 @@ def current(records: list[dict]) -> list[dict]:
                   + text.format(_functions_of(kinds[kind])), flush=True)
     if kinds["unstamped"]:
         print(f"kept {plural(len(kinds['unstamped']), 'record')} written without the digest of "
-              "their function's source, as decided on the code as it is now (their mutants "
-              "exist); stamped with its digest from here on", flush=True)
+              "their function's source: their mutants exist, but whether their functions changed "
+              "since cannot be told; stamped with the digest of the code as it is now",
+              flush=True)
     for r in kinds["kept"]:
         index, digest = now[(r["target"], r["function"], r["mutation"])]
         r.update(index=index, source=digest)
