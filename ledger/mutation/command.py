@@ -45,7 +45,8 @@ def _parser() -> OneLineParser:
     parser.add_argument("--seed", type=int, default=SEED,
                         help=f"the seed of --sample's draw (default {SEED})")
     parser.add_argument("--function", action="append", default=[],
-                        help="only these functions (e.g. reduced.horizontal_blocks; --list lists them)")
+                        help="only these functions (e.g. reduction.reduced_n4.horizontal_blocks; --list "
+                             "lists them)")
     parser.add_argument("--list", action="store_true",
                         help="list the functions of the targets (the names --function takes) and exit")
     parser.add_argument("--rerun", type=path_argument, default=None,
