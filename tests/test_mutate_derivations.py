@@ -385,3 +385,22 @@ def test_resume_names_stale_records_and_keeps_each_mutant_once(monkeypatch, caps
     assert "written without the digest of their function's source" in capsys.readouterr().out
     found = record.consistency([fresh], targets=("derivations",))
     assert not found["gone"] and not found["stale"] and len(found["undecided"]) == len(mutants) - 1
+
+
+def test_a_slow_test_that_does_not_call_the_function_kills_none_of_its_mutants(tmp_path, monkeypatch):
+    """A slow test of a file that names the module but never calls the function (here: one that
+    reads the function's source, which a mutant's code does not have, as the test listing every
+    mutant does) failed under each of wedge_n6.h2_residual's mutants and killed all 11 that
+    survived the quick test. Only the slow tests that call the function are run."""
+    from chaplygin_nd.ledger.mutation import runtime as mr
+
+    key = "algebra.so_dim"
+    fn = md.functions("derivations")[key]
+    mutant = next(m for m, _ in operators.all_mutants(key, fn) if m.operator == "const")
+    code = operators.compile_mutant(fn, mutant)
+    reads = tmp_path / "test_slow_reads_source.py"
+    reads.write_text("import inspect\n\nimport pytest\nfrom chaplygin_nd.symbolic import algebra\n\n\n"
+                     "@pytest.mark.slow\ndef test_reads_source():\n"
+                     "    assert 'def so_dim' in inspect.getsource(algebra.so_dim)\n")
+    monkeypatch.setattr(mr, "mentioning", lambda keys: (str(reads),))
+    assert mr.kill_slow(fn, code, key) is None

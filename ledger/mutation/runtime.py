@@ -188,18 +188,20 @@ def _empty_caches() -> None:
 
 
 def test_map(functions: dict[str, FunctionType] | None = None,
-             files: tuple[str, ...] | None = None, phase=None) -> dict[str, list[tuple[str, float]]]:
+             files: tuple[str, ...] | None = None, phase=None,
+             slow: bool = False) -> dict[str, list[tuple[str, float]]]:
     """``{function: [(test id, seconds), ...]}`` (fastest first): the tests of ``files`` (default
     :func:`runtime_tests`) that call each of ``functions`` (default: the runtime's), recorded in
     one unmutated run. A test that fails unmutated reaches nothing (it could not tell a mutant
     apart); tests marked ``slow`` are left out (too long to run once per mutant: a function only
-    they reach is reported as reached by no test). ``phase`` (:class:`ledger.phase.Phase`) counts
-    the tests as they end."""
+    they reach is reported as reached by no test), or, with ``slow``, they alone are run (none
+    collected: none reaches). ``phase`` (:class:`ledger.phase.Phase`) counts the tests as they
+    end."""
     functions = runtime_functions() if functions is None else functions
     reached: dict[str, tuple[float, tuple[str, ...]]] = {}
     watch, failed = _watch(functions, reached, phase)
-    _pytest(["-m", "not slow and not site", *(runtime_tests() if files is None else files)],
-            plugins=[watch])
+    _pytest(["-m", "slow and not site" if slow else "not slow and not site",
+             *(runtime_tests() if files is None else files)], plugins=[watch], none_ok=slow)
     out: dict[str, list[tuple[str, float]]] = {key: [] for key in functions}
     for test, (seconds, calls) in reached.items():
         for key in () if test in failed else calls:
@@ -318,28 +320,41 @@ def kill(fn, code, key: str, tests: tuple[str, ...]) -> str | None:
     return note if status != 0 else None
 
 
-#: ``(function, its code, test files) -> whether its slow tests pass unmutated``, per process: the
-#: same for every mutant of the function (a run of h2_residual's took a minute per mutant).
-_SLOW_UNMUTATED: dict[tuple, bool] = {}
+def _runnable(test: str, files: tuple[str, ...]) -> str:
+    """A test id pytest finds from the checkout: ids are relative to pytest's root folder, which
+    for a file outside the checkout is not the checkout (its file part is then given whole)."""
+    path, _, rest = test.partition("::")
+    if (ROOT / path).exists():
+        return test
+    whole = next((f for f in files if str(f).endswith(path)), path)
+    return f"{whole}::{rest}"
+
+
+#: ``(function, its code, test files) -> the slow tests among them that call it``, per process:
+#: found once (one instrumented unmutated run) for every mutant of the function.
+_SLOW_REACHING: dict[tuple, tuple[str, ...]] = {}
 
 
 def kill_slow(fn, code, key: str) -> str | None:
     """The last resort for a survivor: the tests marked ``slow`` of the files naming its module
-    (:func:`mentioning`), ``pytest -x``, with ``code`` in place of ``fn``'s: the first failure's
-    line, or None (every one passed, there is none, or one fails unmutated: it tells nothing;
-    round 25, one killed 11 mutants spuriously). Not run per mutant otherwise (too long):
-    ``family.wedge_n6.h2_residual``'s symbolic check is one (round 25). The unmutated run is made
-    once per process and function (:data:`_SLOW_UNMUTATED`)."""
+    (:func:`mentioning`) that call ``fn`` (:func:`test_map` with ``slow``, once per process and
+    function), ``pytest -x``, with ``code`` in place of ``fn``'s: the first failure's line, or None
+    (every one passed, or none calls ``fn``). Not run per mutant otherwise (too long):
+    ``family.wedge_n6.h2_residual``'s symbolic check is one. A slow test that does not call ``fn``
+    is not run: a test that lists every mutant (it reads each function's source, and a mutant's
+    code has none) failed under every mutant and killed them all; one that fails unmutated
+    reaches nothing."""
     files = mentioning([key])
     if not files:
         return None
-    args = ["-x", "-m", "slow and not site", *files]
     memo = (key, fn.__code__, files)
-    if memo not in _SLOW_UNMUTATED:
-        _SLOW_UNMUTATED[memo] = _pytest_with(fn, fn.__code__, key, args, none_ok=True)[0] == 0
-    if not _SLOW_UNMUTATED[memo]:
+    if memo not in _SLOW_REACHING:
+        reach = test_map({key: fn}, files, slow=True)
+        _SLOW_REACHING[memo] = tuple(_runnable(t, files) for t, _ in reach.get(key, ()))
+    tests = _SLOW_REACHING[memo]
+    if not tests:
         return None
-    status, note = _pytest_with(fn, code, key, args, none_ok=True)
+    status, note = _pytest_with(fn, code, key, ["-x", *tests])
     return note if status != 0 else None
 
 
