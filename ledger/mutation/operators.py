@@ -190,10 +190,16 @@ def mutants(key: str, fn, per_function: int = PER_FUNCTION, seed: int = 20261123
 
 
 def compile_mutant(fn, mutant: Mutant):
-    """The code object of ``mutant`` (compiled from the mutated AST; nothing is written)."""
+    """The code object of ``mutant`` (compiled from the mutated AST; nothing is written). The
+    function's decorators are left out: ``fn`` is the plain function (a cached one's
+    ``__wrapped__``), whose code the mutant replaces; compiled with its ``@functools.cache``, the
+    name bound was the cache wrapper, which has no code, and every mutant of a cached derivation
+    was recorded killed ("does not compile") without being run."""
     for m, tree in all_mutants(mutant.function, fn):
         if m.index == mutant.index:
-            module = ast.Module(body=[tree], type_ignores=[])
+            bare = ast.FunctionDef(**{name: getattr(tree, name) for name in tree._fields})
+            bare.decorator_list = []
+            module = ast.Module(body=[ast.copy_location(bare, tree)], type_ignores=[])
             ast.fix_missing_locations(module)
             namespace = dict(fn.__globals__)
             exec(compile(module, f"<mutant {mutant.function} #{mutant.index}>", "exec"), namespace)
