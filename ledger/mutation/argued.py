@@ -138,6 +138,24 @@ ARGUED: dict[tuple[str, str], str] = {
        for mutation in ("factor: line 71 col 11: p[0] * r[0] -> r[0] * p[0]",
                         "factor: line 71 col 25: p[1] * r[1] -> r[1] * p[1]",
                         "factor: line 71 col 39: p[2] * r[2] -> r[2] * p[2]")},
+    ("family.wedge_n6.h2_residual", "exponent: line 94 col 42: (2 + A + B) ** deg -> "
+                                    "(2 + A + B) ** (deg + 1)"):
+        "every scaled coefficient c_k' and D' multiplied by one more factor c = 2 + a + b, which "
+        "holds no M, gamma or x: NH is linear in the c_k', so NH and D' both become c times "
+        "themselves and the residual D' DX(NH) - NH DX(D') becomes c^2 times the original's; c is "
+        "not zero (symbolic, in the domain Q[a, b, x, M, gamma]/(|gamma|^2 - 1); at a rational "
+        "(a, b) by the documented 2 + a + b != 0), so it is zero modulo the sphere iff the "
+        "original is, the function's one documented use",
+    ("family.wedge_n6.h2_residual", "sign: line 77 col 12: -sum((DO[i][t] * gam[t] for t in "
+                                    "range(N)), R(0)) -> sum((DO[i][t] * gam[t] for t in "
+                                    "range(N)), R(0))"):
+        "gamma-dot alone negated: the residual becomes D' (X_M - X_gamma)(NH) - NH (X_M - "
+        "X_gamma)(D'), and tests/test_wedge_n6.py's symbolic test, run on this mutant, finds it "
+        "zero modulo |gamma|^2 = 1 for symbolic a, b (exact FLINT reduction), as it finds the "
+        "original: the M-part and the gamma-part of the H_2 rate vanish on P each by itself, so "
+        "the function's one documented use (zero modulo the sphere or not) gives the same answer. "
+        "The H_2 check cannot see the sign of gamma-dot (a fact about H_2, not a gap this "
+        "function can close)",
     ("family.wedge_n6.h2_residual", "sign: line 113 col 11: Dp * DX(NH) - NH * DX(Dp) -> "
                              "-(Dp * DX(NH) - NH * DX(Dp))"):
         "the residual negated: zero modulo the sphere iff the original is, its one documented use "
