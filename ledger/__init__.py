@@ -7,9 +7,10 @@
 * :mod:`~chaplygin_nd.ledger.runner` — decides rows, in worker processes;
 * :mod:`~chaplygin_nd.ledger.report`, :mod:`~chaplygin_nd.ledger.graph` — VERIFICATION.md,
   verification.json and the claim graph;
-* :mod:`~chaplygin_nd.ledger.reach`, :mod:`~chaplygin_nd.ledger.remap`,
-  :mod:`~chaplygin_nd.ledger.mutate` — which printed formulas each row reaches, and mutation
-  testing of them;
+* :mod:`~chaplygin_nd.ledger.reach`, :mod:`~chaplygin_nd.ledger.remap` — which printed formulas
+  and derivations each row reaches;
+* :mod:`~chaplygin_nd.ledger.mutation` — mutation testing of them (``chaplygin mutate``,
+  ``chaplygin mutate-derivations``), a subpackage of its own;
 * ``python -m chaplygin_nd.ledger`` (``chaplygin verify`` / ``chaplygin prove``) — the command.
 """
 

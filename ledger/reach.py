@@ -303,12 +303,17 @@ def save(printed_by_row: dict[str, list[str]], seconds: dict[str, float] | None 
          path: Path = MAP_PATH, derived_by_row: dict[str, list[str]] | None = None,
          emitted: list[str] | None = None) -> None:
     """Write the map (and each row's seconds, to choose cheap rows) atomically; the derivation
-    map and the emitted derivations are kept from the stored file when not given."""
+    map and the emitted derivations are kept from the stored file when not given. Every list is
+    sorted (the keys are, by the JSON writer): the same map is the same file, whichever order the
+    rows were run or read in."""
     stored_derived, stored_emitted = load_derived(path) if path.is_file() else ({}, [])
     derived_by_row = stored_derived if derived_by_row is None else derived_by_row
-    write_json_atomic({"rows": printed_by_row, "functions": rows_by_function(printed_by_row),
+    printed_by_row = {r: sorted(fs) for r, fs in printed_by_row.items()}
+    derived_by_row = {r: sorted(fs) for r, fs in derived_by_row.items()}
+    write_json_atomic({"rows": printed_by_row,
+                       "functions": {f: sorted(rs) for f, rs in rows_by_function(printed_by_row).items()},
                        "seconds": {r: round(t, 2) for r, t in (seconds or {}).items()},
                        "derived": derived_by_row,
-                       "derivations": {f: [r for r, fs in derived_by_row.items() if f in fs]
+                       "derivations": {f: sorted(r for r, fs in derived_by_row.items() if f in fs)
                                        for f in derivation_functions()},
-                       "emitted": stored_emitted if emitted is None else emitted}, path)
+                       "emitted": sorted(stored_emitted if emitted is None else emitted)}, path)

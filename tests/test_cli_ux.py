@@ -12,7 +12,8 @@ import warnings
 
 import numpy as np
 import pytest
-from chaplygin_nd.ledger import mutate, mutate_derivations
+from chaplygin_nd.ledger.mutation import command as mutate_derivations
+from chaplygin_nd.ledger.mutation import printed as mutate
 from chaplygin_nd.ledger.__main__ import _report_paths
 from chaplygin_nd.runtime import jit_cache
 from chaplygin_nd.simulate.analysis import result_cache
@@ -188,15 +189,15 @@ def test_mutate_derivations_checks_the_out_folder_before_the_run(tmp_path, capsy
     assert not out.parent.exists()
 
 
-@pytest.mark.parametrize("module", ["mutate", "mutate_derivations"])
+@pytest.mark.parametrize("module", ["printed", "command"])
 def test_mutation_tools_refuse_an_out_folder_they_cannot_write_even_as_root(module, capsys):
     """/proc accepts no new file, whatever os.access says to root: both tools refuse it before
     any mutant runs (round-22 trial)."""
     import importlib
 
-    tool = importlib.import_module(f"chaplygin_nd.ledger.{module}")
+    tool = importlib.import_module(f"chaplygin_nd.ledger.mutation.{module}")
     argv = ["--out", "/proc/chaplygin-m.json"]
-    if module == "mutate_derivations":
+    if module == "command":
         argv += ["--target", "runtime", "--function", "runtime.axisym.vec"]
     assert tool.main(argv) == 2
     assert "cannot write in /proc" in one_error_line(capsys)
@@ -256,9 +257,9 @@ def test_dir_of_the_package_is_clean():
 
 
 @pytest.mark.parametrize("module, argv", [
-    ("mutate_derivations", ["--target", "derivations", "--function", "search.sampled_field.mod"]),
-    ("mutate_derivations", ["--sample", "5"]),
-    ("mutate", ["--function", "section4.K"]),
+    ("command", ["--target", "derivations", "--function", "search.sampled_field.mod"]),
+    ("command", ["--sample", "5"]),
+    ("printed", ["--function", "section4.K"]),
 ])
 def test_a_partial_mutation_run_never_replaces_the_full_record(module, argv, capsys):
     """Round-23 trial: `chaplygin mutate-derivations --function X` in the checkout replaced the
@@ -267,9 +268,9 @@ def test_a_partial_mutation_run_never_replaces_the_full_record(module, argv, cap
 
     from chaplygin_nd.ledger.catalog import ROOT
 
-    record = ROOT / ("mutation.json" if module == "mutate" else "mutation-derivations.json")
+    record = ROOT / ("mutation.json" if module == "printed" else "mutation-derivations.json")
     before = record.read_bytes() if record.exists() else None
-    tool = importlib.import_module(f"chaplygin_nd.ledger.{module}")
+    tool = importlib.import_module(f"chaplygin_nd.ledger.mutation.{module}")
     assert tool.main(argv) == 2
     assert "give --out FILE: a partial run would replace" in one_error_line(capsys)
     assert (record.read_bytes() if record.exists() else None) == before

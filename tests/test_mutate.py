@@ -9,7 +9,8 @@ sample of 10 mutants on cheap rows, and the four transcriptions an outside audit
 from __future__ import annotations
 
 import pytest
-from chaplygin_nd.ledger import mutate, reach
+from chaplygin_nd.ledger import reach
+from chaplygin_nd.ledger.mutation import printed as mutate
 from chaplygin_nd.ledger.catalog import discover
 
 

@@ -11,12 +11,12 @@ import re
 import time
 
 import pytest
-from chaplygin_nd.ledger import mutate
-from chaplygin_nd.ledger import mutate_derivations as md
+from chaplygin_nd.ledger.mutation import checks, equivalence, operators, record, runloop
+from chaplygin_nd.ledger.mutation import derivations as md
 from chaplygin_nd.ledger.catalog import discover
 
 
-@pytest.mark.slow  # ~30 s: each draw enumerates every mutant of symbolic/ (ledger/mutate.all_mutants)
+@pytest.mark.slow  # ~30 s: each draw enumerates every mutant of symbolic/ (ledger/mutation/operators.all_mutants)
 def test_the_sample_is_deterministic_and_covers_both_targets():
     for target in ("derivations", "runtime"):
         first = md.sample(target, 30)
@@ -31,10 +31,10 @@ def test_a_mutant_of_the_emitted_frequency_is_killed_by_its_row():
     discover()
     key = "reduction.reduced_n4.horizontal_frequency_squared"
     fn = md.functions("derivations")[key]
-    m = next(m for m, _ in mutate.all_mutants(key, fn) if "2 * b * h" in m.description
+    m = next(m for m, _ in operators.all_mutants(key, fn) if "2 * b * h" in m.description
              and m.operator == "sign")
     original = fn.__code__
-    base = mutate.baseline(["S5:H-linear"], jobs=1)
+    base = checks.baseline(["S5:H-linear"], jobs=1)
     task = md.Task("derivations", m, (("S5:H-linear", base["S5:H-linear"][0],
                                        base["S5:H-linear"][1]),))
     record = md.evaluate(task)
@@ -76,13 +76,13 @@ def test_the_compiled_objects_key_covers_code_replaced_in_memory():
 
 def test_a_runtime_mutant_runs_only_the_tests_given_and_is_killed_by_a_failing_one(tmp_path,
                                                                                    monkeypatch):
-    from chaplygin_nd.ledger import mutate_runtime as mr
+    from chaplygin_nd.ledger.mutation import runtime as mr
 
     monkeypatch.setenv(mr.WORK_ENV, str(tmp_path))
     key = "runtime.axisym.vec"
     fn = md.functions("runtime")[key]
-    m = next(m for m, _ in mutate.all_mutants(key, fn) if m.operator == "sign")
-    code = mutate.compile_mutant(fn, m)
+    m = next(m for m, _ in operators.all_mutants(key, fn) if m.operator == "sign")
+    code = operators.compile_mutant(fn, m)
     test = "tests/test_runtime_batches.py::test_vec_and_unvec_are_inverse_on_skew_matrices"
     record = mr.evaluate(fn, code, key, (test,), {})
     assert record["outcome"] == "killed" and test in record["reason"], record
@@ -121,12 +121,12 @@ def test_a_phase_prints_its_line_then_progress_at_most_every_30_s(monkeypatch):
 def test_planning_says_what_it_runs_and_counts_rows_and_tests(capsys):
     """The two long phases of the planning, counted: the unmutated rows (the runner's results)
     and the instrumented test run (pytest's collected tests, each as it ends)."""
-    from chaplygin_nd.ledger import mutate_runtime as mr
+    from chaplygin_nd.ledger.mutation import runtime as mr
     from chaplygin_nd.ledger.phase import Phase
 
     discover()
     key = "reduction.reduced_n4.horizontal_frequency_squared"
-    m = next(iter(mutate.all_mutants(key, md.functions("derivations")[key])))[0]
+    m = next(iter(operators.all_mutants(key, md.functions("derivations")[key])))[0]
     tasks = md.plan("derivations", [m], jobs=1)
     out = capsys.readouterr().out
     assert re.search(r"^planning: running the (\d+) rows that reach the mutants, unmutated", out,
@@ -149,12 +149,12 @@ def test_values_holding_arrays_are_compared_field_by_field_and_never_raise():
     import dataclasses
 
     import numpy as np
-    from chaplygin_nd.ledger.mutate_replay import identical
+    from chaplygin_nd.ledger.mutation.replay import identical
     from chaplygin_nd.symbolic.search import candidate_basis
 
     one, same = candidate_basis.coordinates(5, 2), candidate_basis.coordinates(5, 2)
     other = dataclasses.replace(one, re=2 * one.re)
-    for compare in (identical, mutate._same):
+    for compare in (identical, equivalence.same):
         assert compare(one, same) is True
         assert compare(one, other) is False
         assert compare({"a": np.arange(3)}, {"a": np.arange(3)}) is True
@@ -165,12 +165,12 @@ def test_values_holding_arrays_are_compared_field_by_field_and_never_raise():
         value: int
         seconds: float = dataclasses.field(compare=False)
 
-    for compare in (identical, mutate._same):
+    for compare in (identical, equivalence.same):
         assert compare(Timed(1, 0.5), Timed(1, 2.5)) and not compare(Timed(1, 0.5), Timed(2, 0.5))
 
 
 def test_an_equivalence_check_cut_short_is_not_equal(monkeypatch):
-    """``_equivalence`` runs the row with a comparer at every call; when the row does not run to
+    """``compare_on_row`` runs the row with a comparer at every call; when the row does not run to
     its end as unmutated (here: it raises after one call), the calls compared are not all the
     row's calls, so the mutant is not equivalent."""
     from chaplygin_nd.symbolic.search import sampled_field
@@ -182,8 +182,8 @@ def test_an_equivalence_check_cut_short_is_not_equal(monkeypatch):
         sampled_field.mod(1, 5)
         return ("error",), "raised"
 
-    monkeypatch.setattr(mutate, "run_row", row_that_dies)
-    equal, calls, _kind, ran = mutate._equivalence(fn, original, "S6:first-integrals", 10,
+    monkeypatch.setattr(equivalence, "run_row", row_that_dies)
+    equal, calls, _kind, ran = equivalence.compare_on_row(fn, original, "S6:first-integrals", 10,
                                                    base=("holds", None, ()))
     assert (equal, calls, ran) == (False, 1, True)
     assert fn.__code__ is original
@@ -193,7 +193,7 @@ def test_the_watch_sees_which_branch_of_a_one_line_conditional_ran():
     """A mutant inside the branch of a one-line conditional that no call takes has not run,
     although its line did (search_degree's ``... if prods else np.zeros(...)``: such a mutant
     was once called equivalent): the watch looks at the mutated expression's line and column."""
-    from chaplygin_nd.ledger.mutate_replay import LineWatch, mutated_position
+    from chaplygin_nd.ledger.mutation.replay import LineWatch, mutated_position
 
     ns: dict = {}
     exec(compile("def f(x):\n    return x + 1 if x else 7\n", "<watch test>", "exec"), ns)
@@ -214,12 +214,12 @@ def test_kept_records_of_mutants_the_code_no_longer_has_are_dropped(monkeypatch,
     record whose line moved (here: a line the function does not have) is dropped, with one line,
     and its function's mutants as they are now run as undecided."""
     key = "reduction.reduced_n4.horizontal_frequency_squared"
-    mutants = [m for m, _ in mutate.all_mutants(key, md.functions("derivations")[key])]
+    mutants = [m for m, _ in operators.all_mutants(key, md.functions("derivations")[key])]
     monkeypatch.setattr(md, "sample", lambda target, size, seed=md.SEED: mutants)
     real = {"target": "derivations", "function": key, "outcome": "killed",
             "mutation": f"{mutants[0].operator}: {mutants[0].description}"}
     moved = dict(real, mutation="const: line 9999 col 1: 1 -> 2")
-    assert md._current([real, moved]) == [real]
+    assert record.current([real, moved]) == [real]
     assert f"dropped 1 record of mutants the code no longer has ({key})" in capsys.readouterr().out
 
 
@@ -233,10 +233,10 @@ def test_one_functions_mutants_are_split_so_every_worker_has_work_and_progress_c
         return [NS(target="derivations", mutant=NS(function=function), rows=(("r", None, 1.0),))
                 for _ in range(count)]
 
-    small = md.groups(tasks(21), jobs=2)
+    small = runloop.groups(tasks(21), jobs=2)
     assert len(small) == 7 and max(map(len, small)) == 3 and sum(map(len, small)) == 21
-    whole = md.groups([t for f in "abcdefgh" for t in tasks(400, f)], jobs=2)
-    assert max(map(len, whole)) == md.GROUP and sum(map(len, whole)) == 3200
+    whole = runloop.groups([t for f in "abcdefgh" for t in tasks(400, f)], jobs=2)
+    assert max(map(len, whole)) == runloop.GROUP and sum(map(len, whole)) == 3200
 
 
 def test_a_group_s_mutants_are_kept_as_they_are_decided_not_when_the_group_ends(tmp_path,
@@ -263,14 +263,14 @@ def test_a_group_s_mutants_are_kept_as_they_are_decided_not_when_the_group_ends(
         return record
 
     monkeypatch.setattr(md, "evaluate", evaluate)
-    monkeypatch.setattr(md, "WRITE_SECONDS", 0.0)
-    monkeypatch.setattr(md, "_init_worker", lambda: None)
+    monkeypatch.setattr(runloop, "WRITE_SECONDS", 0.0)
+    monkeypatch.setattr(runloop, "init_worker", lambda: None)
     tasks = [NS(target="derivations", mutant=NS(function="f", index=i), rows=()) for i in range(8)]
-    first = md.groups(tasks, 1)[0]
+    first = runloop.groups(tasks, 1)[0]
     assert [t.mutant.index for t in first] == [0, 1]   # 0 and 1 are decided in one task
     args = NS(out=out, seed=0, sample=None)
     records, runs, run = [], [], {}
-    mine = md._run(tasks, 1, records, runs, args, run, time.perf_counter(), 0.0)
+    mine = runloop.run_tasks(tasks, 1, records, runs, args, run, time.perf_counter(), 0.0)
     assert [r["outcome"] for r in mine] == ["killed"] * 8
     assert [r["index"] for r in records] == list(range(8))   # each once
 
@@ -278,7 +278,7 @@ def test_a_group_s_mutants_are_kept_as_they_are_decided_not_when_the_group_ends(
 def test_a_time_budget_is_not_taken_for_a_result_by_except_exception():
     """A row or a replay catches ``Exception`` (a raise is a value there); the budget must pass
     through it."""
-    with pytest.raises(mutate.BudgetExceeded), mutate.time_budget(0.05):
+    with pytest.raises(checks.BudgetExceeded), checks.time_budget(0.05):
         try:
             while True:
                 pass
@@ -292,21 +292,21 @@ def test_a_replay_that_never_returns_is_cut_at_the_budget_and_the_check_is_run(m
     check itself is run (with its own budget) and decides."""
     from types import SimpleNamespace as NS
 
-    from chaplygin_nd.ledger.mutate_replay import Recording
+    from chaplygin_nd.ledger.mutation.replay import Recording
 
     def forever(*args, **kwargs):
         while True:
             pass
 
     ran = []
-    monkeypatch.setattr(mutate, "MIN_BUDGET", 0.1)
+    monkeypatch.setattr(checks, "MIN_BUDGET", 0.1)
     monkeypatch.setattr(md, "_recording", lambda *a: Recording(calls=[((), {}, 1, (), {})]))
     monkeypatch.setattr(md, "replay", forever)
     monkeypatch.setattr(md, "_run_check",
                         lambda fn, code, original, check, base, seconds: (ran.append(check) or True,
                                                                           "ran past its budget"))
     fn = md.functions("derivations")["reduction.reduced_n4.horizontal_frequency_squared"]
-    m = mutate.all_mutants("reduction.reduced_n4.horizontal_frequency_squared", fn)[0][0]
+    m = operators.all_mutants("reduction.reduced_n4.horizontal_frequency_squared", fn)[0][0]
     task = NS(mutant=m, rows=(("S5:H-linear", ("holds",), 0.01),), emitted=frozenset())
     record = {}
     md._decide_by_rows(task, fn, fn.__code__, record)
@@ -318,13 +318,13 @@ def test_values_of_a_slots_class_without_equality_are_compared_attribute_by_attr
     """Round 25: wedge_integrals' dual numbers (``__slots__``, no ``__eq__``) were compared by
     identity, so a mutant that only swapped the factors of a product (the same dual number)
     "differed" at every call and survived."""
-    from chaplygin_nd.ledger.mutate_replay import identical
+    from chaplygin_nd.ledger.mutation.replay import identical
     from chaplygin_nd.symbolic.family.wedge_integrals import _Dual
 
     x, y = _Dual(2, 3), _Dual(5, 7)
-    assert identical(x * y, y * x) and mutate._same(x * y, y * x)
-    assert not identical(x * y, x * x) and not mutate._same(x * y, x * x)
-    assert not identical(_Dual(2, 3), _Dual(2, 4)) and not mutate._same(_Dual(2, 3), _Dual(2, 4))
+    assert identical(x * y, y * x) and equivalence.same(x * y, y * x)
+    assert not identical(x * y, x * x) and not equivalence.same(x * y, x * x)
+    assert not identical(_Dual(2, 3), _Dual(2, 4)) and not equivalence.same(_Dual(2, 3), _Dual(2, 4))
 
 
 def test_a_survivor_meets_the_slow_tests_of_its_module_last(tmp_path, monkeypatch):
@@ -332,12 +332,12 @@ def test_a_survivor_meets_the_slow_tests_of_its_module_last(tmp_path, monkeypatc
     (round 25: wedge_n6.h2_residual's symbolic check is a slow test). Here a slow test of
     algebra.so_dim fails on a mutant of it and passes on the original; a file with no slow test
     kills nothing."""
-    from chaplygin_nd.ledger import mutate_runtime as mr
+    from chaplygin_nd.ledger.mutation import runtime as mr
 
     key = "algebra.so_dim"
     fn = md.functions("derivations")[key]
-    mutant = next(m for m, _ in mutate.all_mutants(key, fn) if m.operator == "const")
-    code = mutate.compile_mutant(fn, mutant)
+    mutant = next(m for m, _ in operators.all_mutants(key, fn) if m.operator == "const")
+    code = operators.compile_mutant(fn, mutant)
     slow = tmp_path / "test_slow_so_dim.py"
     slow.write_text("import pytest\nfrom chaplygin_nd.symbolic import algebra\n\n\n"
                     "@pytest.mark.slow\ndef test_so_dim():\n"
@@ -354,3 +354,64 @@ def test_a_survivor_meets_the_slow_tests_of_its_module_last(tmp_path, monkeypatc
     broken.write_text("import pytest\n\n\n@pytest.mark.slow\ndef test_broken():\n    assert False\n")
     monkeypatch.setattr(mr, "mentioning", lambda keys: (str(broken),))
     assert mr.kill_slow(fn, code, key) is None
+
+
+def test_resume_names_stale_records_and_keeps_each_mutant_once(monkeypatch, capsys):
+    """--resume keeps a record only for the code as it is now: one decided on another source of
+    its function (its digest differs) is stale and decided again, a mutant recorded twice keeps
+    its latest record, a record without a digest (written before digests were kept) is kept and
+    stamped, and every kept record takes its mutant's index now."""
+    key = "reduction.reduced_n4.horizontal_frequency_squared"
+    fn = md.functions("derivations")[key]
+    mutants = [m for m, _ in operators.all_mutants(key, fn)]
+    monkeypatch.setattr(md, "sample", lambda target, size, seed=md.SEED: mutants)
+    digest = operators.source_digest(fn)
+
+    def rec(m, **extra):
+        return {"target": "derivations", "function": key, "index": 99, "outcome": "killed",
+                "mutation": f"{m.operator}: {m.description}", "source": digest, **extra}
+
+    fresh, stale = rec(mutants[0]), rec(mutants[1], source="0" * 16)
+    older, latest = rec(mutants[2], outcome="equivalent"), rec(mutants[2])
+    assert record.current([fresh, stale, older, latest]) == [fresh, latest]
+    assert fresh["index"] == mutants[0].index and latest["index"] == mutants[2].index
+    out = capsys.readouterr().out
+    assert f"dropped 1 record decided on another source of their function ({key})" in out
+    assert f"dropped 1 record of a mutant recorded twice ({key})" in out
+    unstamped = {k: v for k, v in rec(mutants[3]).items() if k != "source"}
+    assert record.current([dict(unstamped)]) == [dict(unstamped, index=mutants[3].index,
+                                                      source=digest)]
+    assert "written without the digest of their function's source" in capsys.readouterr().out
+    found = record.consistency([fresh], targets=("derivations",))
+    assert not found["gone"] and not found["stale"] and len(found["undecided"]) == len(mutants) - 1
+
+
+def test_a_slow_test_that_does_not_call_the_function_kills_none_of_its_mutants(tmp_path, monkeypatch):
+    """A slow test of a file that names the module but never calls the function (here: one that
+    reads the function's source, which a mutant's code does not have, as the test listing every
+    mutant does) failed under each of wedge_n6.h2_residual's mutants and killed all 11 that
+    survived the quick test. Only the slow tests that call the function are run."""
+    from chaplygin_nd.ledger.mutation import runtime as mr
+
+    key = "algebra.so_dim"
+    fn = md.functions("derivations")[key]
+    mutant = next(m for m, _ in operators.all_mutants(key, fn) if m.operator == "const")
+    code = operators.compile_mutant(fn, mutant)
+    reads = tmp_path / "test_slow_reads_source.py"
+    reads.write_text("import inspect\n\nimport pytest\nfrom chaplygin_nd.symbolic import algebra\n\n\n"
+                     "@pytest.mark.slow\ndef test_reads_source():\n"
+                     "    assert 'def so_dim' in inspect.getsource(algebra.so_dim)\n")
+    monkeypatch.setattr(mr, "mentioning", lambda keys: (str(reads),))
+    assert mr.kill_slow(fn, code, key) is None
+
+
+def test_a_mutant_of_a_cached_derivation_compiles_to_the_plain_function_s_code():
+    """The mutated AST of a cached derivation kept its ``@functools.cache``: the name it bound
+    was the cache wrapper, which has no code, and every such mutant was recorded killed ("does
+    not compile") without being run (360 mutants of 21 cached derivations)."""
+    key = "axisymmetric.frame_coefficients"
+    fn = md.functions("derivations")[key]
+    assert fn is not vars(__import__(fn.__module__, fromlist=["_"]))[fn.__name__]  # it is cached
+    for m, _ in operators.all_mutants(key, fn)[:5]:
+        code = operators.compile_mutant(fn, m)
+        assert code.co_name == fn.__name__ and code.co_argcount == fn.__code__.co_argcount

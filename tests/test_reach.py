@@ -100,3 +100,19 @@ def test_a_warm_run_keeps_the_stored_cold_seconds(tmp_path):
     reach.save({"A": [], "B": []}, {"A": 90.0, "B": 2.0}, path=path, derived_by_row={}, emitted=[])
     assert reach.kept_seconds({"A": 0.3, "B": 2.5, "C": 4.0}, path) == {"A": 90.0, "B": 2.0, "C": 4.0}
     assert reach.kept_seconds({"A": 0.3}, tmp_path / "none.json") == {"A": 0.3}
+
+
+def test_the_same_map_is_the_same_file_whatever_order_the_rows_came_in(tmp_path):
+    """make mutate saves the map with the rows in the order its baseline ran them and the
+    derivation map as read back from the file: the same sets in another order rewrote every list
+    of ledger/reach.json. Every list is sorted on save."""
+    derivation = next(iter(reach.derivation_functions()))
+    first, second = tmp_path / "a.json", tmp_path / "b.json"
+    reach.save({"B": ["section4.K", "section2.a"], "A": ["section2.a"]}, {"A": 1.0, "B": 2.0},
+               path=first, derived_by_row={"B": [derivation], "A": [derivation]},
+               emitted=[derivation])
+    reach.save({"A": ["section2.a"], "B": ["section2.a", "section4.K"]}, {"B": 2.0, "A": 1.0},
+               path=second, derived_by_row={"A": [derivation], "B": [derivation]},
+               emitted=[derivation])
+    assert first.read_bytes() == second.read_bytes()
+    assert reach.load(first)[0]["B"] == ["section2.a", "section4.K"]

@@ -101,7 +101,7 @@ def test_the_api_still_takes_real_lists_and_integers():
 
 # mutate --compare: a file that cannot be read is refused before the (long) run, not after it
 def test_mutate_reads_compare_before_the_run(tmp_path, monkeypatch, capsys):
-    from chaplygin_nd.ledger import mutate
+    from chaplygin_nd.ledger.mutation import printed as mutate
 
     monkeypatch.setattr(mutate, "baseline", lambda *a, **k: pytest.fail("the run started"))
     out = tmp_path / "m.json"
@@ -216,7 +216,7 @@ def test_decide_names_the_nearest_id():
 
 # mutate --out: never replaces a file it did not write, never writes into an installed package
 def test_mutate_out_refuses_a_foreign_file_and_an_installed_package(tmp_path, monkeypatch, capsys):
-    from chaplygin_nd.ledger import mutate
+    from chaplygin_nd.ledger.mutation import printed as mutate
 
     monkeypatch.setattr(mutate, "baseline", lambda *a, **k: pytest.fail("the run started"))
     mine = tmp_path / "notes.json"

@@ -182,24 +182,26 @@ def _watch(functions: dict[str, FunctionType], reached: dict, phase=None):
 
 
 def _empty_caches() -> None:
-    from chaplygin_nd.ledger.reach import clear_caches
+    from chaplygin_nd.ledger.mutation.cache_scope import clear
 
-    clear_caches()
+    clear()
 
 
 def test_map(functions: dict[str, FunctionType] | None = None,
-             files: tuple[str, ...] | None = None, phase=None) -> dict[str, list[tuple[str, float]]]:
+             files: tuple[str, ...] | None = None, phase=None,
+             slow: bool = False) -> dict[str, list[tuple[str, float]]]:
     """``{function: [(test id, seconds), ...]}`` (fastest first): the tests of ``files`` (default
     :func:`runtime_tests`) that call each of ``functions`` (default: the runtime's), recorded in
     one unmutated run. A test that fails unmutated reaches nothing (it could not tell a mutant
     apart); tests marked ``slow`` are left out (too long to run once per mutant: a function only
-    they reach is reported as reached by no test). ``phase`` (:class:`ledger.phase.Phase`) counts
-    the tests as they end."""
+    they reach is reported as reached by no test), or, with ``slow``, they alone are run (none
+    collected: none reaches). ``phase`` (:class:`ledger.phase.Phase`) counts the tests as they
+    end."""
     functions = runtime_functions() if functions is None else functions
     reached: dict[str, tuple[float, tuple[str, ...]]] = {}
     watch, failed = _watch(functions, reached, phase)
-    _pytest(["-m", "not slow and not site", *(runtime_tests() if files is None else files)],
-            plugins=[watch])
+    _pytest(["-m", "slow and not site" if slow else "not slow and not site",
+             *(runtime_tests() if files is None else files)], plugins=[watch], none_ok=slow)
     out: dict[str, list[tuple[str, float]]] = {key: [] for key in functions}
     for test, (seconds, calls) in reached.items():
         for key in () if test in failed else calls:
@@ -235,11 +237,11 @@ def _bitwise_equal(x, y) -> bool:
 
 
 def _exact_or_bitwise(x, y) -> bool:
-    """Exact equality (SymPy values, :func:`ledger.mutate._same`), bit-for-bit for arrays."""
-    from chaplygin_nd.ledger.mutate import _same
+    """Exact equality (SymPy values, :func:`.equivalence.same`), bit-for-bit for arrays."""
+    from chaplygin_nd.ledger.mutation.equivalence import same
 
     try:
-        return bool(_same(x, y))
+        return bool(same(x, y))
     except Exception:  # noqa: BLE001 - e.g. NumPy arrays: compared bit for bit
         return _bitwise_equal(x, y)
 
@@ -289,7 +291,7 @@ def equivalence(fn, mutant_code, tests: list[str], fresh: bool, same=_bitwise_eq
             sys.settrace(saved)
         return want
 
-    from chaplygin_nd.ledger.mutate_replay import calls_through
+    from chaplygin_nd.ledger.mutation.replay import calls_through
 
     with calls_through(fn, hook), _cache_root(fresh):
         _pytest(tests)
@@ -299,7 +301,7 @@ def equivalence(fn, mutant_code, tests: list[str], fresh: bool, same=_bitwise_eq
 def _pytest_with(fn, code, key: str, args: list[str], none_ok: bool = False) -> tuple[int, str]:
     """:func:`_pytest` with ``code`` in place of ``fn``'s (restored, and the caches cleared, after:
     e.g. jit_cache.code_version, computed with the mutant in place)."""
-    from chaplygin_nd.ledger.reach import clear_caches
+    from chaplygin_nd.ledger.mutation.cache_scope import clear
 
     original = fn.__code__
     fn.__code__ = code
@@ -308,7 +310,7 @@ def _pytest_with(fn, code, key: str, args: list[str], none_ok: bool = False) -> 
             return _pytest(args, none_ok=none_ok)
     finally:
         fn.__code__ = original
-        clear_caches()
+        clear()
 
 
 def kill(fn, code, key: str, tests: tuple[str, ...]) -> str | None:
@@ -318,26 +320,48 @@ def kill(fn, code, key: str, tests: tuple[str, ...]) -> str | None:
     return note if status != 0 else None
 
 
+def _runnable(test: str, files: tuple[str, ...]) -> str:
+    """A test id pytest finds from the checkout: ids are relative to pytest's root folder, which
+    for a file outside the checkout is not the checkout (its file part is then given whole)."""
+    path, _, rest = test.partition("::")
+    if (ROOT / path).exists():
+        return test
+    whole = next((f for f in files if str(f).endswith(path)), path)
+    return f"{whole}::{rest}"
+
+
+#: ``(function, its code, test files) -> the slow tests among them that call it``, per process:
+#: found once (one instrumented unmutated run) for every mutant of the function.
+_SLOW_REACHING: dict[tuple, tuple[str, ...]] = {}
+
+
 def kill_slow(fn, code, key: str) -> str | None:
     """The last resort for a survivor: the tests marked ``slow`` of the files naming its module
-    (:func:`mentioning`), ``pytest -x``, with ``code`` in place of ``fn``'s: the first failure's
-    line, or None (every one passed, there is none, or one fails unmutated: it tells nothing;
-    round 25, one killed 11 mutants spuriously). Not run per mutant otherwise (too long):
-    ``family.wedge_n6.h2_residual``'s symbolic check is one (round 25)."""
+    (:func:`mentioning`) that call ``fn`` (:func:`test_map` with ``slow``, once per process and
+    function), ``pytest -x``, with ``code`` in place of ``fn``'s: the first failure's line, or None
+    (every one passed, or none calls ``fn``). Not run per mutant otherwise (too long):
+    ``family.wedge_n6.h2_residual``'s symbolic check is one. A slow test that does not call ``fn``
+    is not run: a test that lists every mutant (it reads each function's source, and a mutant's
+    code has none) failed under every mutant and killed them all; one that fails unmutated
+    reaches nothing."""
     files = mentioning([key])
     if not files:
         return None
-    args = ["-x", "-m", "slow and not site", *files]
-    if _pytest_with(fn, fn.__code__, key, args, none_ok=True)[0] != 0:
+    memo = (key, fn.__code__, files)
+    if memo not in _SLOW_REACHING:
+        reach = test_map({key: fn}, files, slow=True)
+        _SLOW_REACHING[memo] = tuple(_runnable(t, files) for t, _ in reach.get(key, ()))
+    tests = _SLOW_REACHING[memo]
+    if not tests:
         return None
-    status, note = _pytest_with(fn, code, key, args, none_ok=True)
+    status, note = _pytest_with(fn, code, key, ["-x", *tests])
     return note if status != 0 else None
 
 
 def evaluate(fn, code, key: str, tests: tuple[str, ...], record: dict) -> dict:
     """Decide one mutant (``code`` for ``fn``) against ``tests`` alone (the ids that reach it,
     fastest first); fills and returns ``record``. The caller clears the functools caches."""
-    from chaplygin_nd.ledger.reach import clear_caches
+    from chaplygin_nd.ledger.mutation.cache_scope import clear
 
     if not tests:
         record.update(outcome="survived", row="tests",
@@ -354,7 +378,7 @@ def evaluate(fn, code, key: str, tests: tuple[str, ...], record: dict) -> dict:
     same, calls, ran = equivalence(fn, code, list(tests), key.startswith("runtime.jit_cache."),
                                    _bitwise_equal if runtime else _exact_or_bitwise,
                                    int(found.group(1)) if found else None)
-    clear_caches()
+    clear()
     how = "bit-for-bit" if runtime else "exactly (SymPy) or bit-for-bit (arrays)"
     passed = f"the {len(tests)} tests that reach it passed"
     if same and ran:

@@ -219,8 +219,10 @@ def calls_through(fn: FunctionType, hook):
 
 def record(fn: FunctionType, run) -> Recording:
     """Run ``run()`` (one ledger row, unmutated) with every call of ``fn`` recorded; then replay
-    the original on the records (the dynamic guard). ``fn``'s code is restored on return."""
-    from chaplygin_nd.ledger.reach import clear_caches
+    the original on the records (the dynamic guard). ``fn``'s code is restored on return. The
+    run is watched for the caches that depend on ``fn`` (:mod:`.cache_scope`, when a scope is
+    open): the others keep what it computed."""
+    from chaplygin_nd.ledger.mutation import cache_scope
 
     rec = Recording()
     why = impure(fn)
@@ -232,6 +234,7 @@ def record(fn: FunctionType, run) -> Recording:
     names = mutable_globals(fn)
 
     def hook(*args, **kwargs):
+        cache_scope.called()
         if rec.problem:
             return orig(*args, **kwargs)
         try:
@@ -259,15 +262,16 @@ def record(fn: FunctionType, run) -> Recording:
 
     try:
         with calls_through(fn, hook):
-            clear_caches()
-            run()
+            cache_scope.clear()
+            with cache_scope.watching():
+                run()
     finally:
-        clear_caches()
+        cache_scope.clear()
     if not rec.problem and not rec.calls:
         rec.problem = "not called"
     if not rec.problem:
         same, _ran = replay(fn, original, rec)
-        clear_caches()
+        cache_scope.clear()
         if not same:
             rec.problem = "the original itself gives other values on replay (depends on state)"
     if rec.problem:
@@ -339,14 +343,14 @@ def replay(fn: FunctionType, code: CodeType, rec: Recording, line=None) -> tuple
     every recorded call, caches emptied first: (every value and every argument afterwards equal
     to the recording, whether the mutated code at ``line`` — a line, or ``(line, col)``:
     :class:`LineWatch` — ran). Stops at the first difference."""
-    from chaplygin_nd.ledger.reach import clear_caches
+    from chaplygin_nd.ledger.mutation.cache_scope import clear
 
     mutant = _clone(fn, code)
     watch = LineWatch(code, line)
     names = mutable_globals(fn)
     original = fn.__code__
     fn.__code__ = code
-    clear_caches()
+    clear()
     try:
         for args, kwargs, value, args_after, kwargs_after in rec.calls:
             a, k = _snapshot(args), _snapshot(kwargs)
@@ -359,5 +363,5 @@ def replay(fn: FunctionType, code: CodeType, rec: Recording, line=None) -> tuple
                 return False, watch.ran
     finally:
         fn.__code__ = original
-        clear_caches()
+        clear()
     return True, watch.ran
