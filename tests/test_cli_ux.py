@@ -12,9 +12,9 @@ import warnings
 
 import numpy as np
 import pytest
+from chaplygin_nd.ledger.__main__ import _report_paths
 from chaplygin_nd.ledger.mutation import command as mutate_derivations
 from chaplygin_nd.ledger.mutation import printed as mutate
-from chaplygin_nd.ledger.__main__ import _report_paths
 from chaplygin_nd.runtime import jit_cache
 from chaplygin_nd.simulate.analysis import result_cache
 from chaplygin_nd.simulate.scene import cli as simulate_cli

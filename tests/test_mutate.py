@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import pytest
 from chaplygin_nd.ledger import reach
-from chaplygin_nd.ledger.mutation import printed as mutate
 from chaplygin_nd.ledger.catalog import discover
+from chaplygin_nd.ledger.mutation import printed as mutate
 
 
 def test_every_printed_function_has_mutants_of_several_kinds():

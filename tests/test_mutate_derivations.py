@@ -11,9 +11,9 @@ import re
 import time
 
 import pytest
+from chaplygin_nd.ledger.catalog import discover
 from chaplygin_nd.ledger.mutation import checks, equivalence, operators, record, runloop
 from chaplygin_nd.ledger.mutation import derivations as md
-from chaplygin_nd.ledger.catalog import discover
 
 
 @pytest.mark.slow  # ~30 s: each draw enumerates every mutant of symbolic/ (ledger/mutation/operators.all_mutants)

@@ -3,7 +3,6 @@ reason they are equivalent anyway (:data:`ARGUED`; applied by :func:`argued` to 
 
 from __future__ import annotations
 
-
 #: Mutants no check can tell apart although their outputs differ in the last bits, with the
 #: argument that they are equivalent: ``(function, mutation) -> reason``. Applied only to a mutant
 #: that survived every row and test reaching it (the outcome becomes ``equivalent``, the reason

@@ -48,7 +48,12 @@ from chaplygin_nd.ledger.mutation import cache_scope, checks
 from chaplygin_nd.ledger.mutation import runtime as mr
 from chaplygin_nd.ledger.mutation.argued import argued
 from chaplygin_nd.ledger.mutation.equivalence import settle
-from chaplygin_nd.ledger.mutation.operators import Mutant, all_mutants, compile_mutant, source_digest
+from chaplygin_nd.ledger.mutation.operators import (
+    Mutant,
+    all_mutants,
+    compile_mutant,
+    source_digest,
+)
 from chaplygin_nd.ledger.mutation.record import plural
 from chaplygin_nd.ledger.mutation.replay import Recording, mutated_position, replay
 from chaplygin_nd.ledger.mutation.replay import record as record_calls

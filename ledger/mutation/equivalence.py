@@ -16,7 +16,6 @@ from typing import Any
 import sympy as sp
 from chaplygin_nd.ledger.mutation.checks import BUDGET_FACTOR, MIN_BUDGET, run_row
 
-
 #: Printed functions whose *claim* cannot see a non-zero constant factor of the value: a zero set
 #: ({c f = 0} = {f = 0}) or a first integral (c F is conserved iff F is). A mutant equal to c times
 #: the original (c a non-zero number) at every call is ``equivalent`` for this reason.

@@ -25,7 +25,6 @@ import random
 import textwrap
 from dataclasses import dataclass
 
-
 #: Name pairs swapped by the ``swap`` operator (each direction).
 PARTNERS = {"a": "b", "b": "a", "k": "u", "u": "k", "q": "k", "xi": "eta", "eta": "xi",
             "M": "Omega", "Omega": "M", "A": "B", "B": "A", "E": "G", "G": "E",

@@ -17,7 +17,6 @@ from chaplygin_nd.ledger.phase import line
 
 from chaplygin_nd import processes
 
-
 #: Mutants of one function decided by one worker in a row (its recordings are made once for
 #: them); a function with more is split, so an interrupted run loses at most one such group.
 GROUP = 40
