@@ -139,7 +139,8 @@ def resolve(ids: list[str]) -> list[str]:
         lower.setdefault(i.lower(), []).append(i)
     from chaplygin_nd.console import shortlist
 
-    out, bad = [], []
+    out: list[str] = []
+    bad: list[str] = []
     for raw in ids:
         name = raw.strip()
         if name in known:

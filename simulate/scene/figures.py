@@ -414,9 +414,9 @@ def _fit(fig, pad: float = 0.08) -> None:
                  bottom=(sp.bottom * h + bottom) / H, top=(sp.top * h + bottom) / H)
     fig.set_size_inches(W, H)
     fig.subplots_adjust(**edges)
-    for text in fig.texts:  # the suptitle: same height above the axes
-        if text is getattr(fig, "_suptitle", None):
-            text.set_y(1 - (1 - text.get_position()[1]) * h / H)
+    suptitle = getattr(fig, "_suptitle", None)
+    if suptitle is not None and any(text is suptitle for text in fig.texts):  # same height above
+        suptitle.set_y(1 - (1 - suptitle.get_position()[1]) * h / H)
 
 
 def plot(path: str | Path, t: np.ndarray, arr: np.ndarray, name: str) -> None:

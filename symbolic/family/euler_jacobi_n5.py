@@ -27,6 +27,7 @@ remainder, then the identity $D(Q\,X(P) - P\,X(Q)) = q_1R_1 + q_2R_2$ is checked
 from __future__ import annotations
 
 from functools import cache
+from typing import Any
 
 import sympy as sp
 from chaplygin_nd.symbolic import model
@@ -50,13 +51,13 @@ def _Delta():
     return (2 + a) * (2 + b) - a * b * x**2
 
 
-def field() -> tuple[dict, object]:
+def field() -> tuple[dict, Any]:
     r"""$(N, D)$: the numerators of the reduced field (S6:reduced-n5) and $D = 2(2+a+b)\Delta$."""
     a, b = ri5.INV_RING.gens[:2]
     return r5.field_numerators(), 2 * (2 + a + b) * _Delta()
 
 
-def _X(f, N) -> object:
+def _X(f, N) -> Any:
     """$D\\,X(f)$ for a polynomial ``f`` of :data:`INV_RING`."""
     c = coordinates()
     return sum((f.diff(c[n]) * N[n] for n in r5.COORDS), ri5.INV_RING(0))
