@@ -166,6 +166,9 @@ def entry() -> None:
     from chaplygin_nd.signals import take_signals
 
     take_signals()  # first, before any heavy import: an interrupt is one line from here on
+    from chaplygin_nd.cache import place_matplotlib_cache
+
+    place_matplotlib_cache()  # every subcommand that draws (verify's claim graph too) uses it
     try:
         status = main(program=True)
     except BrokenPipeError:

@@ -53,7 +53,7 @@ def parse_model(n: int, a, b, J):
     if not isinstance(n, int) or n < 3:
         raise ValueError(f"n = {n!r}: the sphere needs an integer n >= 3")
     if b is None:
-        raise ValueError("b is required (b = m r^2 > 0, eq:M-O)")
+        raise ValueError("b is required: give --b (b = m r^2 > 0, eq:M-O)")
     b = parse_rational(str(b), "b")
     if b <= 0:
         raise ValueError(f"b = {b} is outside the domain b > 0 (eq:M-O)")
@@ -65,7 +65,7 @@ def parse_model(n: int, a, b, J):
             raise ValueError(f"J must be {n} positive rationals (the diagonal mass tensor, eq:Inertia)")
         return sampled_field.general(Js, b)
     if a is None:
-        raise ValueError("give a (axisymmetric, eq:axisymm) or J (a diagonal mass tensor)")
+        raise ValueError("give --a (axisymmetric, eq:axisymm) or --J (a diagonal mass tensor)")
     a = parse_rational(str(a), "a")
     if a < -1:
         raise ValueError(f"a = {a} is outside the domain a >= -1 (eq:axisymm)")
@@ -149,9 +149,9 @@ def main(argv: list[str]) -> int:
                        if est.split_seconds > est.seconds / 2 else "")
                 raise ValueError(f"{name} needs an estimated {cost.duration(est.seconds)}{why}, "
                                  f"above --max-hours {args.max_hours:g}; nothing was run "
-                                 f"(--max-hours overrides; a lower degree or n is smaller)")
+                                 f"(raise --max-hours to run it anyway, or ask for a lower degree or a smaller n)")
             if est.bytes > limit:
-                raise ValueError(f"{name} needs an estimated {est.bytes / 2**30:.1f} GB, above the "
+                raise ValueError(f"{name} needs an estimated {est.bytes / 2**30:.3g} GB, above the "
                                  f"{limit / 2**30:.1f} GB {'allowed' if args.max_memory else 'available'}"
                                  f"; nothing was run (--max-memory GB overrides, --space invariant "
                                  f"or a lower degree is smaller)")

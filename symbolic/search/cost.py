@@ -65,7 +65,7 @@ def duration(s: float) -> str:
 
 
 def _size(b: float) -> str:
-    return f"{b / 2**30:.1f} GB" if b >= 2**30 else f"{b / 2**20:.0f} MB"
+    return f"{b / 2**30:.3g} GB" if b >= 2**30 else f"{b / 2**20:.0f} MB"
 
 
 def available_bytes() -> int:
