@@ -294,3 +294,14 @@ def test_simulate_takes_a_scene_file_whose_name_has_an_equals_sign(tmp_path):
     path.write_text((ROOT / "scenes" / "steady4d.toml").read_text())
     run = api.simulate(str(path))     # it was read as TOML text: "not valid TOML"
     assert run.plan.model == "constant-Omega"
+
+
+def test_a_folder_named_like_a_built_in_scene_does_not_hide_it(tmp_path, monkeypatch):
+    """An earlier run's output folder `tori4d` in the working folder: the name still finds the
+    built-in scene (a folder is not a scene file)."""
+    from chaplygin_nd.simulate.scene.spec import find
+
+    (tmp_path / "vertical5d").mkdir()
+    monkeypatch.chdir(tmp_path)
+    scene = find("vertical5d")
+    assert scene.name == "vertical5d" and scene.n == 5

@@ -161,15 +161,16 @@ def builtin_scenes() -> dict[str, str]:
 
 def find(arg: str, force: bool = False) -> Scene | FrequencyMapScene:
     """The scene named by ``arg``: a scene file, else a built-in scene of that name (with or
-    without ``.toml``); a :class:`SceneError` names the built-in scenes when neither exists (an
-    empty or blank ``arg`` too: ``Path("")`` would be the current folder)."""
+    without ``.toml``; a folder of that name, e.g. the output folder of an earlier run, is not a
+    scene file and does not hide it); a :class:`SceneError` names the built-in scenes when neither
+    exists (an empty or blank ``arg`` too: ``Path("")`` would be the current folder)."""
     if not str(arg).strip():
         raise SceneError(repr(arg), "file", "an empty scene name",
                          "give the path of a scene file or one of the built-in scenes: "
                          + ", ".join(builtin_scenes()))
     path = Path(arg)
     name = path.name[:-5] if path.name.endswith(".toml") else path.name
-    if not path.exists() and str(path) in (name, name + ".toml"):
+    if not path.is_file() and str(path) in (name, name + ".toml"):
         entry = _builtin_folder() / f"{name}.toml"
         if entry.is_file():
             scene = loads(entry.read_text(encoding="utf-8"), source=f"built-in scene {name}",
