@@ -137,6 +137,17 @@ ARGUED: dict[tuple[str, str], str] = {
        for mutation in ("factor: line 71 col 11: p[0] * r[0] -> r[0] * p[0]",
                         "factor: line 71 col 25: p[1] * r[1] -> r[1] * p[1]",
                         "factor: line 71 col 39: p[2] * r[2] -> r[2] * p[2]")},
+    **{("reduction.reduced_n5.raw_derivatives", mutation):
+       "the two factors of one product of ring elements (d f / d z times D z-dot) exchanged: the "
+       "same element of the commutative ring RING (== holds); only the insertion order of the "
+       "terms in the PolyElement dicts differs, which the replay's comparison reads and the rows "
+       "do not: field_numerators passes each D f-dot to invariants_n5.in_generators, which groups "
+       "its terms by tridegree and sorts the monomials and parameters before the exact rref, so "
+       "its result does not depend on the order (as for family.sixth_integral.Delta_ring); the "
+       "value is tested against the chain rule along the field of eq:M-O in "
+       "tests/test_reduced5_field_definition.py"
+       for mutation in ("factor: line 71 col 23: d * Mdot[pair] -> Mdot[pair] * d",
+                        "factor: line 75 col 23: d * gdot[k] -> gdot[k] * d")},
     ("family.wedge_n6.h2_residual", "exponent: line 94 col 42: (2 + A + B) ** deg -> "
                                     "(2 + A + B) ** (deg + 1)"):
         "every scaled coefficient c_k' and D' multiplied by one more factor c = 2 + a + b, which "
