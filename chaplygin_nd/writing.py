@@ -4,7 +4,7 @@ how a command checks, before any work, that it will be able to (beyond the paper
 * :func:`write_atomic` writes through a temporary file beside the target and ``os.replace``: a
   reader never sees half a file, and an interrupted write leaves the old file and no temporary.
 * Modes: a new file gets ``0o666 & ~umask``, as ``open(path, "w")`` gives it
-  (``tempfile.mkstemp`` gives 0600: the round-22 trial found the mutation JSONs written so); a file
+  (``tempfile.mkstemp`` gives 0600: the mutation JSONs were once written so); a file
   that is replaced keeps its mode; ``mode=`` forces one (the private caches ask for 0600).
 * :func:`write_temporary` is the first half alone (the whole file at its temporary name), for a
   writer that moves several files into place together (:func:`chaplygin_nd.ledger.report.write_files`).

@@ -192,7 +192,7 @@ def test_mutate_derivations_checks_the_out_folder_before_the_run(tmp_path, capsy
 @pytest.mark.parametrize("module", ["printed", "command"])
 def test_mutation_tools_refuse_an_out_folder_they_cannot_write_even_as_root(module, capsys):
     """/proc accepts no new file, whatever os.access says to root: both tools refuse it before
-    any mutant runs (round-22 trial)."""
+    any mutant runs."""
     import importlib
 
     tool = importlib.import_module(f"chaplygin_nd.ledger.mutation.{module}")

@@ -329,7 +329,7 @@ def test_values_of_a_slots_class_without_equality_are_compared_attribute_by_attr
 
 def test_a_survivor_meets_the_slow_tests_of_its_module_last(tmp_path, monkeypatch):
     """The mutation run leaves slow tests out per mutant; a survivor is tried against them last
-    (round 25: wedge_n6.h2_residual's symbolic check is a slow test). Here a slow test of
+    (wedge_n6.h2_residual's symbolic check is a slow test). Here a slow test of
     algebra.so_dim fails on a mutant of it and passes on the original; a file with no slow test
     kills nothing."""
     from chaplygin_nd.ledger.mutation import runtime as mr

@@ -241,7 +241,7 @@ def test_evidence_rows_without_heyoka_still_reach_their_printed_functions(monkey
     results = run(select(ids), jobs=1)
     assert [r.status for r in results] == ["open"] * 4
     assert all("heyoka, which is not installed" in r.verdict.notes for r in results)
-    # the open problem's exact part needs no heyoka: it is computed and said (round-24 trial)
+    # the open problem's exact part needs no heyoka: it is computed and said
     assert "so dim P/SO(4) = 14 - 6 = 8" in results[3].verdict.notes
     reached = {f for r in results for f in r.printed}
     assert {"section5.euler_jacobi_torus_dimension", "section5.reconstruction_statement",

@@ -1,5 +1,5 @@
 """Files written atomically get the mode a plain open() gives (0o666 & ~umask) or keep the mode of the
-file they replace (chaplygin_nd/writing.py; the round-22 trial found the mutation JSONs written
+file they replace (chaplygin_nd/writing.py; the mutation JSONs were once written
 0600 by tempfile.mkstemp)."""
 
 from __future__ import annotations

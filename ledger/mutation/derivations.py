@@ -242,7 +242,7 @@ def _decide_by_rows(task: Task, fn, code, record: dict) -> dict:
             record.setdefault("not replayed", {})[check] = rec.problem
         else:
             budget = max(checks.MIN_BUDGET, checks.BUDGET_FACTOR * max(seconds, rec.seconds))
-            try:  # a replay has the check's budget too: a mutant may never return (round 25:
+            try:  # a replay has the check's budget too: a mutant may never return (once
                 with checks.time_budget(budget):  # a recursion that never ended held a worker)
                     same, line_ran = replay(fn, code, rec, line)
             except checks.BudgetExceeded:  # undecided by the replay: the check itself is run

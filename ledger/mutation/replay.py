@@ -132,7 +132,7 @@ def attributes(x) -> dict | None:
     """The attributes of an object whose class has no equality of its own (``==`` would be
     identity): its ``__dict__`` and its ``__slots__``, by name; None for any other object. A
     small value class with ``__slots__`` (wedge_integrals' dual numbers) compared by identity made
-    every value differ (round 25)."""
+    every value differ)."""
     if type(x).__eq__ is not object.__eq__:
         return None
     slots: list[str] = []

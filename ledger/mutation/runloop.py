@@ -28,7 +28,7 @@ def groups(tasks: list[Task], jobs: int = 1) -> list[list[Task]]:
     worker and reported when it ends; its calls are recorded once. Chunks of at most
     :data:`GROUP`, and of at most a quarter of each worker's share: a run of one function's 21
     mutants was one group, so one core worked, nothing was reported for 6 minutes and a Ctrl-C kept
-    nothing (round-24 trial)."""
+    nothing)."""
     size = max(1, min(GROUP, math.ceil(len(tasks) / (4 * max(1, jobs)))))
     by: dict[tuple[str, str], list[Task]] = {}
     for t in tasks:
@@ -45,7 +45,7 @@ def _cost(task: Task) -> float:
 #: In a worker: where each record goes as soon as it is decided (a queue made by the parent
 #: before it forks its workers), so that the parent counts and keeps a group's mutants before
 #: the group ends. A group of the costliest function took 16 min and more, and a run printed no
-#: progress and kept nothing until one ended (round 24).
+#: progress and kept nothing until one ended.
 _DECIDED: Any = None
 
 #: How often a run writes ``--out`` and prints its progress line (s).

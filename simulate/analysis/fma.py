@@ -229,7 +229,7 @@ def _task(args):
 
 def require_heyoka() -> None:
     """Stop the run (:class:`RunStopped`, one line) when heyoka, which every map needs, is not
-    installed: checked again by the scene before its plan line (round-24 trial: the plan was
+    installed: checked again by the scene before its plan line (a new user's trial: the plan was
     printed, then the error)."""
     from chaplygin_nd.simulate.integrators import heyoka_taylor
     from chaplygin_nd.simulate.integrators.stops import RunStopped
