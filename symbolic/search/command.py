@@ -173,7 +173,7 @@ def main(argv: list[str]) -> int:
               f"{r.found}, known {r.known}, {'settled' if r.settled else 'NOT settled (candidates)'}, "
               f"{took:.1f} s" + (f"; about {left:.0f} s left" if i + 1 < len(boxes) else ""),
               flush=True)
-    return _write_json(args, rows)
+    return write_json(args.json, rows)
 
 
 def _mapped(model, args, boxes, search) -> int:
@@ -203,19 +203,20 @@ def _mapped(model, args, boxes, search) -> int:
               f"found {r['found']}, known {r['known']} (primes {len(r['primes'])}), "
               f"{'settled' if r['settled'] else 'NOT settled (candidates)'}", flush=True)
     print(f"{time.perf_counter() - t0:.1f} s", flush=True)
-    return _write_json(args, rows)
+    return write_json(args.json, rows)
 
 
-def _write_json(args, rows) -> int:
-    """Write the degree table to ``--json`` atomically (if asked): 0, or one line and exit 1 on a
-    full disk, a quota or a read-only folder (the table is printed above; nothing half-written)."""
-    if args.json:
+def write_json(path, rows) -> int:
+    """Write a search's table to ``--json`` ``path`` atomically (if one was given): 0, or one line
+    and exit 1 on a full disk, a quota or a read-only folder (the table is printed above; nothing
+    half-written). Every search command writes its table with it."""
+    if path:
         from chaplygin_nd.console import fail
         from chaplygin_nd.writing import write_atomic
 
         try:
-            write_atomic(args.json.absolute(), json.dumps(rows, indent=1, default=str))
+            write_atomic(path.absolute(), json.dumps(rows, indent=1, default=str))
         except OSError as exc:
-            return fail(f"--json {args.json}: cannot write it ({exc.strerror or exc}); nothing "
+            return fail(f"--json {path}: cannot write it ({exc.strerror or exc}); nothing "
                         "written, the degree table is printed above")
     return 0

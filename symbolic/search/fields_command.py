@@ -12,14 +12,12 @@ bound of the fields beyond them; 0 is an exact exclusion), seconds. Bad input: o
 
 from __future__ import annotations
 
-import json
-
 __all__ = ["main"]
 
 
 def main(argv: list[str]) -> int:
     """Run the search; exit status 0, or 2 on bad input (one line)."""
-    from chaplygin_nd.symbolic.search.command import parse_rational
+    from chaplygin_nd.symbolic.search.command import parse_rational, write_json
 
     from chaplygin_nd.console import OneLineParser, fail, path_argument, positive_int
 
@@ -73,8 +71,4 @@ def main(argv: list[str]) -> int:
         print(f"n={args.n} d={args.degree} s={s} tau={tau}: {r.independent} unknowns, {r.solutions} "
               f"solutions, {r.trivial} trivial ({r.orbit_proved} orbit-direction proved), excess "
               f"{r.excess}: {r.outcome}, {r.seconds:.1f} s", flush=True)
-    if args.json:
-        from chaplygin_nd.writing import write_atomic
-
-        write_atomic(args.json.absolute(), json.dumps(rows, indent=1, default=str))
-    return 0
+    return write_json(args.json, rows)

@@ -23,13 +23,13 @@ that every generator is even or odd under the reflection $g_1$).
 
 from __future__ import annotations
 
-from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cache
 from math import comb
 
 import numpy as np
+from chaplygin_nd.symbolic.search.weights import symmetric_power, tensor_product
 
 __all__ = ["Ring", "ring_for", "phase_arrays"]
 
@@ -96,28 +96,6 @@ def _so3_values(z, p):
                      _dot(q, q, p), _dot(q, cross, p)], axis=1)
 
 
-def _sym_power(weights, d: int) -> Counter:
-    """Weight multiplicities (tuples) of the d-th symmetric power of a representation."""
-    dp: list[Counter] = [Counter() for _ in range(d + 1)]
-    dp[0][(0,) * len(weights[0])] = 1
-    for w in weights:
-        new: list[Counter] = [Counter() for _ in range(d + 1)]
-        for k in range(d + 1):
-            for key, c in dp[k].items():
-                for m in range(d - k + 1):
-                    new[k + m][tuple(a + m * b for a, b in zip(key, w))] += c
-        dp = new
-    return dp[d]
-
-
-def _times(c1: Counter, c2: Counter) -> Counter:
-    out: Counter = Counter()
-    for k1, v1 in c1.items():
-        for k2, v2 in c2.items():
-            out[tuple(a + b for a, b in zip(k1, k2))] += v1 * v2
-    return out
-
-
 @cache
 def _so3_dimension(d: int, l: int) -> int:
     r"""$SU(2)$ characters (doubled weights $-2, 0, 2$ on $\mathbb{R}^3$ for $k$, $u$, $q$): the trivial
@@ -125,7 +103,7 @@ def _so3_dimension(d: int, l: int) -> int:
     V = ((2,), (0,), (-2,))
     out = 0
     for i in range(d + 1):
-        ch = _times(_times(_sym_power(V, i), _sym_power(V, d - i)), _sym_power(V, l))
+        ch = tensor_product(tensor_product(symmetric_power(V, i), symmetric_power(V, d - i)), symmetric_power(V, l))
         out += ch[(0,)] - ch[(2,)]
     return out
 

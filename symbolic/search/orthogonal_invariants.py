@@ -29,34 +29,13 @@ a deficit.
 from __future__ import annotations
 
 import itertools
-from collections import Counter
 from dataclasses import dataclass
 from functools import cache
 
 import numpy as np
+from chaplygin_nd.symbolic.search.weights import symmetric_power, tensor_product
 
 __all__ = ["dimension", "Candidate", "generators", "products_of"]
-
-
-def _sym_power(weights, d: int) -> Counter:
-    dp: list[Counter] = [Counter() for _ in range(d + 1)]
-    dp[0][(0,) * len(weights[0])] = 1
-    for w in weights:
-        new: list[Counter] = [Counter() for _ in range(d + 1)]
-        for k in range(d + 1):
-            for key, c in dp[k].items():
-                for t in range(d - k + 1):
-                    new[k + t][tuple(a + t * b for a, b in zip(key, w))] += c
-        dp = new
-    return dp[d]
-
-
-def _times(c1: Counter, c2: Counter) -> Counter:
-    out: Counter = Counter()
-    for k1, v1 in c1.items():
-        for k2, v2 in c2.items():
-            out[tuple(a + b for a, b in zip(k1, k2))] += v1 * v2
-    return out
 
 
 @cache
@@ -92,7 +71,7 @@ def dimension(m: int, d: int, l: int) -> int:
     vec, so, weyl = _root_data(m)
     out = 0
     for i in range(d + 1):
-        ch = _times(_times(_sym_power(so, i), _sym_power(vec, d - i)), _sym_power(vec, l))
+        ch = tensor_product(tensor_product(symmetric_power(so, i), symmetric_power(vec, d - i)), symmetric_power(vec, l))
         out += sum(sign * ch[shift] for sign, shift in weyl)
     return out
 

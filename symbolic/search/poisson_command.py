@@ -12,14 +12,12 @@ or ``solutions``), seconds. Bad input: one line ``error: ...`` and exit status 2
 
 from __future__ import annotations
 
-import json
-
 __all__ = ["main"]
 
 
 def main(argv: list[str]) -> int:
     """Run the search; exit status 0, or 2 on bad input (one line)."""
-    from chaplygin_nd.symbolic.search.command import parse_rational
+    from chaplygin_nd.symbolic.search.command import parse_rational, write_json
 
     from chaplygin_nd.console import OneLineParser, fail, path_argument, positive_int
 
@@ -67,8 +65,4 @@ def main(argv: list[str]) -> int:
             gb = [str(g) for g in r.groebner][:6]
             print(f"n={args.n} d={d} e={e} a={a} b={b}: {r.independent} unknowns, linear "
                   f"{r.linear}, Groebner {gb}, {r.outcome}, {r.seconds:.1f} s", flush=True)
-    if args.json:
-        from chaplygin_nd.writing import write_atomic
-
-        write_atomic(args.json.absolute(), json.dumps(rows, indent=1, default=str))
-    return 0
+    return write_json(args.json, rows)
