@@ -274,3 +274,13 @@ def test_a_partial_mutation_run_never_replaces_the_full_record(module, argv, cap
     assert tool.main(argv) == 2
     assert "give --out FILE: a partial run would replace" in one_error_line(capsys)
     assert (record.read_bytes() if record.exists() else None) == before
+
+
+def test_simulate_help_names_every_built_in_scene(capsys):
+    from chaplygin_nd.simulate.scene.spec import builtin_scenes
+    with pytest.raises(SystemExit) as stop:
+        simulate_cli.main(["--help"])
+    assert stop.value.code == 0
+    shown = " ".join(capsys.readouterr().out.split())
+    names = list(builtin_scenes())
+    assert names and all(name in shown for name in names), (names, shown)

@@ -43,7 +43,8 @@ __all__ = ["main"]
 
 def _parser() -> OneLineParser:
     """The options of ``chaplygin simulate``."""
-    ap = OneLineParser(prog="chaplygin simulate", description=__doc__.split("\n\n")[0])
+    ap = OneLineParser(prog="chaplygin simulate", description=__doc__.split("\n\n")[0],
+                       epilog="built-in scenes: " + ", ".join(builtin_scenes()))
     ap.add_argument("--version", action="version", version=version_line())
     ap.add_argument("scene", nargs="?",
                     help="a scene file (TOML), e.g. scenes/generic4d.toml, or a built-in scene name")
