@@ -125,7 +125,7 @@ def p_false(sorted_combos: np.ndarray, tau: float, top: float) -> float:
 
 
 def _explain_all(basis, freqs, taus, K: int):
-    """``(coefficients or None per frequency, distance per frequency, sorted combos)`` for one
+    r"""``(coefficients or None per frequency, distance per frequency, sorted combos)`` for one
     basis: the nearest $|\langle c, \omega\rangle|$, $|c_i| \le K$, kept when within ``taus``."""
     grid = combinations._grid(K, len(basis))
     vals = np.abs(grid @ np.asarray(basis))
@@ -142,7 +142,7 @@ def _explain_all(basis, freqs, taus, K: int):
 
 
 def _explained(basis, lines, row_tau, fine_tau, K) -> tuple[list, float]:
-    """Per line the coefficients that explain it (rule 2 of the module docstring: the smallest
+    r"""Per line the coefficients that explain it (rule 2 of the module docstring: the smallest
     bound of ``K`` that explains it credibly at its measured precision ``fine_tau``, else $|c| \le
     4$ credibly at the row's ``row_tau``), or None; and the largest chance of a false match among
     the matches kept. A basis line is its own explanation."""
@@ -182,8 +182,9 @@ def lattice_fit(lines, tol: float, precision, K=LATTICE_K, top: int = TOP, rank:
     distinct ``lines`` (``(|omega|, amp)``, strongest first) the first that explains the most
     lines. Returns ``{"basis", "max_c", "p_false", "unexplained", "untestable"}`` — ``basis``
     None when a line stays unexplained (``unexplained`` lists them, ``closest_basis`` is the
-    basis); ``untestable``: the unexplained lines too imprecise for even $|c| \le 4$ to be
-    credible at their precision (not established either way). Domain: finite lines, tol > 0,
+    basis); ``untestable``: the unexplained lines too imprecise for a search with $|c| \le$
+    ``K[1]`` (the row's bound 12) to be credible at their precision: "no combination" says nothing
+    there (not established either way). Domain: finite lines, tol > 0,
     precision >= 0 per line."""
     if not lines:
         return {"basis": [], "max_c": 0, "p_false": 0.0, "unexplained": [], "untestable": []}
@@ -205,7 +206,7 @@ def lattice_fit(lines, tol: float, precision, K=LATTICE_K, top: int = TOP, rank:
     if not missing:
         return {"basis": sorted(basis), "p_false": worst, "unexplained": [], "untestable": [],
                 "max_c": max(max(map(abs, c)) for c in got)}
-    small = candidates_sorted(basis, 4)
+    small = candidates_sorted(basis, K[min(1, len(K) - 1)])
     span = max(freqs)
     untestable = [list(lines[i]) for i in missing
                   if p_false(small, float(fine_tau[i]), span) > combinations.CREDIBLE]
@@ -215,7 +216,7 @@ def lattice_fit(lines, tol: float, precision, K=LATTICE_K, top: int = TOP, rank:
 
 
 def candidates_sorted(basis, K: int) -> np.ndarray:
-    """Every $|\sum_i c_i\omega_i|$, $|c_i| \le K$, sorted (the candidates of :func:`p_false`)."""
+    r"""Every $|\sum_i c_i\omega_i|$, $|c_i| \le K$, sorted (the candidates of :func:`p_false`)."""
     return np.sort(np.abs(combinations._grid(K, len(basis)) @ np.asarray(basis, float)))
 
 
@@ -321,3 +322,33 @@ def reexamine(setting, ens, y0: np.ndarray, seed: int, index, use_cache: bool = 
                             encode=lambda res: [r.to_dict() for r in res], decode=_decode,
                             use_cache=use_cache, heyoka=True)
     return out
+
+
+#: the class the row counts an orbit as, after the re-examination
+AS_ROW = {"rank 3": "predicted", "fourth frequency": "excess", "transient": "unresolved",
+          "unresolved": "unresolved"}
+
+
+def reexamine_row(setting, seed: int, results) -> dict[int, Examined]:
+    r"""``{orbit: Examined}`` for every orbit of the ``S5:reconstruction`` ensemble that the row's
+    count called ``excess`` (``results``: the row's records in draw order). The ensemble is drawn
+    again exactly as :func:`simulate.analysis.evidence_rows.full4_row` draws it (label, family,
+    count, seed); its parameters must match the records'."""
+    from chaplygin_nd.simulate.analysis import draws
+    from chaplygin_nd.simulate.dynamics import so
+
+    index = [k for k, r in enumerate(results) if r.cls == "excess"]
+    if not index:
+        return {}
+    ens = draws.draw("S5:reconstruction", "generic", 4, len(results), seed)
+    if any((ens.a[k], ens.b[k], ens.scale[k]) != (r.a, r.b, r.scale) for k, r in enumerate(results)):
+        raise RuntimeError("S5:reconstruction: the re-drawn ensemble is not the row's")
+    y0 = np.concatenate([so.vec(ens.M0), ens.gamma0], axis=-1)
+    return dict(zip(index, reexamine(setting, ens, y0, seed, index)))
+
+
+def reread(record, examined: Examined):
+    """The row's record of an orbit with its class replaced by that of the re-examination
+    (:data:`AS_ROW`) and the reason in ``relation``; the horizon becomes the longest one."""
+    return replace(record, cls=AS_ROW[examined.cls], relation=f"re-examined: {examined.cls} "
+                   f"({examined.reason})", horizon=float(max(HORIZONS)))

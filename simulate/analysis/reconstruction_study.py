@@ -83,7 +83,7 @@ def _integrate(m: int, y0, pars, eps, T_end: float):
 
 
 def visible(lines, own, K: int = 12, rel: float = 1e-6) -> bool:
-    """Whether one of the strong ``lines`` (``(|omega|, amp)``) is no combination $|c| \le$ ``K``
+    r"""Whether one of the strong ``lines`` (``(|omega|, amp)``) is no combination $|c| \le$ ``K``
     of the first three pendula's own frequencies ``own[:3]`` within ``rel`` times the largest line:
     the fourth frequency shows among the lines a count can see (a line weaker than 5 % of its
     signal's strongest is never pooled)."""
