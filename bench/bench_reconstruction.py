@@ -48,12 +48,12 @@ def _signals(setting, ens, y0, seed, index, factor, tol, dt=None):
     return Z, extra["drift"]
 
 
-def _lines(Z, dt):
+def _lines(Z, dt, T):
     from chaplygin_nd.simulate.analysis import naff
     from chaplygin_nd.simulate.analysis import reconstruction as rc5
 
     whole, first, second = naff.lines_batch(Z, dt)
-    return [rc5.look(w, f, h, 0.0) for w, f, h in zip(whole, first, second)]
+    return [rc5.look(w, f, h, 1.0, T) for w, f, h in zip(whole, first, second)]
 
 
 def _max_shift(a, b) -> float:
@@ -78,12 +78,13 @@ def examine(seed: int = SEED) -> list[dict]:
     for h in HORIZONS:
         n = int(round(h * T / dt)) + 1
         whole, first, second = naff.lines_batch(Z16[:, :, :n], dt)
-        looks[h] = [(rc5.look(w, f, s, h), naff.spectrum_from_lines(w, f, s),
+        looks[h] = [(rc5.look(w, f, s, h, T), naff.spectrum_from_lines(w, f, s),
                      naff.spectrum_from_lines(w[:2], f[:2], s[:2])) for w, f, s in zip(whole, first, second)]
     decided = rc5.examine_signals(Z16[:, :, :int(round(8 * T / dt)) + 1], dt, T)
-    tol_check = [_max_shift(a, b) for a, b in zip(_lines(Z16[:, :, :int(round(8 * T / dt)) + 1], dt),
-                                                  _lines(Z8f, dt))]
-    grid_check = [_max_shift(a, b) for a, b in zip(_lines(Z16[:, :, :n4], dt), _lines(Z4c, 2 * dt))]
+    tol_check = [_max_shift(a, b) for a, b in zip(_lines(Z16[:, :, :int(round(8 * T / dt)) + 1], dt, 8 * T),
+                                                  _lines(Z8f, dt, 8 * T))]
+    grid_check = [_max_shift(a, b) for a, b in zip(_lines(Z16[:, :, :n4], dt, 4 * T),
+                                                   _lines(Z4c, 2 * dt, 4 * T))]
     out = []
     for j, k in enumerate(index):
         r = results[k]
@@ -98,7 +99,7 @@ def examine(seed: int = SEED) -> list[dict]:
         for f in extra or r.frequencies[-1:]:
             for h in HORIZONS:
                 lk = looks[h][j][0]
-                g, a = min(lk.lines, key=lambda ln: abs(ln[0] - f))
+                g, a = min(lk.lines, key=lambda ln: abs(ln[0] - f), default=(float("nan"), 0.0))
                 c = combinations.explain(g, basis8, 10 * tol8, 24) if basis8 else None
                 track.append({"line": f, "horizon": h, "f": g, "amp": a, "D": lk.diffusion,
                               "bins_from_row": abs(g - f) / (2 * np.pi / (T * h)),

@@ -246,14 +246,16 @@ def near_resonance(basis, K: int = 3) -> dict:
     return {"k": [int(x) for x in grid[i]], "value": float(vals[i])}
 
 
-def look(whole, first, second, factor: float) -> Look:
+def look(whole, first, second, factor: float, T: float) -> Look:
     """:class:`Look` from the NAFF lines of one orbit (per signal, whole and halves, as
-    :func:`simulate.analysis.naff.lines_batch` returns them) at ``factor`` times T: the row's
-    pooling, diffusion and tolerance, then :func:`lattice_fit`."""
+    :func:`simulate.analysis.naff.lines_batch` returns them) at ``factor`` times ``T``: the row's
+    pooling, diffusion and tolerance; lines closer than the smaller of that tolerance and 1 % of a
+    Fourier bin are one line (the tolerance of an unresolved horizon is wide: it would merge
+    distinct lines)."""
     spec = naff.spectrum_from_lines(whole, first, second)
     scale = max((abs(w) for w, _ in spec.lines), default=1.0)
     tol = spec.tolerance * scale
-    lines = distinct(spec.lines, tol)
+    lines = distinct(spec.lines, min(tol, 0.01 * 2 * np.pi / (T * factor)))
     return Look(float(factor), float(spec.diffusion), [[f, a] for f, a in lines], float(tol))
 
 
@@ -296,7 +298,7 @@ def examine_signals(Z: np.ndarray, dt: float, T: float, horizons=HORIZONS) -> li
         n = int(round(h * T / dt)) + 1
         whole, first, second = naff.lines_batch(Z[:, :, :n], dt)
         for k in range(len(Z)):
-            out_looks[k].append(look(whole[k], first[k], second[k], h))
+            out_looks[k].append(look(whole[k], first[k], second[k], h, T))
     return [decide(lk, T) for lk in out_looks]
 
 
@@ -361,6 +363,7 @@ def reexamine_row(setting, seed: int, results) -> dict[int, Examined]:
 
 def reread(record, examined: Examined):
     """The row's record of an orbit with its class replaced by that of the re-examination
-    (:data:`AS_ROW`) and the reason in ``relation``; the horizon becomes the longest one."""
+    (:data:`AS_ROW`) and the reason in ``relation`` (its count and horizon stay those of the row's
+    own reading)."""
     return replace(record, cls=AS_ROW[examined.cls], relation=f"re-examined: {examined.cls} "
-                   f"({examined.reason})", horizon=float(max(HORIZONS)))
+                   f"({examined.reason})")
