@@ -93,10 +93,13 @@ def examine(seed: int = SEED) -> list[dict]:
         at_row = looks[r.horizon][j][1] if r.horizon in looks else None
         row_basis = list(at_row.frequencies) if at_row is not None else r.frequencies
         tol8 = e.looks[-1].tol
-        extra = [f for f in r.frequencies
-                 if not basis8 or combinations.explain(f, basis8, 10 * tol8, 4) is None]
+        inv = looks[8.0][j][2].frequencies
+        # the count's lines that are not a frequency of the rank-3 basis (or, unresolved, of the
+        # reduced ones): the lines that made it excess
+        known = basis8 or inv
+        extra = [f for f in row_basis if min(abs(f - g) for g in known) > 1e-6]
         track = []
-        for f in extra or r.frequencies[-1:]:
+        for f in extra:
             for h in HORIZONS:
                 lk = looks[h][j][0]
                 g, a = min(lk.lines, key=lambda ln: abs(ln[0] - f), default=(float("nan"), 0.0))
@@ -104,7 +107,6 @@ def examine(seed: int = SEED) -> list[dict]:
                 track.append({"line": f, "horizon": h, "f": g, "amp": a, "D": lk.diffusion,
                               "bins_from_row": abs(g - f) / (2 * np.pi / (T * h)),
                               "in_lattice": list(c) if c is not None else None})
-        inv = looks[8.0][j][2].frequencies
         out.append({
             "orbit": k, "a": r.a, "b": r.b, "scale": r.scale, "row_horizon": r.horizon,
             "row_frequencies": r.frequencies, "row_basis_straight": row_basis,
