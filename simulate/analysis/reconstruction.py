@@ -207,13 +207,15 @@ def lattice_fit(lines, tol: float, precision, K=LATTICE_K, top: int = TOP, rank:
     if len(cands) <= rank:
         return {"basis": sorted(cands), "max_c": 1, "p_false": 0.0, "unexplained": [],
                 "untestable": []}
-    basis, most, best = None, -1, None
+    basis: list[float] = []
+    got: list = []
+    worst, most = 0.0, -1
     for subset in itertools.combinations(range(len(cands)), rank):
         trial = [cands[i] for i in subset]
-        got, worst = _explained(trial, lines, row_tau, fine_tau, K)
-        if sum(c is not None for c in got) > most:
-            basis, most, best = trial, sum(c is not None for c in got), (got, worst)
-    got, worst = best
+        explained, p = _explained(trial, lines, row_tau, fine_tau, K)
+        if sum(c is not None for c in explained) > most:
+            basis, got, worst = trial, explained, p
+            most = sum(c is not None for c in explained)
     missing = [i for i, c in enumerate(got) if c is None]
     if not missing:
         return {"basis": sorted(basis), "p_false": worst, "unexplained": [], "untestable": [],
