@@ -37,7 +37,7 @@ import sympy as sp
 from chaplygin_nd.symbolic.algebra import vec
 from chaplygin_nd.symbolic.axisymmetric import Delta, mass_tensor
 from chaplygin_nd.symbolic.exact.points import generator, skew_matrix, sphere_point
-from chaplygin_nd.symbolic.model import L_matrix_derivative, angular_velocity
+from chaplygin_nd.symbolic.model import angular_velocity
 from chaplygin_nd.symbolic.search import bivector_ansatz as ba
 
 __all__ = ["BoxResult", "field_data", "flint_bivectors", "search_box", "estimate",
@@ -47,6 +47,21 @@ __all__ = ["BoxResult", "field_data", "flint_bivectors", "search_box", "estimate
 sigma = sp.Symbol("sigma")
 
 
+def dH_gamma(w: list, gamma: list, b, n: int) -> list:
+    r"""$\partial_{\gamma_k}H = -\tfrac12\langle\Omega, \partial_{\gamma_k}L_\gamma\,\Omega\rangle$,
+    $k = 1..n$, for $\Omega$ with coordinates ``w`` (``fmpq``), exact in FLINT's ``fmpq`` (the entries
+    of $\partial L_\gamma$ from symbolic/mass_operator.py, in that arithmetic)."""
+    from chaplygin_nd.symbolic.mass_operator import L_entries
+
+    zero, one = flint.fmpq(0), flint.fmpq(1)
+    out = []
+    for k in range(n):
+        D = L_entries(gamma, [zero] * n, b, zero, one, k)
+        out.append(-sum((w[r] * sum((D[r][c] * w[c] for c in range(len(w)) if D[r][c] != 0), zero)
+                         for r in range(len(w))), zero) / 2)
+    return out
+
+
 def field_data(n: int, a, b, M: sp.Matrix, gamma: sp.Matrix) -> dict:
     r"""At a rational point of $P$: $dH$ ($\partial_{M_{ij}}H = \Omega_{ij}$,
     $\partial_{\gamma_k}H = -\tfrac12\langle\Omega, \partial_{\gamma_k}L_\gamma\,\Omega\rangle$ for the
@@ -54,7 +69,8 @@ def field_data(n: int, a, b, M: sp.Matrix, gamma: sp.Matrix) -> dict:
     eq:motion-general ($[M, \Omega]$, $-\Omega\gamma$) and $\Delta(x)$, $\Delta'(x)$ (eq:Delta), exact."""
     Om = angular_velocity(M, gamma, mass_tensor(n, a), b)
     w = vec(Om)
-    dH = list(w) + [-(w.T * L_matrix_derivative(gamma, b, k) * w)[0, 0] / 2 for k in range(n)]
+    dg = dH_gamma([_fq(v) for v in w], [_fq(v) for v in gamma], _fq(b), n)
+    dH = list(w) + [_q(v) for v in dg]
     X = list(vec(M * Om - Om * M)) + list(-Om * gamma)
     xs = sp.Symbol("x")
     D = Delta(xs, a, b)
@@ -71,8 +87,19 @@ def _fq(v) -> flint.fmpq:
     return flint.fmpq(int(v.p), int(v.q))
 
 
+_FLINT_BIVECTORS: dict = {}
+
+
 def flint_bivectors(ans: ba.Ansatz) -> list[dict]:
-    """Each basis bivector of the box as {(row, col): fmpq_mpoly} over its upper-triangle entries."""
+    """Each basis bivector of the box as {(row, col): fmpq_mpoly} over its upper-triangle entries
+    (kept per (n, degree): the box does not depend on anything else)."""
+    key = (ans.n, ans.degree)
+    if key not in _FLINT_BIVECTORS:
+        _FLINT_BIVECTORS[key] = _flint_bivectors(ans)
+    return _FLINT_BIVECTORS[key]
+
+
+def _flint_bivectors(ans: ba.Ansatz) -> list[dict]:
     ctx = _ctx(ans.coords)
     out = []
     for B in ans.bivectors:
@@ -116,6 +143,7 @@ class BoxResult:
     jacobi_equations: int = 0
     groebner: list = field(default_factory=list)
     outcome: str = ""           # "excluded (linear)", "excluded (Jacobi)", "solutions"
+    generic: str = ""           # over which (a, b) an exclusion holds (generic_extension.py)
     seconds: float = 0.0
     solution: dict | None = None
 
@@ -125,6 +153,7 @@ class BoxResult:
                 "syzygies": self.syzygies, "linear": self.linear, "free": self.free,
                 "jacobi_equations": self.jacobi_equations,
                 "groebner": [str(g) for g in self.groebner][:8], "outcome": self.outcome,
+                "generic": self.generic,
                 "seconds": round(self.seconds, 2)}
 
 
@@ -201,9 +230,12 @@ def _sphere_reduce(expr: sp.Expr, gamma: list) -> sp.Expr:
     return sp.expand(sp.rem(sp.Poly(expr, g), sp.Poly(g**2 - rest, g)).as_expr())
 
 
-def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None) -> BoxResult:
+def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None,
+               generic: bool = True) -> BoxResult:
     """Decide one box exactly (module docstring): the linear stage over QQ, then the Jacobi
-    stage by a Gröbner basis over QQ in the remaining unknowns and sigma."""
+    stage by a Gröbner basis over QQ in the remaining unknowns and sigma; with ``generic``, an
+    exclusion is carried to generic (a, b) when the check of symbolic/search/generic_extension.py
+    passes (``generic`` says over which (a, b) it holds)."""
     t0 = time.perf_counter()
     a, b = sp.Rational(a), sp.Rational(b)
     res = BoxResult(n, degree, e, a, b)
@@ -232,13 +264,15 @@ def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None) -
     part, kernel = _rref_solve(rows, rhs)
     if progress:
         progress(f"  n={n} d={degree} e={e}: linear stage done ({time.perf_counter() - t0:.1f} s)")
+    ctx = _ctx(ans.coords)
     if part is None:
         res.linear, res.outcome = "inconsistent", "excluded (linear)"
+        if generic:
+            _generic(res, fb, cols, seed)
         res.seconds = time.perf_counter() - t0
         return res
     res.free = len(kernel)
     res.linear = f"affine space of dimension {len(kernel)}"
-    ctx = _ctx(ans.coords)
     P0 = _combine(fb, cols, part, ctx)
     Ks = [_combine(fb, cols, k, ctx) for k in kernel]
     eqs, ring_gens = jacobi_equations(n, a, b, P0, Ks, seed, ctx)
@@ -249,11 +283,30 @@ def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None) -
         gb = list(sp.groebner(eqs, *ring_gens, order="grevlex", domain=sp.QQ).exprs)
     res.groebner = gb
     res.outcome = "excluded (Jacobi)" if gb == [1] else "solutions"
+    if res.outcome == "excluded (Jacobi)" and generic:
+        _generic(res, fb, cols, seed)
     if res.outcome == "solutions":
         res.solution = {"groebner": gb, "gens": ring_gens, "cols": cols, "part": part,
                         "kernel": kernel, "ansatz": ans}
     res.seconds = time.perf_counter() - t0
     return res
+
+
+def _generic(res: BoxResult, fb, cols, seed: int) -> None:
+    """Over which (a, b) an exclusion holds (symbolic/search/generic_extension.py): a linear one
+    for generic (a, b) when its check passes; one decided by Jacobi at the stated (a, b) only."""
+    from chaplygin_nd.symbolic.search import generic_extension as ge
+
+    at = f"(a, b) = ({res.a}, {res.b})"
+    if res.outcome == "excluded (Jacobi)":
+        res.generic = (f"only at {at} (the Jacobi stage is a Groebner basis over Q there; over "
+                       f"Q(a, b) it is not computed)")
+        return
+    N = res.n * (res.n - 1) // 2 + res.n
+    pts = _points(res.n, 2 * (len(cols) // N) + 6, seed, "omega-linear")
+    ok, text = ge.linear_generic(res.n, res.a, res.b, res.e, fb, cols, pts,
+                                 key=(res.n, res.degree, tuple(cols), seed))
+    res.generic = text if ok else f"only at {at} ({text})"
 
 
 def _combine(fb, cols, coeffs, ctx) -> dict:
