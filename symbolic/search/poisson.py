@@ -88,6 +88,9 @@ def _fq(v) -> flint.fmpq:
 
 
 _FLINT_BIVECTORS: dict = {}
+#: per (n, degree, seed): the independent columns of the box; per point: their values there
+_COLUMNS: dict = {}
+_VALUES: dict = {}
 
 
 def flint_bivectors(ans: ba.Ansatz) -> list[dict]:
@@ -242,7 +245,10 @@ def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None,
     ans = ba.ansatz(n, degree)
     fb = flint_bivectors(ans)
     res.unknowns = len(fb)
-    cols, res.syzygies = _independent_columns(ans, fb, seed)
+    key = (n, degree, seed)
+    if key not in _COLUMNS:     # the box's columns and their values do not depend on (a, b) or e
+        _COLUMNS[key] = _independent_columns(ans, fb, seed)
+    cols, res.syzygies = _COLUMNS[key]
     res.independent = len(cols)
     N = len(ans.coords)
     m = N - n
@@ -253,7 +259,10 @@ def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None,
         pt = [_fq(v) for v in list(vec(M)) + list(g)]
         dH = [_fq(v) for v in fd["dH"]]
         De = _fq(fd["Delta"] ** e)
-        Vs = [_values(fb[u], pt, N) for u in cols]
+        vkey = (n, degree, seed, tuple(pt))
+        if vkey not in _VALUES:
+            _VALUES[vkey] = [_values(fb[u], pt, N) for u in cols]
+        Vs = _VALUES[vkey]
         for i in range(N):
             rows.append([sum((V[i][j] * dH[j] for j in range(N)), flint.fmpq(0)) for V in Vs])
             rhs.append(De * _fq(fd["X"][i]))
