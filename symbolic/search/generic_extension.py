@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import flint
 
@@ -59,7 +60,8 @@ def _mat(rows: list[list]) -> flint.fmpq_mat:
     return flint.fmpq_mat(len(rows), len(rows[0]), [v for r in rows for v in r])
 
 
-def _pivots(R: flint.fmpq_mat, rank: int, cols: int) -> list[int]:
+def _pivots(R: Any, rank: int, cols: int) -> list[int]:
+    """The pivot columns of the first ``rank`` rows of a row echelon form (any FLINT matrix)."""
     out, j = [], 0
     for i in range(rank):
         while R[i, j] == 0:
