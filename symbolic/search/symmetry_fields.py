@@ -308,8 +308,8 @@ def _generic(rows, res: FieldBox, a, b, dx_syzygy: bool, uses_dx: list, proved: 
     if dx_syzygy:
         return f"only at {at} (a column syzygy proved there involves D X, which depends on a, b)"
     cert = ge.nullity_certificate(rows)
-    if cert.nullity != res.solutions:
-        raise ArithmeticError("the rank certificate disagrees with the solve")
+    if cert.nullity != res.solutions:   # the pivot prime divides the minor: no certificate here
+        return f"only at {at} (no minor of size {len(rows[0]) - res.solutions} found nonzero mod p)"
     if any(coef[u] != 0 and uses_dx[u] for _, coef in proved for u in range(len(uses_dx))):
         return f"only at {at} (an orbit-direction field proved there involves D X, which depends on a, b)"
     return (f"generic (a, b): off the zero set of one minor and the poles of the sampled conditions "
