@@ -113,7 +113,9 @@ def omega_rows(n: int, a, b, e: int, fb: list, cols: list, points: list) -> tupl
     from chaplygin_nd.symbolic.algebra import vec
     from chaplygin_nd.symbolic.axisymmetric import Delta
     from chaplygin_nd.symbolic.mass_operator import L_entries
-    from chaplygin_nd.symbolic.search.poisson import _fq, _values, dH_gamma
+    from chaplygin_nd.symbolic.search.point_values import bivector_values as _values
+    from chaplygin_nd.symbolic.search.point_values import dH_gamma
+    from chaplygin_nd.symbolic.search.point_values import fq as _fq
 
     m = n * (n - 1) // 2
     N = m + n
@@ -241,7 +243,7 @@ def linear_generic(n: int, a0, b0, e: int, fb: list, cols: list, points: list, k
     poles of $\Delta^e$ and the zeros of $\det L_\gamma$ at the sample points). Returns (proved,
     statement)."""
     from chaplygin_nd.symbolic.axisymmetric import Delta
-    from chaplygin_nd.symbolic.search.poisson import _fq
+    from chaplygin_nd.symbolic.search.point_values import fq as _fq
 
     grid = affine_grid(n, fb, cols, points, key if key is not None else object())
     (A00, A1, A2), (X0, X1, X2) = grid["A"], grid["X"]

@@ -39,27 +39,15 @@ from chaplygin_nd.symbolic.axisymmetric import Delta, mass_tensor
 from chaplygin_nd.symbolic.exact.points import generator, skew_matrix, sphere_point
 from chaplygin_nd.symbolic.model import angular_velocity
 from chaplygin_nd.symbolic.search import bivector_ansatz as ba
+from chaplygin_nd.symbolic.search.point_values import bivector_values as _values
+from chaplygin_nd.symbolic.search.point_values import dH_gamma
+from chaplygin_nd.symbolic.search.point_values import fq as _fq
 
 __all__ = ["BoxResult", "field_data", "flint_bivectors", "search_box", "estimate",
            "jacobi_residual", "sigma"]
 
 #: the exponent of the conformal factor $\Delta^\sigma$, an unknown of the Jacobi stage
 sigma = sp.Symbol("sigma")
-
-
-def dH_gamma(w: list, gamma: list, b, n: int) -> list:
-    r"""$\partial_{\gamma_k}H = -\tfrac12\langle\Omega, \partial_{\gamma_k}L_\gamma\,\Omega\rangle$,
-    $k = 1..n$, for $\Omega$ with coordinates ``w`` (``fmpq``), exact in FLINT's ``fmpq`` (the entries
-    of $\partial L_\gamma$ from symbolic/mass_operator.py, in that arithmetic)."""
-    from chaplygin_nd.symbolic.mass_operator import L_entries
-
-    zero, one = flint.fmpq(0), flint.fmpq(1)
-    out = []
-    for k in range(n):
-        D = L_entries(gamma, [zero] * n, b, zero, one, k)
-        out.append(-sum((w[r] * sum((D[r][c] * w[c] for c in range(len(w)) if D[r][c] != 0), zero)
-                         for r in range(len(w))), zero) / 2)
-    return out
 
 
 def field_data(n: int, a, b, M: sp.Matrix, gamma: sp.Matrix) -> dict:
@@ -80,11 +68,6 @@ def field_data(n: int, a, b, M: sp.Matrix, gamma: sp.Matrix) -> dict:
 
 def _ctx(coords):
     return flint.fmpq_mpoly_ctx.get(tuple(str(c) for c in coords), "lex")
-
-
-def _fq(v) -> flint.fmpq:
-    v = sp.Rational(v)
-    return flint.fmpq(int(v.p), int(v.q))
 
 
 _FLINT_BIVECTORS: dict = {}
@@ -119,14 +102,6 @@ def _flint_bivectors(ans: ba.Ansatz) -> list[dict]:
 def _points(n: int, count: int, seed: int, label: str):
     rng = generator(seed, "poisson", label, n)
     return [(skew_matrix(rng, n), sphere_point(rng, n)) for _ in range(count)]
-
-
-def _values(entries: dict, pt: list, N: int) -> list[list]:
-    V = [[flint.fmpq(0)] * N for _ in range(N)]
-    for (i, j), f in entries.items():
-        v = f(*pt)
-        V[i][j], V[j][i] = v, -v
-    return V
 
 
 @dataclass
