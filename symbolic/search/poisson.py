@@ -25,6 +25,10 @@ equations over $\mathbb{Q}$ on the sampled affine space, *proves* that the box h
 Hamiltonisation. Block dependencies (syzygies) that the points suggest are each proved as exact
 identities modulo the sphere before a column is dropped. A solution found is proved by exact
 identities (symbolic/exact, SymPy and FLINT) in :func:`prove_structure`.
+
+**Over which $(a, b)$.** A box whose linear stage is inconsistent is carried to every $(a, b)$ off
+a proper algebraic subset by symbolic/search/generic_extension.py (``BoxResult.generic`` states
+the argument and its minor); a box excluded by Jacobi holds at its $(a, b)$.
 """
 
 from __future__ import annotations
