@@ -37,7 +37,7 @@ from typing import Any
 import flint
 
 __all__ = ["NullityCertificate", "nullity_certificate", "omega_rows", "grid_rank", "affine_grid",
-           "linear_generic"]
+           "linear_generic", "inconsistency_certificate", "fields_generic"]
 
 
 @dataclass
@@ -270,3 +270,24 @@ def inconsistency_certificate(A: list, h: list, grid: dict, at: str) -> tuple[bo
                   f"and the poles (at {at}: {cert.text()}; rank A <= {r} over Q(a, b): "
                   f"A = A0 + a A1 + b A2; modulo its constant rows (rank {grid['constant']}) rank A1 = "
                   f"{k1}, rank A2 = {k2}, and rank A <= {r} on the {(k1 + 1) * (k2 + 1)}-point grid)")
+
+
+def fields_generic(rows: list, solutions: int, trivial: int, at: str, dx_syzygy: bool,
+                   uses_dx: list, proved: list) -> str:
+    r"""Over which $(a, b)$ a symmetry-field count "no field beyond the trivial ones" holds
+    (symbolic/search/symmetry_fields.py): lower semicontinuity of the nullity (one minor of the
+    sampled conditions ``rows``, nonzero at the point ``at``) bounds the solutions at generic
+    $(a, b)$ by ``solutions``; the ``trivial`` ones are solutions for every $(a, b)$ (the orbit fields
+    and $DX$ by equivariance and invariance; an orbit-direction field, with its column coefficients
+    in ``proved``, by its proof, which does not involve $a, b$ when it avoids the $DX$ column,
+    flagged by ``uses_dx``) and stay independent off a proper closed set."""
+    if dx_syzygy:
+        return f"only at {at} (a column syzygy proved there involves D X, which depends on a, b)"
+    if any(coef[u] != 0 and uses_dx[u] for coef in proved for u in range(len(uses_dx))):
+        return f"only at {at} (an orbit-direction field proved there involves D X, which depends on a, b)"
+    cert = nullity_certificate(rows)
+    if cert.nullity != solutions:   # the pivot prime divides the minor: no certificate here
+        return f"only at {at} (no minor of size {len(rows[0]) - solutions} found nonzero mod p)"
+    return (f"generic (a, b): off the zero set of one minor and the poles of the sampled conditions "
+            f"(lower semicontinuity of the nullity; minor at {at}: {cert.text()}), the "
+            f"{trivial} trivial fields being solutions for every (a, b)")

@@ -289,32 +289,13 @@ def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
     if res.excess < 0:
         raise ArithmeticError("fewer sampled solutions than exact ones: a bug")
     if res.excess == 0:
-        res.generic = _generic(rows, res, a, b, dx_syzygy,
-                               uses_dx=[labels[keep[u]][0] == "D X" for u in range(len(cols))], proved=proved)
+        from chaplygin_nd.symbolic.search.generic_extension import fields_generic
+
+        res.generic = fields_generic(rows, res.solutions, res.trivial, f"(a, b) = ({a}, {b})", dx_syzygy,
+                                     [labels[keep[u]][0] == "D X" for u in range(len(cols))],
+                                     [coef for _, coef in proved])
     res.seconds = time.perf_counter() - t0
     return res
-
-
-def _generic(rows, res: FieldBox, a, b, dx_syzygy: bool, uses_dx: list, proved: list) -> str:
-    r"""Over which $(a, b)$ the count "no field beyond the trivial ones" holds: lower semicontinuity
-    of the nullity (one minor of the sampled conditions, nonzero at $(a, b)$: symbolic/search/
-    generic_extension.py) bounds the solutions at generic $(a, b)$ by those at $(a, b)$; the trivial
-    ones are solutions for every $(a, b)$ (the orbit fields and $DX$ by equivariance and invariance;
-    an orbit-direction field by its proof, which does not involve $a, b$ when it avoids the $DX$
-    column) and stay independent off a proper closed set."""
-    from chaplygin_nd.symbolic.search import generic_extension as ge
-
-    at = f"(a, b) = ({a}, {b})"
-    if dx_syzygy:
-        return f"only at {at} (a column syzygy proved there involves D X, which depends on a, b)"
-    cert = ge.nullity_certificate(rows)
-    if cert.nullity != res.solutions:   # the pivot prime divides the minor: no certificate here
-        return f"only at {at} (no minor of size {len(rows[0]) - res.solutions} found nonzero mod p)"
-    if any(coef[u] != 0 and uses_dx[u] for _, coef in proved for u in range(len(uses_dx))):
-        return f"only at {at} (an orbit-direction field proved there involves D X, which depends on a, b)"
-    return (f"generic (a, b): off the zero set of one minor and the poles of the sampled conditions "
-            f"(lower semicontinuity of the nullity; minor at {at}: {cert.text()}), the "
-            f"{res.trivial} trivial fields being solutions for every (a, b)")
 
 
 def _independent(z, cols, seed, n, labels=None) -> tuple[list[int], bool]:
