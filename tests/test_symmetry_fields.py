@@ -51,3 +51,14 @@ def test_command_bad_input_gives_one_line(capsys):
     for argv in (["2", "0"], ["3", "0", "--pairs", "x"], ["3", "0", "--b", "0"], ["3", "-1"]):
         assert exit_code(main, argv) == 2
         one_error_line(capsys)
+
+
+def test_a_count_is_carried_to_generic_parameters_unless_delta_x_enters_a_syzygy():
+    """n = 3, d = 0: one minor of the sampled conditions, nonzero at (1/3, 2/5), carries the count
+    to generic (a, b); at d = 1 a proved column syzygy involves D X (which depends on a, b), so the
+    count is stated at the point only."""
+    half = sp.Rational(1, 2)
+    r0 = sf.search_fields(3, 0, -half, half, A, B, seed=2)
+    assert r0.excess == 0 and r0.generic.startswith("generic (a, b)") and "!= 0" in r0.generic
+    r1 = sf.search_fields(3, 1, -half, half, A, B, seed=2)
+    assert r1.excess == 0 and r1.generic.startswith("only at") and "D X" in r1.generic

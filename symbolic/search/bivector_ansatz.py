@@ -189,28 +189,28 @@ def _invariant_dimension(n: int, shape: str, gamma0: sp.Matrix) -> int:
 
     eqs = []
     for kind, Y in [("lie", Y) for Y in gens] + [("group", refl)]:
-        A = ad(Y) if kind == "lie" else act_so(Y, None)
-        V = Y if kind == "lie" else refl
+        A = (ad(Y) if kind == "lie" else act_so(Y, None)).tolist()   # lists: fast entry access
+        V = (Y if kind == "lie" else refl).tolist()
+        nz = [[j for j in range(m) if A[i][j] != 0] for i in range(m)]
         for key in idx:
             if shape == "mm":
                 c, p, q = key[0], key[1], key[2]
                 # (g.T)[c,p,q] = sum A[c,c'] A[p,p'] A[q,q'] T[c',p',q'] (contragredient = same: orthogonal)
                 if kind == "lie":
-                    val = (sum(A[c, cc] * tensor((cc, p, q)) for cc in range(m) if A[c, cc] != 0)
-                           + sum(A[p, pp] * tensor((c, pp, q)) for pp in range(m) if A[p, pp] != 0)
-                           + sum(A[q, qq] * tensor((c, p, qq)) for qq in range(m) if A[q, qq] != 0))
+                    val = (sum(A[c][cc] * tensor((cc, p, q)) for cc in nz[c])
+                           + sum(A[p][pp] * tensor((c, pp, q)) for pp in nz[p])
+                           + sum(A[q][qq] * tensor((c, p, qq)) for qq in nz[q]))
                 else:
-                    val = sum(A[c, cc] * A[p, pp] * A[q, qq] * tensor((cc, pp, qq))
-                              for cc in range(m) for pp in range(m) for qq in range(m)
-                              if A[c, cc] != 0 and A[p, pp] != 0 and A[q, qq] != 0) - tensor(key)
+                    val = sum(A[c][cc] * A[p][pp] * A[q][qq] * tensor((cc, pp, qq))
+                              for cc in nz[c] for pp in nz[p] for qq in nz[q]) - tensor(key)
             else:
                 p, k = key[0], key[1]
                 if kind == "lie":
-                    val = (sum(A[p, pp] * tensor((pp, k)) for pp in range(m) if A[p, pp] != 0)
-                           + sum(V[k, kk] * tensor((p, kk)) for kk in range(n) if V[k, kk] != 0))
+                    val = (sum(A[p][pp] * tensor((pp, k)) for pp in nz[p])
+                           + sum(V[k][kk] * tensor((p, kk)) for kk in range(n) if V[k][kk] != 0))
                 else:
-                    val = sum(A[p, pp] * V[k, kk] * tensor((pp, kk)) for pp in range(m)
-                              for kk in range(n) if A[p, pp] != 0 and V[k, kk] != 0) - tensor(key)
+                    val = sum(A[p][pp] * V[k][kk] * tensor((pp, kk)) for pp in nz[p]
+                              for kk in range(n) if V[k][kk] != 0) - tensor(key)
             if val != 0:
                 eqs.append(val)
     if not eqs:
@@ -231,16 +231,11 @@ def completeness(n: int) -> dict:
     gamma0[n - 2], gamma0[n - 1] = sp.Rational(3, 5), sp.Rational(4, 5)
     basis, E = so_basis(n), _E(n)
     m = len(basis)
-    Ms = [sum((sp.Symbol(f"c{i}") * b for i, b in enumerate(basis)), sp.zeros(n, n))]
-    cs = [sp.Symbol(f"c{i}") for i in range(m)]
-    rows_mm = []
-    for u in range(len(MM_NAMES)):
-        vecs = []
-        for p in range(m):
-            for q in range(p + 1, m):
-                form = sp.expand(mm_blocks(basis[p], basis[q], Ms[0], gamma0, E)[u])
-                vecs += [form.coeff(c) for c in cs]
-        rows_mm.append(vecs)
+    # the forms are linear in M: the coefficient of the coordinate c of M is the form at M = basis[c]
+    forms = {(p, q, c): mm_blocks(basis[p], basis[q], basis[c], gamma0, E)
+             for p in range(m) for q in range(p + 1, m) for c in range(m)}
+    rows_mm = [[sp.expand(forms[(p, q, c)][u]) for p in range(m) for q in range(p + 1, m) for c in range(m)]
+               for u in range(len(MM_NAMES))]
     rows_mg = []
     for u in range(len(MG_NAMES)):
         rows_mg.append([mg_blocks(basis[p], gamma0, E)[u][k] for p in range(m) for k in range(n)])

@@ -6,13 +6,20 @@ line (row S7:symmetry-fields; symbolic/search/symmetry_fields.py).
 
 Before each box: its size and a time estimate (stderr). Then one line per box: sampled solutions,
 the exact trivial ones (orbit fields, Delta X, orbit-direction fields proved), the excess (an upper
-bound of the fields beyond them; 0 is an exact exclusion), seconds. Bad input: one line
-``error: ...`` and exit status 2.
+bound of the fields beyond them; 0 is an exact exclusion) and over which (a, b) it holds,
+seconds. Bad input: one line ``error: ...`` and exit status 2.
 """
 
 from __future__ import annotations
 
 __all__ = ["main"]
+
+
+def _over(generic: str) -> str:
+    """Over which (a, b) the count holds, in a few words (the full argument is in --json)."""
+    if not generic:
+        return ""
+    return " (for generic (a, b))" if generic.startswith("generic") else " (at this (a, b) only)"
 
 
 def main(argv: list[str]) -> int:
@@ -70,5 +77,5 @@ def main(argv: list[str]) -> int:
         rows.append(r.as_dict())
         print(f"n={args.n} d={args.degree} s={s} tau={tau}: {r.independent} unknowns, {r.solutions} "
               f"solutions, {r.trivial} trivial ({r.orbit_proved} orbit-direction proved), excess "
-              f"{r.excess}: {r.outcome}, {r.seconds:.1f} s", flush=True)
+              f"{r.excess}: {r.outcome}{_over(r.generic)}, {r.seconds:.1f} s", flush=True)
     return write_json(args.json, rows)

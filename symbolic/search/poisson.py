@@ -25,6 +25,10 @@ equations over $\mathbb{Q}$ on the sampled affine space, *proves* that the box h
 Hamiltonisation. Block dependencies (syzygies) that the points suggest are each proved as exact
 identities modulo the sphere before a column is dropped. A solution found is proved by exact
 identities (symbolic/exact, SymPy and FLINT) in :func:`prove_structure`.
+
+**Over which $(a, b)$.** A box whose linear stage is inconsistent is carried to every $(a, b)$ off
+a proper algebraic subset by symbolic/search/generic_extension.py (``BoxResult.generic`` states
+the argument and its minor); a box excluded by Jacobi holds at its $(a, b)$.
 """
 
 from __future__ import annotations
@@ -37,8 +41,11 @@ import sympy as sp
 from chaplygin_nd.symbolic.algebra import vec
 from chaplygin_nd.symbolic.axisymmetric import Delta, mass_tensor
 from chaplygin_nd.symbolic.exact.points import generator, skew_matrix, sphere_point
-from chaplygin_nd.symbolic.model import L_matrix_derivative, angular_velocity
+from chaplygin_nd.symbolic.model import angular_velocity
 from chaplygin_nd.symbolic.search import bivector_ansatz as ba
+from chaplygin_nd.symbolic.search.point_values import bivector_values as _values
+from chaplygin_nd.symbolic.search.point_values import dH_gamma
+from chaplygin_nd.symbolic.search.point_values import fq as _fq
 
 __all__ = ["BoxResult", "field_data", "flint_bivectors", "search_box", "estimate",
            "jacobi_residual", "sigma"]
@@ -54,7 +61,8 @@ def field_data(n: int, a, b, M: sp.Matrix, gamma: sp.Matrix) -> dict:
     eq:motion-general ($[M, \Omega]$, $-\Omega\gamma$) and $\Delta(x)$, $\Delta'(x)$ (eq:Delta), exact."""
     Om = angular_velocity(M, gamma, mass_tensor(n, a), b)
     w = vec(Om)
-    dH = list(w) + [-(w.T * L_matrix_derivative(gamma, b, k) * w)[0, 0] / 2 for k in range(n)]
+    dg = dH_gamma([_fq(v) for v in w], [_fq(v) for v in gamma], _fq(b), n)
+    dH = list(w) + [_q(v) for v in dg]
     X = list(vec(M * Om - Om * M)) + list(-Om * gamma)
     xs = sp.Symbol("x")
     D = Delta(xs, a, b)
@@ -66,13 +74,22 @@ def _ctx(coords):
     return flint.fmpq_mpoly_ctx.get(tuple(str(c) for c in coords), "lex")
 
 
-def _fq(v) -> flint.fmpq:
-    v = sp.Rational(v)
-    return flint.fmpq(int(v.p), int(v.q))
+_FLINT_BIVECTORS: dict = {}
+#: per (n, degree, seed): the independent columns of the box; per point: their values there
+_COLUMNS: dict = {}
+_VALUES: dict = {}
 
 
 def flint_bivectors(ans: ba.Ansatz) -> list[dict]:
-    """Each basis bivector of the box as {(row, col): fmpq_mpoly} over its upper-triangle entries."""
+    """Each basis bivector of the box as {(row, col): fmpq_mpoly} over its upper-triangle entries
+    (kept per (n, degree): the box does not depend on anything else)."""
+    key = (ans.n, ans.degree)
+    if key not in _FLINT_BIVECTORS:
+        _FLINT_BIVECTORS[key] = _flint_bivectors(ans)
+    return _FLINT_BIVECTORS[key]
+
+
+def _flint_bivectors(ans: ba.Ansatz) -> list[dict]:
     ctx = _ctx(ans.coords)
     out = []
     for B in ans.bivectors:
@@ -89,14 +106,6 @@ def flint_bivectors(ans: ba.Ansatz) -> list[dict]:
 def _points(n: int, count: int, seed: int, label: str):
     rng = generator(seed, "poisson", label, n)
     return [(skew_matrix(rng, n), sphere_point(rng, n)) for _ in range(count)]
-
-
-def _values(entries: dict, pt: list, N: int) -> list[list]:
-    V = [[flint.fmpq(0)] * N for _ in range(N)]
-    for (i, j), f in entries.items():
-        v = f(*pt)
-        V[i][j], V[j][i] = v, -v
-    return V
 
 
 @dataclass
@@ -116,6 +125,7 @@ class BoxResult:
     jacobi_equations: int = 0
     groebner: list = field(default_factory=list)
     outcome: str = ""           # "excluded (linear)", "excluded (Jacobi)", "solutions"
+    generic: str = ""           # over which (a, b) an exclusion holds (generic_extension.py)
     seconds: float = 0.0
     solution: dict | None = None
 
@@ -125,6 +135,7 @@ class BoxResult:
                 "syzygies": self.syzygies, "linear": self.linear, "free": self.free,
                 "jacobi_equations": self.jacobi_equations,
                 "groebner": [str(g) for g in self.groebner][:8], "outcome": self.outcome,
+                "generic": self.generic,
                 "seconds": round(self.seconds, 2)}
 
 
@@ -201,16 +212,22 @@ def _sphere_reduce(expr: sp.Expr, gamma: list) -> sp.Expr:
     return sp.expand(sp.rem(sp.Poly(expr, g), sp.Poly(g**2 - rest, g)).as_expr())
 
 
-def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None) -> BoxResult:
+def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None,
+               generic: bool = True) -> BoxResult:
     """Decide one box exactly (module docstring): the linear stage over QQ, then the Jacobi
-    stage by a Gröbner basis over QQ in the remaining unknowns and sigma."""
+    stage by a Gröbner basis over QQ in the remaining unknowns and sigma; with ``generic``, an
+    exclusion is carried to generic (a, b) when the check of symbolic/search/generic_extension.py
+    passes (``generic`` says over which (a, b) it holds)."""
     t0 = time.perf_counter()
     a, b = sp.Rational(a), sp.Rational(b)
     res = BoxResult(n, degree, e, a, b)
     ans = ba.ansatz(n, degree)
     fb = flint_bivectors(ans)
     res.unknowns = len(fb)
-    cols, res.syzygies = _independent_columns(ans, fb, seed)
+    key = (n, degree, seed)
+    if key not in _COLUMNS:     # the box's columns and their values do not depend on (a, b) or e
+        _COLUMNS[key] = _independent_columns(ans, fb, seed)
+    cols, res.syzygies = _COLUMNS[key]
     res.independent = len(cols)
     N = len(ans.coords)
     m = N - n
@@ -221,7 +238,10 @@ def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None) -
         pt = [_fq(v) for v in list(vec(M)) + list(g)]
         dH = [_fq(v) for v in fd["dH"]]
         De = _fq(fd["Delta"] ** e)
-        Vs = [_values(fb[u], pt, N) for u in cols]
+        vkey = (n, degree, seed, tuple(pt))
+        if vkey not in _VALUES:
+            _VALUES[vkey] = [_values(fb[u], pt, N) for u in cols]
+        Vs = _VALUES[vkey]
         for i in range(N):
             rows.append([sum((V[i][j] * dH[j] for j in range(N)), flint.fmpq(0)) for V in Vs])
             rhs.append(De * _fq(fd["X"][i]))
@@ -232,13 +252,15 @@ def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None) -
     part, kernel = _rref_solve(rows, rhs)
     if progress:
         progress(f"  n={n} d={degree} e={e}: linear stage done ({time.perf_counter() - t0:.1f} s)")
+    ctx = _ctx(ans.coords)
     if part is None:
         res.linear, res.outcome = "inconsistent", "excluded (linear)"
+        if generic:
+            _generic(res, fb, cols, seed)
         res.seconds = time.perf_counter() - t0
         return res
     res.free = len(kernel)
     res.linear = f"affine space of dimension {len(kernel)}"
-    ctx = _ctx(ans.coords)
     P0 = _combine(fb, cols, part, ctx)
     Ks = [_combine(fb, cols, k, ctx) for k in kernel]
     eqs, ring_gens = jacobi_equations(n, a, b, P0, Ks, seed, ctx)
@@ -249,11 +271,30 @@ def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None) -
         gb = list(sp.groebner(eqs, *ring_gens, order="grevlex", domain=sp.QQ).exprs)
     res.groebner = gb
     res.outcome = "excluded (Jacobi)" if gb == [1] else "solutions"
+    if res.outcome == "excluded (Jacobi)" and generic:
+        _generic(res, fb, cols, seed)
     if res.outcome == "solutions":
         res.solution = {"groebner": gb, "gens": ring_gens, "cols": cols, "part": part,
                         "kernel": kernel, "ansatz": ans}
     res.seconds = time.perf_counter() - t0
     return res
+
+
+def _generic(res: BoxResult, fb, cols, seed: int) -> None:
+    """Over which (a, b) an exclusion holds (symbolic/search/generic_extension.py): a linear one
+    for generic (a, b) when its check passes; one decided by Jacobi at the stated (a, b) only."""
+    from chaplygin_nd.symbolic.search import generic_extension as ge
+
+    at = f"(a, b) = ({res.a}, {res.b})"
+    if res.outcome == "excluded (Jacobi)":
+        res.generic = (f"only at {at} (the Jacobi stage is a Groebner basis over Q there; over "
+                       f"Q(a, b) it is not computed)")
+        return
+    N = res.n * (res.n - 1) // 2 + res.n
+    pts = _points(res.n, 2 * (len(cols) // N) + 6, seed, "omega-linear")
+    ok, text = ge.linear_generic(res.n, res.a, res.b, res.e, fb, cols, pts,
+                                 key=(res.n, res.degree, tuple(cols), seed))
+    res.generic = text if ok else f"only at {at} ({text})"
 
 
 def _combine(fb, cols, coeffs, ctx) -> dict:

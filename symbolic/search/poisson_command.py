@@ -7,12 +7,20 @@ S7:poisson-controls, S7:poisson-n4, S7:poisson-n5; symbolic/search/poisson.py).
 Before each box: one line with its size and a time estimate (stderr). Then one line per box:
 the linear stage (inconsistent, or the dimension of the sampled affine space), the Gröbner basis
 of the Jacobi stage, the outcome (``excluded (linear)``, ``excluded (Jacobi)`` — both exact —
-or ``solutions``), seconds. Bad input: one line ``error: ...`` and exit status 2.
+or ``solutions``) and over which (a, b) an exclusion holds (``for generic (a, b)`` or ``at this
+(a, b) only``; the argument is in the JSON's ``generic``), seconds. Bad input: one line ``error: ...`` and exit status 2.
 """
 
 from __future__ import annotations
 
 __all__ = ["main"]
+
+
+def _over(generic: str) -> str:
+    """Over which (a, b) an exclusion holds, in a few words (the full argument is in --json)."""
+    if not generic:
+        return ""
+    return " for generic (a, b)" if generic.startswith("generic") else " at this (a, b) only"
 
 
 def main(argv: list[str]) -> int:
@@ -64,5 +72,5 @@ def main(argv: list[str]) -> int:
             rows.append(r.as_dict())
             gb = [str(g) for g in r.groebner][:6]
             print(f"n={args.n} d={d} e={e} a={a} b={b}: {r.independent} unknowns, linear "
-                  f"{r.linear}, Groebner {gb}, {r.outcome}, {r.seconds:.1f} s", flush=True)
+                  f"{r.linear}, Groebner {gb}, {r.outcome}{_over(r.generic)}, {r.seconds:.1f} s", flush=True)
     return write_json(args.json, rows)

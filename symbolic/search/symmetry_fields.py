@@ -127,6 +127,7 @@ class FieldBox:
     excess: int = 0
     orbit_proved: int = 0
     outcome: str = ""
+    generic: str = ""           # over which (a, b) the count holds (generic_extension.py)
     kernel: list | None = None
     columns: list | None = None
     seconds: float = 0.0
@@ -135,7 +136,7 @@ class FieldBox:
         return {"n": self.n, "degree": self.degree, "s": str(self.s), "tau": str(self.tau),
                 "independent": self.independent, "trivial": self.trivial,
                 "solutions": self.solutions, "orbit_proved": self.orbit_proved,
-                "excess": self.excess, "outcome": self.outcome,
+                "excess": self.excess, "outcome": self.outcome, "generic": self.generic,
                 "seconds": round(self.seconds, 2)}
 
 
@@ -234,7 +235,7 @@ def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
     m = N - n
     model = sampled_field.axisymmetric(n, a, b)
     # independent columns (syzygies proved exactly, trivial columns kept first as pivots)
-    keep = _independent(z, cols, seed, n)
+    keep, dx_syzygy = _independent(z, cols, seed, n, labels)
     cols = [cols[u] for u in keep]
     triv = [triv[u] for u in keep]
     res.independent = len(cols)
@@ -279,19 +280,27 @@ def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
         raise ArithmeticError("a trivial field fails a sampled condition: the conditions are wrong")
     exact_trivial = len(counted)
     others = [v for v in kernel if not _is_trivial_unit(v, triv)]
-    res.orbit_proved = len(_orbit_fields(n, z, cols, others, seed)) if others else 0
+    proved = _orbit_fields(n, z, cols, others, seed) if others else []
+    res.orbit_proved = len(proved)
     res.trivial = exact_trivial + res.orbit_proved
     res.excess = res.solutions - res.trivial
     res.outcome = ("no field beyond the trivial ones" if res.excess == 0
                    else f"{res.excess} candidate(s) beyond the trivial ones (upper bound)")
     if res.excess < 0:
         raise ArithmeticError("fewer sampled solutions than exact ones: a bug")
+    if res.excess == 0:
+        from chaplygin_nd.symbolic.search.generic_extension import fields_generic
+
+        res.generic = fields_generic(rows, res.solutions, res.trivial, f"(a, b) = ({a}, {b})", dx_syzygy,
+                                     [labels[keep[u]][0] == "D X" for u in range(len(cols))],
+                                     [coef for _, coef in proved])
     res.seconds = time.perf_counter() - t0
     return res
 
 
-def _independent(z, cols, seed, n) -> list[int]:
-    """Indices of columns independent as functions on P (syzygies proved modulo the sphere)."""
+def _independent(z, cols, seed, n, labels=None) -> tuple[list[int], bool]:
+    """Indices of columns independent as functions on P (syzygies proved modulo the sphere), and
+    whether a proved syzygy involves the column D X (which depends on a, b)."""
     N = len(z)
     pts = _points(n, 2 * (len(cols) // N) + 6, seed, "field-columns")
     rows = []
@@ -310,7 +319,8 @@ def _independent(z, cols, seed, n) -> list[int]:
             if e != 0 and _sphere_reduce(sp.expand(e), gam) != 0:
                 raise ArithmeticError("a sampled syzygy of the field box is not an identity")
         dropped.add(max(u for u, c in enumerate(v) if c != 0))
-    return [u for u in range(len(cols)) if u not in dropped]
+    dx = bool(labels) and any(c != 0 and labels[u][0] == "D X" for v in kernel for u, c in enumerate(v))
+    return [u for u in range(len(cols)) if u not in dropped], dx
 
 
 def _expr(poly, z):
@@ -346,7 +356,7 @@ def invariants(n: int, M, gamma) -> list:
 
 def _orbit_fields(n, z, cols, others, seed) -> list:
     """The combinations of ``others`` (kernel vectors) that are orbit-direction fields, each
-    proved exactly: Q(I) = 0 modulo the sphere for every invariant I of :func:`invariants`, whose
+    proved exactly (returned as (field, its coefficients on the columns)): Q(I) = 0 modulo the sphere for every invariant I of :func:`invariants`, whose
     differentials span the annihilator of the orbits at a seeded point (exact rank)."""
     M, gamma, _ = ba.coordinates(n)
     inv = invariants(n, M, gamma)
@@ -387,5 +397,6 @@ def _orbit_fields(n, z, cols, others, seed) -> list:
                 ok = False
                 break
         if ok:
-            proved.append(Q)
+            proved.append((Q, [sum((ci * v[u] for ci, v in zip(c, others, strict=True)), flint.fmpq(0))
+                               for u in range(len(cols))]))
     return proved
