@@ -60,10 +60,16 @@ ENV = project_cache.ENV
 _MEMORY: dict[tuple, object] = {}
 _WARNED: set[tuple[str, str]] = set()
 
-#: Modules whose source decides the expression graphs heyoka compiles (see :func:`code_version`).
+#: Modules whose source decides the expression graphs heyoka compiles (see :func:`code_version`):
+#: every module that builds a :class:`simulate.integrators.heyoka_systems.System` (a system keeps
+#: its name when its formula changes: the general-J control, the MEGNO tangent, GALI's deviation
+#: vectors, the study's pendula)
 CODE_MODULES = ("chaplygin_nd.generated.expression_builders", "chaplygin_nd.runtime.expressions",
                 "chaplygin_nd.simulate.integrators.heyoka_systems", "chaplygin_nd.runtime.compiled",
-                "chaplygin_nd.simulate.integrators.heyoka_taylor")
+                "chaplygin_nd.simulate.integrators.heyoka_taylor",
+                "chaplygin_nd.simulate.analysis.chaos", "chaplygin_nd.simulate.analysis.control",
+                "chaplygin_nd.simulate.analysis.gali", "chaplygin_nd.simulate.analysis.gali_study",
+                "chaplygin_nd.simulate.analysis.fma")
 
 
 class CacheWarning(project_cache.CacheWarning):

@@ -75,14 +75,16 @@ def test_megno_rule_classes():
     assert chaos.megno_class(float("nan")) == "undecided"
 
 
-def test_general_J_system_matches_the_linear_solve():
-    """control.general_system (LDL^T as heyoka expressions) against DOP853 on the NumPy solve."""
+@pytest.mark.parametrize("n", [4, 5])
+def test_general_J_system_matches_the_linear_solve(n):
+    """control.general_system (the n x n solve for v = Omega gamma, LDL^T as heyoka expressions)
+    against DOP853 on the NumPy solve of the whole matrix of L_gamma."""
     from chaplygin_nd.simulate.dynamics.field import FullField
     from chaplygin_nd.simulate.integrators import dop853, heyoka_taylor
 
-    J, a, b = CHAOTIC_J[4], -0.5, 2.0
-    ens = draws.draw("test-control", "generic", 4, 2, seed=5)
-    f = FullField(4, a, b, kernels=general_inertia_kernels(J, b))
+    J, a, b = CHAOTIC_J[n], -0.5, 2.0
+    ens = draws.draw("test-control", "generic", n, 2, seed=5)
+    f = FullField(n, a, b, kernels=general_inertia_kernels(J, b))
     y0 = f.pack(ens.M0, ens.gamma0)
     t = np.linspace(0.0, 5.0, 11)
     sol = heyoka_taylor.integrate(general_system(J), y0, t, tol=1e-13, pars=[a, b], compact=True,

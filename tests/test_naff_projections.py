@@ -126,3 +126,15 @@ def test_the_batch_schedule_and_width_change_no_orbit(tmp_path, monkeypatch):
     assert np.array_equal(Z, Z0) and np.array_equal(megno, megno0) and np.array_equal(lyap, lyap0)
     for key in ("ladder", "power", "drift"):          # the ladder and the integrals too
         assert np.array_equal(extra[key], extra0[key]), key
+
+
+@pytest.mark.parametrize("N", [8193, 4096, 2049])
+def test_scipy_fft_is_numpy_fft_bit_for_bit(N):
+    """NAFF's peak search takes scipy.fft (faster on a batch) for numpy.fft: the same pocketfft,
+    the same bits, at the sample counts of the evidence rows (T, its halves, the ladder's)."""
+    from scipy.fft import fft, next_fast_len
+
+    rng = np.random.default_rng(N)
+    X = rng.standard_normal((7, N)) + 1j * rng.standard_normal((7, N))
+    pad = next_fast_len(N)
+    assert np.array_equal(fft(X, n=pad, axis=1), np.fft.fft(X, n=pad, axis=1))

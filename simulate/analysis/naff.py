@@ -226,13 +226,15 @@ def _find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a) -> None:
     limits it): the products are small, and on a busy machine (``make verify`` runs a worker per
     core) OpenBLAS's waiting threads made them and everything after them up to 3x slower
     (measured on the evidence rows)."""
+    from scipy.fft import fft  # the same pocketfft as numpy.fft, bit for bit, 1.6x faster batched
+
     K, N = R.shape
     omega_grid = 2 * np.pi * np.fft.fftfreq(pad, d=dt)
     idx = np.arange(K)
     X = np.zeros((K, P * L), dtype=complex)      # the windowed residual, zero-padded to P * L
     for m in range(terms):
         np.multiply(R, w[None], out=X[:, :N])
-        spec = np.abs(np.fft.fft(X, n=pad, axis=1))  # pad >= N: the same zero-padded input
+        spec = np.abs(fft(X, n=pad, axis=1))  # pad >= N: the same zero-padded input
         i = np.argmax(spec, axis=1)
         y0, y1, y2 = (np.log(spec[idx, (i + s) % pad] + 1e-300) for s in (-1, 0, 1))
         den = y0 - 2 * y1 + y2
