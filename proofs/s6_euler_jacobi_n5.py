@@ -11,9 +11,11 @@ and, after a change of time, the motion on it is quasi-periodic (in suitable ang
 $a \ge -1$, $b > 0$): on the regular part of $Z = P/SO(4) \subset \mathbb{R}^{10}$ (dimension $m = 8$, cut out
 by $R_1 = R_2 = 0$, S6:reduced-n5) the reduced field has
 
-1. **an invariant measure**: the Leray residue $\Delta^{-3/2}\,dr/(dR_1\wedge dR_2)$ — in a chart
-   $r \setminus \{y, y'\}$ the density $\Delta^{-3/2}/\lvert\partial(R_1, R_2)/\partial(y, y')\rvert$; the exponent $-3/2$ is
-   derived from the ansatz $\Delta^\alpha$ and the invariance of the ideal $(R_1, R_2)$, not assumed;
+1. **an invariant measure**: in the chart $z = r \setminus \{S_{qq}, A_+\}$ of $Z$ the density $\Delta^{-3/2}/\lvert J\rvert$,
+   $J = \det\partial(R_1, R_2)/\partial(S_{qq}, A_+)$ — the push-forward of the measure $\Delta^{-3/2}dM\,d\gamma$ of $P$
+   (P:Measure) with its fibre-volume factor, and invariant by Liouville's criterion in the chart
+   (:mod:`symbolic.family.quotient_measure_n5`); the exponent $-3/2$ is also derived from the ansatz $\Delta^\alpha$
+   and the invariance of the ideal $(R_1, R_2)$, not assumed;
 2. **six first integrals** on $Z$ (the four non-constant coefficients of $p(\lambda, \sigma)$, $H$, and $F$ of
    S6:sixth-integral-n5), independent at a seeded point of $Z$ (so on an open dense set);
 3. **compact level sets**: $L_\gamma$ is positive definite for every $\gamma \in S^4$ exactly when $a > -2$, $b > -2$,
@@ -29,15 +31,20 @@ proviso "no equilibrium" automatic on regular level sets).
 
 **Computed here** (SymPy and FLINT, exact): $D\,X(R_1) = C_{11}R_1$, $D\,X(R_2) = C_{21}R_1 + C_{22}R_2$;
 $\alpha = -3/2$ from the ansatz and the identity $\operatorname{div}(\Delta^\alpha X) = \Delta^\alpha(C_{11}+C_{22})/D$ on $\mathbb{R}^{10}$
-(with the control that without the cofactor term no $\Delta^\alpha$ works); $Q\,X(P) - P\,X(Q) = 0$ for each
-integral $P/Q$ (on all of $\mathbb{R}^{10}$); the rank 8 of $(df_1..df_6, dR_1, dR_2)$ at the image of a seeded
-rational point; $\dim P/SO(4) = 8$ (orbit rank 6); $\det(\lambda - L_\gamma) = (\lambda-2)^3(\lambda-2-a-b)
-(\lambda^2 - (4+a+b)\lambda + \Delta)^3$ on $S^4$ (so the eigenvalues are $2$, $2+a+b$ and the roots of the
-quadratic, all positive iff $2 + a + b > 0$, $4 + a + b > 0$ and $\Delta(x) > 0$ on $[-1, 1]$, where $\Delta$
-is affine in $x^2$ with end values $(2+a)(2+b)$ and $2(2+a+b)$: iff $a, b > -2$, $a + b > -2$);
-the equilibrium identities. **Argued** (one part): the theorem, and the two textbook facts it is
-applied through (the Leray residue lemma of :mod:`symbolic.family.euler_jacobi_n5`; a quotient by
-the compact $SO(4)$ maps compact sets to compact sets, and $H \ge \lVert M\rVert^2/(2\lambda_{\max})$ on $P$).
+(with the control that without the cofactor term no $\Delta^\alpha$ works); Liouville in the chart: the
+divergence of $\Delta^{-3/2}X/J$ along $Z$, cleared of denominators, is $q_1R_1 + q_2R_2$ (symbolic $a, b$); the
+push-forward: $\det\operatorname{Gram}(\text{orbit})\,J^2/\det(dz\,\Pi\,dz^T)$ is one constant at seeded points of $P$ (control:
+without $J$ it varies); $Q\,X(P) - P\,X(Q) = 0$ for each integral $P/Q$ (on all of $\mathbb{R}^{10}$); the rank 8 of
+$(df_1..df_6, dR_1, dR_2)$ at the image of a seeded rational point; $\dim P/SO(4) = 8$ (orbit rank 6);
+$\det(\lambda - L_\gamma) = (\lambda-2)^3(\lambda-2-a-b)(\lambda^2 - (4+a+b)\lambda + \Delta)^3$ on $S^4$, and that "all eigenvalues
+positive for every $x \in [-1, 1]$" ($2+a+b$, $4+a+b$, $\Delta(0) = (2+a)(2+b)$, $\Delta(1) = 2(2+a+b)$ positive) is the
+range $a, b > -2$, $a + b > -2$ (exact on one sample of every cell of the arrangement of those linear forms,
+:func:`symbolic.family.euler_jacobi_n5.positivity_cells`); every eigenvalue is at most $4 + a + b$ (the
+quadratic is symmetric under $\lambda \mapsto 4 + a + b - \lambda$), so $H \ge \lVert M\rVert^2/(2(4+a+b))$ and $H$ is proper;
+the equilibrium identities. **Argued** (one part): the theorem, applied on the principal stratum, with two
+facts of measure theory and topology (:data:`ARGUED`): a push-forward of an invariant measure by an
+equivariant map is invariant, and a continuous image of a compact set is compact. **Not proved**: that
+every equilibrium lies in the critical set (only the $\Omega E_5 = 0$ family is shown to).
 
 **Uses** S6:reduced-n5, S6:sixth-integral-n5, S6:open-reduced-n5, eq:Delta, eq:action.
 """
@@ -124,9 +131,49 @@ def positivity_part() -> Part:
     a, b, x = ej.r5.a, ej.r5.b, ej.r5.x
     Dl = (2 + a) * (2 + b) - a * b * x**2
     ends = sp.expand(Dl.subs(x, 0) - (2 + a) * (2 + b)), sp.expand(Dl.subs(x, 1) - 2 * (2 + a + b))
-    return _part(f"L_gamma positive definite on S^4 iff {RANGE}", [
+    cells = {eng: ej.positivity_cells(eng) for eng in ("sympy", "flint")}
+    same = all(not c["differ"] for c in cells.values())
+    # control: the cell check tells ranges apart (the physical range a > -1, b > 0 is smaller)
+    control = any(not (av > -1 and bv > 0) and av > -2 and bv > -2 and av + bv > -2
+                  for av, bv in ej._cad_samples(ej.POSITIVITY_FORMS, sp.Rational))
+    return _part(f"L_gamma positive definite on S^4 iff {RANGE}; H proper", [
         ("char. polynomial of L_gamma", rational_identity(res, sphere=sph, label="EJ5 charpoly")),
-        ("Delta(0) = (2+a)(2+b), Delta(1) = 2(2+a+b)", rational_identity(list(ends), label="EJ5 ends"))])
+        ("Delta(0) = (2+a)(2+b), Delta(1) = 2(2+a+b)", rational_identity(list(ends), label="EJ5 ends")),
+        (f"all eigenvalues positive for every x iff {RANGE}", Check(
+            same and control, f"the two conditions agree on a sample of each of the "
+            f"{cells['sympy']['samples']} cells of the arrangement of 2+a, 2+b, 2+a+b, 4+a+b "
+            f"(SymPy QQ and FLINT fmpq); control: a sample cell lies in the range but not in a > -1, b > 0")),
+        ("eigenvalues <= 4 + a + b, so H >= |M|^2/(2(4+a+b))", rational_identity(
+            [ej.quadratic_reflection_residual()], label="EJ5 reflection"))])
+
+
+def measure_chart_part() -> Part:
+    r"""The density $\Delta^{-3/2}/J$ in the chart $r \setminus \{S_{qq}, A_+\}$ of $Z$: invariant (Liouville in the chart,
+    exact identity modulo $R_1, R_2$), and equal to the push-forward of $\Delta^{-3/2}dM\,d\gamma$ with its
+    fibre-volume factor (a constant ratio at seeded points of $P$, both engines)."""
+    from chaplygin_nd.symbolic.family import quotient_measure_n5 as qm
+
+    T, (q1, q2), rem = qm.chart_divergence()
+    R1, R2 = ej.relations()
+    liouville = rational_identity([T - q1 * R1 - q2 * R2], label="EJ5 chart divergence")
+    ratios, naive = {"sympy": [], "flint": []}, []
+    for t in range(3):
+        rng = points.generator(ledger_seed(), "S6:euler-jacobi-n5 push-forward", t)
+        M, g = points.skew_matrix(rng, 5), points.sphere_point(rng, 5)
+        for eng in ratios:
+            ratios[eng].append(qm.pushforward_ratio(M, g, eng))
+        J, _ = qm.chart_jacobian()
+        Jv = qm.ev_inv(J, ej.quotient_point(M, g), sp.Rational, sp.Integer(0), sp.Integer(1))
+        naive.append(ratios["sympy"][-1] / Jv**2)   # without the chart factor J: must vary
+    same = all(len({str(v) for v in vals}) == 1 for vals in ratios.values()) and \
+        str(ratios["sympy"][0]) == str(ratios["flint"][0])
+    varies = len(set(naive)) > 1
+    return _part("the chart density is invariant and is the push-forward of the measure of P", [
+        ("Liouville in the chart: T = q1 R1 + q2 R2, remainder 0", liouville),
+        ("remainder zero", Check(rem == 0, "multivariate division of T by (R1, R2) leaves 0")),
+        ("push-forward = Delta^(-3/2)/J up to a constant", Check(
+            same and varies, f"det Gram(orbit) J^2 / det(dz Pi dz^T) = {ratios['sympy'][0]} at 3 seeded points "
+            f"(SymPy QQ and FLINT fmpq); control: without J the ratio varies ({len(set(naive))} values)"))])
 
 
 def equilibria_part() -> Part:
@@ -176,10 +223,11 @@ def relative_equilibria_part(a, b) -> Part:
 
 
 ARGUED = ("the Euler-Jacobi theorem (as the paper cites it at line 884: Arnold-Kozlov-Neishtadt, "
-          "Mathematical Aspects of Classical and Celestial Mechanics; Borisov-Mamaev 2008), applied through two textbook facts: "
-          "the Leray residue rho dr/(dR_1 ^ dR_2) is invariant on {R = 0} iff div(rho X) = rho tr(C)/D there "
-          "(L_X dR_i = d(X R_i)); the image of a compact set under the quotient by the compact SO(4) is "
-          "compact, and H >= |M|^2/(2 lambda_max(L_gamma)) makes {H <= h} compact when L_gamma > 0")
+          "Mathematical Aspects of Classical and Celestial Mechanics; Borisov-Mamaev 2008), applied on the "
+          "principal stratum of P/SO(4) (charted by Z where J != 0), with two facts of measure theory and "
+          "topology that are not computed: the push-forward of the flow-invariant measure of P (P:Measure) "
+          "under the equivariant quotient map is invariant, and a continuous image of a compact set is compact "
+          "(so each pi({f = c}) is compact, {f = c} being closed in the compact {H <= h})")
 
 
 @claim("S6:euler-jacobi-n5", uses=("S6:reduced-n5", "S6:sixth-integral-n5", "S6:open-reduced-n5",
@@ -193,7 +241,8 @@ def s6_euler_jacobi_n5() -> Verdict:
     rng = points.generator(ledger_seed(), "S6:euler-jacobi-n5 parameters")
     a, b = points.rational(rng, -1, 1, nonzero=True), points.rational(rng, 1, 3)
     measure, alpha = measure_part()
-    parts = [quotient_part(), measure, integrals_part(a, b), positivity_part(), equilibria_part(),
+    parts = [quotient_part(), measure, measure_chart_part(), integrals_part(a, b), positivity_part(),
+             equilibria_part(),
              relative_equilibria_part(a, b),
              Verdict.by_argument(ARGUED).as_part("the theorem (cited) and how it applies")]
     notes = (f"invariant density on the quotient: Delta^({alpha}) / |d(R_1, R_2)/d(y, y')| in the chart "
