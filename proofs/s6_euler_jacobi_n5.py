@@ -24,10 +24,11 @@ by $R_1 = R_2 = 0$, S6:reduced-n5) the reduced field has
 hence, by the theorem, every compact connected regular level set of the six integrals that carries
 no equilibrium is a 2-torus with quasi-periodic motion after a change of time.
 **Equilibria**: at every equilibrium of the reduced field $G = S_{uq} = 0$ (for $b > -2$; exact, from
-$\dot x = G/(2+a+b)$ and the $\dot S_{qq}$, $\dot E_+$ components at $G = 0$); on the family of relative
-equilibria with $\Omega E_5 = 0$ (four parameters in the quotient) the six integrals are dependent (exact rank
-at seeded points). *Not proved*: that they are dependent at every equilibrium (which would make the
-proviso "no equilibrium" automatic on regular level sets).
+$\dot x = G/(2+a+b)$ and the $\dot S_{qq}$, $\dot E_+$ components at $G = 0$). On the principal stratum they are
+of two kinds (:mod:`symbolic.family.equilibria_n5`): $\Omega E_5 = 0$ (four parameters in the quotient), and
+points fixed by some $\eta \ne 0$ with $(\eta - \Omega)E_5 = 0$ (exact points of both are computed); at each the six
+integrals are dependent (an argued step, the slice theorem, with its finite facts computed), so the proviso
+"no equilibrium" is automatic on regular level sets.
 
 **Computed here** (SymPy and FLINT, exact): $D\,X(R_1) = C_{11}R_1$, $D\,X(R_2) = C_{21}R_1 + C_{22}R_2$;
 $\alpha = -3/2$ from the ansatz and the identity $\operatorname{div}(\Delta^\alpha X) = \Delta^\alpha(C_{11}+C_{22})/D$ on $\mathbb{R}^{10}$
@@ -41,10 +42,14 @@ positive for every $x \in [-1, 1]$" ($2+a+b$, $4+a+b$, $\Delta(0) = (2+a)(2+b)$,
 range $a, b > -2$, $a + b > -2$ (exact on one sample of every cell of the arrangement of those linear forms,
 :func:`symbolic.family.euler_jacobi_n5.positivity_cells`); every eigenvalue is at most $4 + a + b$ (the
 quadratic is symmetric under $\lambda \mapsto 4 + a + b - \lambda$), so $H \ge \lVert M\rVert^2/(2(4+a+b))$ and $H$ is proper;
-the equilibrium identities. **Argued** (one part): the theorem, applied on the principal stratum, with two
-facts of measure theory and topology (:data:`ARGUED`): a push-forward of an invariant measure by an
-equivariant map is invariant, and a continuous image of a compact set is compact. **Not proved**: that
-every equilibrium lies in the critical set (only the $\Omega E_5 = 0$ family is shown to).
+the equilibrium identities; exact points of both kinds of equilibria (:mod:`symbolic.family.equilibria_n5`:
+$\Omega E_5 = 0$, and $\eta \ne 0$ fixing $p$), each with the reduced field zero, on the principal stratum and of
+rank $< 8$. **Argued** (one part, :data:`ARGUED`): the theorem, applied on the principal stratum, with
+standard facts: a push-forward of an invariant measure by an equivariant map is invariant; a continuous
+image of a compact set is compact; equilibria on the principal stratum are the points fixed by some
+$\eta = \Omega + \xi$, $\xi \in \mathfrak{so}(4)$; and, by the slice theorem, $SO(5)$-invariant functions have dependent
+differentials at a point with positive-dimensional $SO(5)$-isotropy — which together with the collapse
+identity puts every equilibrium in the critical set.
 
 **Uses** S6:reduced-n5, S6:sixth-integral-n5, S6:open-reduced-n5, eq:Delta, eq:action.
 """
@@ -194,40 +199,70 @@ def equilibria_part() -> Part:
 
 
 def relative_equilibria_part(a, b) -> Part:
-    r"""At seeded points of the relative equilibria with $\Omega E_5 = 0$ ($\Omega \in \mathfrak{so}(4)$, any $\gamma$,
-    $M = L_\gamma\Omega$: then $\dot M = [M, \Omega]$ and $\dot\gamma = -\Omega\gamma$ are the velocity of the $SO(4)$ orbit,
-    a 4-parameter family of equilibria of the reduced field): the reduced field vanishes and the
-    six integrals have rank < 6 + 2 there, i.e. these equilibria lie in the critical set."""
+    r"""Both kinds of equilibria of :mod:`symbolic.family.equilibria_n5`, at seeded exact points: the reduced
+    field is zero there, the $SO(4)$-orbit has dimension 6 (principal stratum) and $(df_1..df_6, dR_1, dR_2)$ has rank
+    $< 8$ (both engines). First kind ($\Omega E_5 = 0$): the $SO(5)$-orbit has dimension 10 and $dc_i$, $dH$ vanish on
+    $Y_{e_m\wedge E_5}$. Second kind ($\eta \ne 0$ fixes $p$): $Y_\eta(p) = 0$ and the $SO(5)$-orbit has dimension $< 10$."""
     from chaplygin_nd.symbolic import algebra, model
     from chaplygin_nd.symbolic.exact import flint_engine
+    from chaplygin_nd.symbolic.family import equilibria_n5 as eqm
 
-    ranks, zero = [], True
     field = ej.r5.field()
-    for t in range(3):
+
+    def at_point(M, g):
+        pt = ej.quotient_point(M, g)
+        at = {ej.r5.SYMBOLS[n]: v for n, v in pt.items()} | {ej.r5.a: a, ej.r5.b: b}
+        zero = all(sp.cancel(field[n].xreplace(at)) == 0 for n in ej.r5.COORDS)
+        J = ej.jacobian_at(pt, a, b)
+        with flint_engine.use_engine("flint"):
+            ranks = (J.rank(), flint_engine.rank(J))
+        orb = {eng: eqm.orbit_checks(M, g, a, b, eng) for eng in ("sympy", "flint")}
+        return zero, ranks, orb
+
+    first, second = [], []
+    for t in range(2):
         rng = points.generator(ledger_seed(), "S6:euler-jacobi-n5 relative equilibria", t)
         g = points.sphere_point(rng, 5)
         Om = sp.zeros(5, 5)
         Om[:4, :4] = points.skew_matrix(rng, 4)
         L = model.L_matrix(g, sp.diag(1, 1, 1, 1, 1 + a), b)
         M = algebra.unvec(list(L * sp.Matrix(algebra.vec(Om))), 5)
-        pt = ej.quotient_point(M, g)
-        at = {ej.r5.SYMBOLS[n]: v for n, v in pt.items()} | {ej.r5.a: a, ej.r5.b: b}
-        zero = zero and all(sp.cancel(field[n].xreplace(at)) == 0 for n in ej.r5.COORDS)
-        J = ej.jacobian_at(pt, a, b)
-        with flint_engine.use_engine("flint"):
-            ranks.append((J.rank(), flint_engine.rank(J)))
-    return _part("the relative equilibria with Omega E = 0 lie in the critical set", [
-        ("reduced field zero, rank < 8", Check(zero and max(max(r) for r in ranks) < 8,
-                                             f"at 3 seeded points: reduced field zero {zero}, ranks (SymPy, FLINT) {ranks} "
-                                             f"of (df_1..df_6, dR_1, dR_2), a = {a}, b = {b}"))])
+        zero, ranks, orb = at_point(M, g)
+        first.append(zero and max(ranks) < 8 and all(o["orbit_rank"] == 10 and o["so4_rank"] == 6
+                                                     and not any(o["values"]) for o in orb.values()))
+    tries = 0
+    while len(second) < 2 and tries < 10:
+        rng = points.generator(ledger_seed(), "S6:euler-jacobi-n5 fixed equilibria", tries)
+        tries += 1
+        drawn = eqm.eta_point(rng, a, b)
+        if drawn is None:
+            continue
+        M, g, eta = drawn
+        zero, ranks, orb = at_point(M, g)
+        second.append(zero and max(ranks) < 8 and eqm.fixed_by(M, g, eta)
+                      and not (eta * sp.Matrix([0, 0, 0, 0, 1])).is_zero_matrix
+                      and all(o["orbit_rank"] < 10 and o["so4_rank"] == 6 for o in orb.values()))
+    return _part("equilibria of both kinds lie in the critical set", [
+        ("Omega E = 0", Check(len(first) == 2 and all(first),
+                              f"at 2 seeded points: reduced field zero, SO(4)-orbit 6, SO(5)-orbit 10, dc_i and dH "
+                              f"zero on Y_(e_m ^ E_5), rank < 8 (SymPy and FLINT), a = {a}, b = {b}: {first}")),
+        ("eta != 0 fixes p", Check(len(second) == 2 and all(second),
+                                   f"at 2 seeded points (eta of rank 2): Y_eta(p) = 0, eta E_5 != 0, reduced field "
+                                   f"zero, SO(4)-orbit 6, SO(5)-orbit < 10, rank < 8 (SymPy and FLINT): {second}"))])
 
 
 ARGUED = ("the Euler-Jacobi theorem (as the paper cites it at line 884: Arnold-Kozlov-Neishtadt, "
           "Mathematical Aspects of Classical and Celestial Mechanics; Borisov-Mamaev 2008), applied on the "
-          "principal stratum of P/SO(4) (charted by Z where J != 0), with two facts of measure theory and "
-          "topology that are not computed: the push-forward of the flow-invariant measure of P (P:Measure) "
-          "under the equivariant quotient map is invariant, and a continuous image of a compact set is compact "
-          "(so each pi({f = c}) is compact, {f = c} being closed in the compact {H <= h})")
+          "principal stratum of P/SO(4) (charted by Z where J != 0), with standard facts that are not computed: "
+          "the push-forward of the flow-invariant measure of P (P:Measure) under the equivariant quotient map is "
+          "invariant; a continuous image of a compact set is compact (so each pi({f = c}) is compact, {f = c} "
+          "being closed in the compact {H <= h}); on the principal stratum pi(p) is an equilibrium iff X(p) is "
+          "tangent to the SO(4)-orbit, i.e. eta = Omega + xi fixes p for some xi in so(4); and (slice theorem) at a "
+          "point with a positive-dimensional isotropy in SO(5) the differentials of SO(5)-invariant functions have "
+          "rank <= dim P/SO(5) - 1 = 3, the principal SO(5)-isotropy being finite (orbit dimension 10, computed) - "
+          "so at an equilibrium with eta != 0 the six integrals have rank <= 3 + 2 < 6, and with eta = 0 "
+          "(Omega E = 0) the collapse identity (S6:wedge-integrals, k = 1) makes dH and the dc_i vanish on the "
+          "4-dimensional span of the Y_(w ^ E), so rank <= 4 + 1 < 6")
 
 
 @claim("S6:euler-jacobi-n5", uses=("S6:reduced-n5", "S6:sixth-integral-n5", "S6:open-reduced-n5",
@@ -247,8 +282,8 @@ def s6_euler_jacobi_n5() -> Verdict:
              Verdict.by_argument(ARGUED).as_part("the theorem (cited) and how it applies")]
     notes = (f"invariant density on the quotient: Delta^({alpha}) / |d(R_1, R_2)/d(y, y')| in the chart "
              "r minus {y, y'}; L_gamma > 0 on S^4 iff " + RANGE + "; at every equilibrium G = S_uq = 0; "
-             "the relative equilibria with Omega E = 0 (a 4-parameter family) lie in the critical set; "
-             "open: that every equilibrium does (so that regular level sets carry none)")
+             "every equilibrium lies in the critical set (Omega E = 0, or fixed by some eta != 0: exact points of "
+             "both kinds computed; the general step argued by the slice theorem), so regular level sets carry none")
     return Verdict.of_parts(parts, n_values=(5,), notes=notes, method=(
         "exact identities on the quotient R^10 (SymPy and FLINT): invariant ideal of the relations, the "
         "measure exponent derived from an ansatz, the integrals, the characteristic polynomial of L_gamma; "
