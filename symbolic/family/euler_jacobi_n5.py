@@ -200,14 +200,15 @@ def _cad_samples(forms, num):
     return pts
 
 
-def positivity_cells(engine: str = "sympy") -> dict:
+def positivity_cells(engine: str = "sympy", stated=None) -> dict:
     r"""Exact certificate that, with the eigenvalues of $L_\gamma$ on $S^4$ read off :func:`charpoly_residual`
     (2, $2+a+b$, the roots of $\lambda^2 - (4+a+b)\lambda + \Delta(x)$, real as $L_\gamma$ is symmetric), the set where
     all are positive for every $x \in [-1, 1]$, $\Phi = \{2+a+b > 0,\ 4+a+b > 0,\ \Delta(0) = (2+a)(2+b) > 0,\
     \Delta(1) = 2(2+a+b) > 0\}$ ($\Delta$ is affine in $x^2$; two real roots are positive iff their sum and product
     are), equals $\Psi = \{a > -2,\ b > -2,\ a + b > -2\}$: both are decided by the signs of
     :data:`POSITIVITY_FORMS`, and they agree on a sample point of every cell of their arrangement
-    (:func:`_cad_samples`). Returns the number of samples and those where they differ."""
+    (:func:`_cad_samples`). Returns the number of samples and those where they differ. ``stated``: another
+    condition on $(2+a, 2+b, 2+a+b)$ to compare instead of $\Psi$ (the tests' controls)."""
     if engine == "flint":
         import flint
         num = flint.fmpq
@@ -217,7 +218,7 @@ def positivity_cells(engine: str = "sympy") -> dict:
     for av, bv in pts:
         l1, l2, l3, l4 = (al * av + be * bv + c for al, be, c in POSITIVITY_FORMS)
         phi = l3 > 0 and l4 > 0 and l1 * l2 > 0 and 2 * l3 > 0
-        psi = l1 > 0 and l2 > 0 and l3 > 0
+        psi = (l1 > 0 and l2 > 0 and l3 > 0) if stated is None else stated(l1, l2, l3)
         if phi != psi:
             bad.append((str(av), str(bv)))
     return {"samples": len(pts), "differ": bad}
