@@ -206,6 +206,7 @@ def relative_equilibria_part(a, b) -> Part:
     from chaplygin_nd.symbolic import algebra, model
     from chaplygin_nd.symbolic.exact import flint_engine
     from chaplygin_nd.symbolic.family import equilibria_n5 as eqm
+    from chaplygin_nd.symbolic.family import independence_all_n as ia
 
     field = ej.r5.field()
 
@@ -239,8 +240,10 @@ def relative_equilibria_part(a, b) -> Part:
             continue
         M, g, eta = drawn
         zero, ranks, orb = at_point(M, g)
+        crank = {eng: ia.c_rank(M, g, eng) for eng in ("sympy", "flint")}
         second.append(zero and max(ranks) < 8 and eqm.fixed_by(M, g, eta)
                       and not (eta * sp.Matrix([0, 0, 0, 0, 1])).is_zero_matrix
+                      and max(crank.values()) <= 3
                       and all(o["orbit_rank"] < 10 and o["so4_rank"] == 6 for o in orb.values()))
     return _part("equilibria of both kinds lie in the critical set", [
         ("Omega E = 0", Check(len(first) == 2 and all(first),
@@ -248,7 +251,8 @@ def relative_equilibria_part(a, b) -> Part:
                               f"zero on Y_(e_m ^ E_5), rank < 8 (SymPy and FLINT), a = {a}, b = {b}: {first}")),
         ("eta != 0 fixes p", Check(len(second) == 2 and all(second),
                                    f"at 2 seeded points (eta of rank 2): Y_eta(p) = 0, eta E_5 != 0, reduced field "
-                                   f"zero, SO(4)-orbit 6, SO(5)-orbit < 10, rank < 8 (SymPy and FLINT): {second}"))])
+                                   f"zero, SO(4)-orbit 6, SO(5)-orbit < 10, the SO(5)-invariant coefficients of p of rank <= 3 "
+                                   f"(the slice theorem's conclusion), rank < 8 (SymPy and FLINT): {second}"))])
 
 
 ARGUED = ("the Euler-Jacobi theorem (as the paper cites it at line 884: Arnold-Kozlov-Neishtadt, "
