@@ -22,7 +22,8 @@ are 2-tori where the flow is quasi-periodic after a time reparametrisation."
   equilibrium on the principal stratum is a point fixed by some $\eta = \Omega + \xi'$, $\xi' \in \mathfrak{so}(3)$: $\eta = 0$ is
   that family (the collapse identity makes $dH$ vanish on the $SO(4)$ directions $Y_{w\wedge E_4}$, as do the
   $SO(4)$-invariant $F_1, F_2, F_3$), and $\eta \ne 0$ gives a positive-dimensional $SO(4)$-isotropy, where
-  $SO(4)$-invariant functions have rank $\le \dim P/SO(4) - 1 = 2$ (slice theorem).
+  $SO(4)$-invariant functions have rank $\le \dim P/SO(4) - 1 = 2$ (slice theorem; for $n = 5$ the analogue is
+  computed on a normal-form family, :func:`symbolic.family.equilibria_n5.isotropy_family_matrix`).
 
 **Verdict.** Every hypothesis holds on the range $a, b > -2$, $a + b > -2$ (the physical range inside it); the
 one that fails as printed (the measure's restriction) is already the reading remark of S5:red-measure, so no

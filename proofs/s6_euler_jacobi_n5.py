@@ -27,7 +27,8 @@ no equilibrium is a 2-torus with quasi-periodic motion after a change of time.
 $\dot x = G/(2+a+b)$ and the $\dot S_{qq}$, $\dot E_+$ components at $G = 0$). On the principal stratum they are
 of two kinds (:mod:`symbolic.family.equilibria_n5`): $\Omega E_5 = 0$ (four parameters in the quotient), and
 points fixed by some $\eta \ne 0$ with $(\eta - \Omega)E_5 = 0$ (exact points of both are computed); at each the six
-integrals are dependent (an argued step, the slice theorem, with its finite facts computed), so the proviso
+integrals are dependent (computed on the family every point fixed by $\eta \ne 0$ is conjugate to; the
+reduction to that family by normal forms is argued), so the proviso
 "no equilibrium" is automatic on regular level sets.
 
 **Computed here** (SymPy and FLINT, exact): $D\,X(R_1) = C_{11}R_1$, $D\,X(R_2) = C_{21}R_1 + C_{22}R_2$;
@@ -47,9 +48,9 @@ $\Omega E_5 = 0$, and $\eta \ne 0$ fixing $p$), each with the reduced field zero
 rank $< 8$. **Argued** (one part, :data:`ARGUED`): the theorem, applied on the principal stratum, with
 standard facts: a push-forward of an invariant measure by an equivariant map is invariant; a continuous
 image of a compact set is compact; equilibria on the principal stratum are the points fixed by some
-$\eta = \Omega + \xi$, $\xi \in \mathfrak{so}(4)$; and, by the slice theorem, $SO(5)$-invariant functions have dependent
-differentials at a point with positive-dimensional $SO(5)$-isotropy — which together with the collapse
-identity puts every equilibrium in the critical set.
+$\eta = \Omega + \xi$, $\xi \in \mathfrak{so}(4)$; and a point fixed by $\eta \ne 0$ is conjugate to $(\mu e_{12} + M', e_5)$ (normal
+forms), on which family $\operatorname{rank} dc \le 3$ is computed exactly — which with the collapse identity puts
+every equilibrium in the critical set.
 
 **Uses** S6:reduced-n5, S6:sixth-integral-n5, S6:open-reduced-n5, eq:Delta, eq:action.
 """
@@ -245,14 +246,32 @@ def relative_equilibria_part(a, b) -> Part:
                       and not (eta * sp.Matrix([0, 0, 0, 0, 1])).is_zero_matrix
                       and max(crank.values()) <= 3
                       and all(o["orbit_rank"] < 10 and o["so4_rank"] == 6 for o in orb.values()))
+    # every point fixed by some eta != 0: the SO(5)-invariant c have rank <= 3 (symbolic, and FLINT at points)
+    import flint
+    from sympy.polys.matrices import DomainMatrix
+
+    G, syms = eqm.isotropy_family_matrix()
+    r_sym = DomainMatrix.from_Matrix(G).convert_to(sp.QQ.frac_field(*syms)).rank()
+    r_pts = []
+    for t in range(3):
+        vals = points.rationals(points.generator(ledger_seed(), "S6:euler-jacobi-n5 isotropy", t), 4)
+        Gv = G.xreplace(dict(zip(syms, vals, strict=True)))
+        r_pts.append(flint.fmpq_mat(4, 14, [flint.fmpq(int(v.p), int(v.q)) for v in Gv]).rank())
+    rng = points.generator(ledger_seed(), "S6:euler-jacobi-n5 isotropy control")
+    ctrl = ia.c_rank(points.skew_matrix(rng, 5), points.sphere_point(rng, 5), "flint")   # generic: 4
     return _part("equilibria of both kinds lie in the critical set", [
+        ("fixed by eta != 0: rank dc <= 3", Check(
+            r_sym <= 3 and max(r_pts) <= 3 and r_sym == max(r_pts) and ctrl == 4,
+            f"rank of dc on the family (mu e_12 + M', e_5) that every point with a fixed eta != 0 is conjugate to: "
+            f"{r_sym} over QQ(mu, m1, m2, m3) (SymPy), {r_pts} at 3 seeded points (FLINT); control: {ctrl} at a "
+            f"generic point")),
         ("Omega E = 0", Check(len(first) == 2 and all(first),
                               f"at 2 seeded points: reduced field zero, SO(4)-orbit 6, SO(5)-orbit 10, dc_i and dH "
                               f"zero on Y_(e_m ^ E_5), rank < 8 (SymPy and FLINT), a = {a}, b = {b}: {first}")),
         ("eta != 0 fixes p", Check(len(second) == 2 and all(second),
                                    f"at 2 seeded points (eta of rank 2): Y_eta(p) = 0, eta E_5 != 0, reduced field "
                                    f"zero, SO(4)-orbit 6, SO(5)-orbit < 10, the SO(5)-invariant coefficients of p of rank <= 3 "
-                                   f"(the slice theorem's conclusion), rank < 8 (SymPy and FLINT): {second}"))])
+                                   f"(as on the family), rank < 8 (SymPy and FLINT): {second}"))])
 
 
 ARGUED = ("the Euler-Jacobi theorem (as the paper cites it at line 884: Arnold-Kozlov-Neishtadt, "
@@ -261,12 +280,11 @@ ARGUED = ("the Euler-Jacobi theorem (as the paper cites it at line 884: Arnold-K
           "the push-forward of the flow-invariant measure of P (P:Measure) under the equivariant quotient map is "
           "invariant; a continuous image of a compact set is compact (so each pi({f = c}) is compact, {f = c} "
           "being closed in the compact {H <= h}); on the principal stratum pi(p) is an equilibrium iff X(p) is "
-          "tangent to the SO(4)-orbit, i.e. eta = Omega + xi fixes p for some xi in so(4); and (slice theorem) at a "
-          "point with a positive-dimensional isotropy in SO(5) the differentials of SO(5)-invariant functions have "
-          "rank <= dim P/SO(5) - 1 = 3, the principal SO(5)-isotropy being finite (orbit dimension 10, computed) - "
-          "so at an equilibrium with eta != 0 the six integrals have rank <= 3 + 2 < 6, and with eta = 0 "
+          "tangent to the SO(4)-orbit, i.e. eta = Omega + xi fixes p for some xi in so(4); with eta = 0 "
           "(Omega E = 0) the collapse identity (S6:wedge-integrals, k = 1) makes dH and the dc_i vanish on the "
-          "4-dimensional span of the Y_(w ^ E), so rank <= 4 + 1 < 6")
+          "4-dimensional span of the Y_(w ^ E) (SO(5)-orbit of dimension 10), so rank <= 4 + 1 < 6; a point "
+          "fixed by eta != 0 is conjugate under SO(5) to (mu e_12 + M', e_5) (normal forms of eta and of M), "
+          "where rank dc <= 3 is computed, so rank <= 3 + 2 < 6")
 
 
 @claim("S6:euler-jacobi-n5", uses=("S6:reduced-n5", "S6:sixth-integral-n5", "S6:open-reduced-n5",
@@ -287,7 +305,8 @@ def s6_euler_jacobi_n5() -> Verdict:
     notes = (f"invariant density on the quotient: Delta^({alpha}) / |d(R_1, R_2)/d(y, y')| in the chart "
              "r minus {y, y'}; L_gamma > 0 on S^4 iff " + RANGE + "; at every equilibrium G = S_uq = 0; "
              "every equilibrium lies in the critical set (Omega E = 0, or fixed by some eta != 0: exact points of "
-             "both kinds computed; the general step argued by the slice theorem), so regular level sets carry none")
+             "both kinds computed; rank dc <= 3 computed on the family every point fixed by eta != 0 is conjugate to), "
+             "so regular level sets carry none")
     return Verdict.of_parts(parts, n_values=(5,), notes=notes, method=(
         "exact identities on the quotient R^10 (SymPy and FLINT): invariant ideal of the relations, the "
         "measure exponent derived from an ansatz, the integrals, the characteristic polynomial of L_gamma; "

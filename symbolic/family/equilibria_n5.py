@@ -11,8 +11,10 @@ $(\eta - \Omega)E_5 = 0$. Two kinds:
   coefficients $c_i$ of $p(\lambda, \sigma)$ are $SO(5)$-invariant, so $dc_i(Y_\zeta) = 0$: five of the six integrals vanish
   on the images of $Y_{w\wedge E_5}$, $w \perp E_5$, a 4-dimensional subspace of $T Z$ when the $SO(5)$-orbit of $p$ has
   dimension 10. Hence their rank on $TZ$ is at most $8 - 4 = 4$, and the six have rank $\le 5 < 6$.
-* $\eta \ne 0$: $p$ has a positive-dimensional isotropy in $SO(5)$ (the same holds in the first kind when the
-  orbit has dimension $< 10$).
+* $\eta \ne 0$: $p$ is fixed by $\eta$, so (up to $SO(5)$) it lies in the family of :func:`isotropy_family_matrix`,
+  where the four $SO(5)$-invariant coefficients $c$ of $p(\lambda, \sigma)$ have rank $\le 3$ (exact, over
+  $\mathbb{Q}(\mu, m_1, m_2, m_3)$); with $H$ and $F$ the six have rank $\le 5 < 6$. (The same holds in the first kind
+  when the $SO(5)$-orbit has dimension $< 10$: then some $\eta \ne 0$ fixes $p$.)
 
 :func:`eta_point` builds exact rational points of the second kind ($\eta$ of rank 2: $\gamma \perp$ its plane, $M$ in
 its centraliser, the linear equations $(L_\gamma^{-1}M - \eta)E_5 = 0$ solved exactly, free unknowns drawn), and
@@ -27,7 +29,7 @@ from chaplygin_nd.symbolic.exact import points
 from chaplygin_nd.symbolic.family import independence as ind
 from chaplygin_nd.symbolic.family import wedge_integrals as wi
 
-__all__ = ["eta_point", "orbit_checks", "fixed_by"]
+__all__ = ["eta_point", "orbit_checks", "fixed_by", "isotropy_family_matrix"]
 
 
 def _wedge(u, v):
@@ -91,3 +93,30 @@ def orbit_checks(M, gamma, a, b, engine: str = "sympy") -> dict:
             for grad in [*cgrads, hgrad] for m in range(4)]
     so4 = [Y(i, j) for i, j in pairs if j < 4]
     return {"orbit_rank": ind._rank(gens, engine), "so4_rank": ind._rank(so4, engine), "values": vals}
+
+
+def isotropy_family_matrix():
+    r"""The differentials on $TP$ of the four non-constant coefficients $c$ of $p(\lambda, \sigma) = \det(M + \sigma\gamma\gamma^T - \lambda)$
+    (:math:`\lambda^3, \lambda, \sigma\lambda^2, \sigma`) along the family $M = \mu\,e_1\wedge e_2 + M'$, $M' \in \mathfrak{so}(\operatorname{span}\{e_3, e_4, e_5\})$
+    ($M'_{34} = m_1$, $M'_{35} = m_2$, $M'_{45} = m_3$), $\gamma = e_5$: a $4\times14$ matrix over $\mathbb{Q}[\mu, m_1, m_2, m_3]$ (the
+    column of $\gamma_5$, normal to the sphere, dropped). Every point of $P$ fixed by some $\eta \ne 0$ is, up to
+    $SO(5)$ (which keeps the rank of $dc$), in this family: if $\eta$ has rank 2, $\eta = \theta\,v_1\wedge v_2$ fixes $(M, \gamma)$ iff
+    $\gamma \perp v_1, v_2$ and $M \in \mathfrak{so}(\Pi)\oplus\mathfrak{so}(\Pi^\perp)$; if it has rank 4, $\gamma$ spans $\ker\eta$ and $M \in \mathfrak{so}(\gamma^\perp)$,
+    which a plane of $M$'s normal form fixes with rank 2. Returns (matrix, symbols)."""
+    n = 5
+    pairs = [(i, j) for i in range(n) for j in range(i + 1, n)]
+    Ms = sp.symbols("M12 M13 M14 M15 M23 M24 M25 M34 M35 M45")
+    g = sp.symbols("g1:6")
+    lam, sig = sp.symbols("lambda sigma")
+    M = sp.zeros(n, n)
+    for (i, j), s in zip(pairs, Ms, strict=True):
+        M[i, j], M[j, i] = s, -s
+    from sympy.polys.matrices import DomainMatrix
+
+    dm = DomainMatrix.from_Matrix(M + sig * sp.Matrix(g) * sp.Matrix(g).T - lam * sp.eye(n))
+    P = sp.Poly(dm.domain.to_sympy(dm.det()), lam, sig)
+    coeffs = [P.coeff_monomial(lam**i * sig**j) for i, j in ((3, 0), (1, 0), (2, 1), (0, 1))]
+    mu, m1, m2, m3 = sp.symbols("mu m1 m2 m3")
+    family = dict(zip(Ms, (mu, 0, 0, 0, 0, 0, 0, m1, m2, m3), strict=True)) | dict(zip(g, (0, 0, 0, 0, 1), strict=True))
+    rows = [[sp.expand(sp.diff(c, v).xreplace(family)) for v in (*Ms, *g[:4])] for c in coeffs]
+    return sp.Matrix(rows), (mu, m1, m2, m3)
