@@ -100,3 +100,14 @@ def test_equilibria_fixed_by_eta_are_equilibria_and_critical():
     at = {ej.r5.SYMBOLS[n]: v for n, v in pt.items()} | {ej.r5.a: a, ej.r5.b: b}
     assert any(sp.cancel(field[n].xreplace(at)) != 0 for n in ej.r5.COORDS)
     assert ej.jacobian_at(pt, a, b).rank() == 8
+
+
+def test_points_fixed_by_eta_have_dependent_invariants_but_generic_points_do_not():
+    from chaplygin_nd.symbolic.family import equilibria_n5 as eqm
+    from chaplygin_nd.symbolic.family import independence_all_n as ia
+    from sympy.polys.matrices import DomainMatrix
+
+    G, syms = eqm.isotropy_family_matrix()
+    assert DomainMatrix.from_Matrix(G).convert_to(sp.QQ.frac_field(*syms)).rank() == 3
+    rng = points.generator(4, "generic c rank")
+    assert ia.c_rank(points.skew_matrix(rng, 5), points.sphere_point(rng, 5), "sympy") == 4
