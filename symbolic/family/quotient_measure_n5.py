@@ -51,7 +51,7 @@ def chart_jacobian():
 
 @cache
 def chart_divergence():
-    r"""$T = J^3 D^2\Delta\cdot\Delta^{3/2}\sum_{i\in z}\frac{d}{dz_i}(\Delta^{-3/2}X_i/J)$ as a polynomial of
+    r"""$T = 2J^3D^2\Delta^{5/2}\sum_{i\in z}\frac{d}{dz_i}(\Delta^{-3/2}X_i/J)$ as a polynomial of
     :data:`symbolic.reduction.invariants_n5.INV_RING` (module docstring): zero on $Z$ iff the chart
     density $\Delta^{-3/2}/J$ is invariant. Returns ``(T, (q1, q2), remainder)`` with $T = q_1R_1 + q_2R_2 +$
     remainder (multivariate division)."""
