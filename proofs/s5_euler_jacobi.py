@@ -22,13 +22,14 @@ are 2-tori where the flow is quasi-periodic after a time reparametrisation."
   equilibrium on the principal stratum is a point fixed by some $\eta = \Omega + \xi'$, $\xi' \in \mathfrak{so}(3)$: $\eta = 0$ is
   that family (the collapse identity makes $dH$ vanish on the $SO(4)$ directions $Y_{w\wedge E_4}$, as do the
   $SO(4)$-invariant $F_1, F_2, F_3$), and $\eta \ne 0$ gives a positive-dimensional $SO(4)$-isotropy, where
-  $SO(4)$-invariant functions have rank $\le \dim P/SO(4) - 1 = 2$ (slice theorem; for $n = 5$ the analogue is
-  computed on a normal-form family, :func:`symbolic.family.equilibria_n5.isotropy_family_matrix`).
+  the point is conjugate to $(\mu e_1\wedge e_2 + m\,e_3\wedge e_4, E_4)$ (a rank-2 $\eta = \theta v_1\wedge v_2$ fixes $(M, \gamma)$ iff
+  $\gamma \perp v_1, v_2$ and $M \in \mathfrak{so}(\Pi)\oplus\mathfrak{so}(\Pi^\perp)$; a rank-4 $\eta$ fixes no $\gamma \ne 0$), where the three
+  $SO(4)$-invariant coefficients of $p(\lambda, \sigma)$ have rank $\le 2$ (computed: :func:`isotropy_family_rank`).
 
 **Verdict.** Every hypothesis holds on the range $a, b > -2$, $a + b > -2$ (the physical range inside it); the
 one that fails as printed (the measure's restriction) is already the reading remark of S5:red-measure, so no
 new correction. **Argued** (one part): the theorem (cited as the paper cites it) and the same standard facts as
-for $n = 5$ (push-forward and compact images, equilibria as fixed points, the slice theorem).
+for $n = 5$ (compact images, equilibria as fixed points, normal forms).
 
 **Uses** S5:red-integrals, S5:red-measure, eq:red-system, S6:wedge-integrals. $n = 4$.
 """
@@ -105,12 +106,53 @@ def equilibria_part() -> Part:
             ranks = (J.rank(), flint_engine.rank(J))
         results.append((zero, ranks))
     ok = all(z and max(r) < 5 for z, r in results)
+    vanish, iso_ranks = isotropy_family_rank()
+    from chaplygin_nd.symbolic.family import independence_all_n as ia
+    crng = points.generator(ledger_seed(), "S5:euler-jacobi isotropy control")
+    ctrl = ia.c_rank(points.skew_matrix(crng, 4), points.sphere_point(crng, 4), "flint")   # generic: 3
     return Verdict.all_of([
         ("D x' = 2 Delta G: G = 0 at every equilibrium", xdot),
         ("Omega E_4 = 0: equilibria in the critical set", Check(
             ok, f"at 3 seeded points (xi = 0, eta and gamma drawn): reduced field zero and rank of "
                 f"(dF1, dF2, dF3, dH, dPhi) (SymPy, FLINT) {[r for _, r in results]} < 5")),
+        ("fixed by eta != 0: rank dc <= 2", Check(
+            vanish and max(iso_ranks) <= 2 and ctrl == 3,
+            f"on (mu e_12 + m e_34, E_4), which every point fixed by eta != 0 is conjugate to: every 3x3 minor of dc "
+            f"expands to 0 (SymPy): {vanish}; ranks {iso_ranks} at 3 seeded points (FLINT); control: {ctrl} at a "
+            f"generic point")),
     ], n_values=(4,)).as_part("equilibria lie in the critical set")
+
+
+def isotropy_family_rank() -> tuple[bool, list]:
+    r"""The three non-constant coefficients $c$ of $p(\lambda, \sigma) = \det(M + \sigma\gamma\gamma^T - \lambda)$ ($\lambda^2$, $1$, $\sigma\lambda$)
+    differentiated on $TP$ along $M = \mu\,e_1\wedge e_2 + m\,e_3\wedge e_4$, $\gamma = E_4$: whether every $3\times3$ minor
+    expands to zero (SymPy), and the ranks at three seeded points (FLINT)."""
+    import itertools
+
+    import flint
+    from sympy.polys.matrices import DomainMatrix
+
+    n = 4
+    pairs = [(i, j) for i in range(n) for j in range(i + 1, n)]
+    Ms = sp.symbols("M12 M13 M14 M23 M24 M34")
+    g = sp.symbols("g1:5")
+    lam, sig, mu, m = sp.symbols("lambda sigma mu m")
+    M = sp.zeros(n, n)
+    for (i, j), s_ in zip(pairs, Ms, strict=True):
+        M[i, j], M[j, i] = s_, -s_
+    dm = DomainMatrix.from_Matrix(M + sig * sp.Matrix(g) * sp.Matrix(g).T - lam * sp.eye(n))
+    P = sp.Poly(dm.domain.to_sympy(dm.det()), lam, sig)
+    coeffs = [P.coeff_monomial(lam**i * sig**j) for i, j in ((2, 0), (0, 0), (1, 1))]
+    family = dict(zip(Ms, (mu, 0, 0, 0, 0, m), strict=True)) | dict(zip(g, (0, 0, 0, 1), strict=True))
+    G = sp.Matrix([[sp.expand(sp.diff(c, v).xreplace(family)) for v in (*Ms, *g[:3])] for c in coeffs])
+    vanish = all(sp.expand(G.extract([0, 1, 2], list(c)).det(method="berkowitz")) == 0
+                 for c in itertools.combinations(range(G.cols), 3))
+    ranks = []
+    for t in range(3):
+        vals = points.rationals(points.generator(ledger_seed(), "S5:euler-jacobi isotropy", t), 2)
+        Gv = G.xreplace({mu: vals[0], m: vals[1]})
+        ranks.append(flint.fmpq_mat(3, G.cols, [flint.fmpq(int(v.p), int(v.q)) for v in Gv]).rank())
+    return vanish, ranks
 
 
 ARGUED = ("the Euler-Jacobi theorem (as the paper cites it at line 884: Arnold-Kozlov-Neishtadt; "
@@ -118,8 +160,9 @@ ARGUED = ("the Euler-Jacobi theorem (as the paper cites it at line 884: Arnold-K
           "(corrected) and the integrals of S5:red-integrals, through the standard facts used for n = 5: a "
           "continuous image of a compact set is compact; equilibria on the principal stratum are the points fixed "
           "by some eta = Omega + xi', xi' in so(3); at eta = 0 the collapse identity (S6:wedge-integrals, k = 1) "
-          "makes dH vanish with dF_1, dF_2, dF_3 on the SO(4) directions; at eta != 0 (slice theorem) the "
-          "SO(4)-invariant F_1, F_2, F_3 have rank <= 2")
+          "makes dH vanish with dF_1, dF_2, dF_3 on the SO(4) directions; a point fixed by eta != 0 is conjugate "
+          "(normal forms) to (mu e_12 + m e_34, E_4), where rank <= 2 of the SO(4)-invariant coefficients of p is "
+          "computed")
 
 
 @claim("S5:euler-jacobi", uses=("S5:red-integrals", "S5:red-measure", "eq:red-system", "S6:wedge-integrals"),
