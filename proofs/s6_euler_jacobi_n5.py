@@ -11,9 +11,11 @@ and, after a change of time, the motion on it is quasi-periodic (in suitable ang
 $a \ge -1$, $b > 0$): on the regular part of $Z = P/SO(4) \subset \mathbb{R}^{10}$ (dimension $m = 8$, cut out
 by $R_1 = R_2 = 0$, S6:reduced-n5) the reduced field has
 
-1. **an invariant measure**: the Leray residue $\Delta^{-3/2}\,dr/(dR_1\wedge dR_2)$ — in a chart
-   $r \setminus \{y, y'\}$ the density $\Delta^{-3/2}/\lvert\partial(R_1, R_2)/\partial(y, y')\rvert$; the exponent $-3/2$ is
-   derived from the ansatz $\Delta^\alpha$ and the invariance of the ideal $(R_1, R_2)$, not assumed;
+1. **an invariant measure**: in the chart $z = r \setminus \{S_{qq}, A_+\}$ of $Z$ the density $\Delta^{-3/2}/\lvert J\rvert$,
+   $J = \det\partial(R_1, R_2)/\partial(S_{qq}, A_+)$ — the push-forward of the measure $\Delta^{-3/2}dM\,d\gamma$ of $P$
+   (P:Measure) with its fibre-volume factor, and invariant by Liouville's criterion in the chart
+   (:mod:`symbolic.family.quotient_measure_n5`); the exponent $-3/2$ is also derived from the ansatz $\Delta^\alpha$
+   and the invariance of the ideal $(R_1, R_2)$, not assumed;
 2. **six first integrals** on $Z$ (the four non-constant coefficients of $p(\lambda, \sigma)$, $H$, and $F$ of
    S6:sixth-integral-n5), independent at a seeded point of $Z$ (so on an open dense set);
 3. **compact level sets**: $L_\gamma$ is positive definite for every $\gamma \in S^4$ exactly when $a > -2$, $b > -2$,
@@ -22,22 +24,33 @@ by $R_1 = R_2 = 0$, S6:reduced-n5) the reduced field has
 hence, by the theorem, every compact connected regular level set of the six integrals that carries
 no equilibrium is a 2-torus with quasi-periodic motion after a change of time.
 **Equilibria**: at every equilibrium of the reduced field $G = S_{uq} = 0$ (for $b > -2$; exact, from
-$\dot x = G/(2+a+b)$ and the $\dot S_{qq}$, $\dot E_+$ components at $G = 0$); on the family of relative
-equilibria with $\Omega E_5 = 0$ (four parameters in the quotient) the six integrals are dependent (exact rank
-at seeded points). *Not proved*: that they are dependent at every equilibrium (which would make the
-proviso "no equilibrium" automatic on regular level sets).
+$\dot x = G/(2+a+b)$ and the $\dot S_{qq}$, $\dot E_+$ components at $G = 0$). On the principal stratum they are
+of two kinds (:mod:`symbolic.family.equilibria_n5`): $\Omega E_5 = 0$ (four parameters in the quotient), and
+points fixed by some $\eta \ne 0$ with $(\eta - \Omega)E_5 = 0$ (exact points of both are computed); at each the six
+integrals are dependent (computed on the family every point fixed by $\eta \ne 0$ is conjugate to; the
+reduction to that family by normal forms is argued), so the proviso
+"no equilibrium" is automatic on regular level sets.
 
 **Computed here** (SymPy and FLINT, exact): $D\,X(R_1) = C_{11}R_1$, $D\,X(R_2) = C_{21}R_1 + C_{22}R_2$;
 $\alpha = -3/2$ from the ansatz and the identity $\operatorname{div}(\Delta^\alpha X) = \Delta^\alpha(C_{11}+C_{22})/D$ on $\mathbb{R}^{10}$
-(with the control that without the cofactor term no $\Delta^\alpha$ works); $Q\,X(P) - P\,X(Q) = 0$ for each
-integral $P/Q$ (on all of $\mathbb{R}^{10}$); the rank 8 of $(df_1..df_6, dR_1, dR_2)$ at the image of a seeded
-rational point; $\dim P/SO(4) = 8$ (orbit rank 6); $\det(\lambda - L_\gamma) = (\lambda-2)^3(\lambda-2-a-b)
-(\lambda^2 - (4+a+b)\lambda + \Delta)^3$ on $S^4$ (so the eigenvalues are $2$, $2+a+b$ and the roots of the
-quadratic, all positive iff $2 + a + b > 0$, $4 + a + b > 0$ and $\Delta(x) > 0$ on $[-1, 1]$, where $\Delta$
-is affine in $x^2$ with end values $(2+a)(2+b)$ and $2(2+a+b)$: iff $a, b > -2$, $a + b > -2$);
-the equilibrium identities. **Argued** (one part): the theorem, and the two textbook facts it is
-applied through (the Leray residue lemma of :mod:`symbolic.family.euler_jacobi_n5`; a quotient by
-the compact $SO(4)$ maps compact sets to compact sets, and $H \ge \lVert M\rVert^2/(2\lambda_{\max})$ on $P$).
+(with the control that without the cofactor term no $\Delta^\alpha$ works); Liouville in the chart: the
+divergence of $\Delta^{-3/2}X/J$ along $Z$, cleared of denominators, is $q_1R_1 + q_2R_2$ (symbolic $a, b$); the
+push-forward: $\det\operatorname{Gram}(\text{orbit})\,J^2/\det(dz\,\Pi\,dz^T)$ is one constant at seeded points of $P$ (control:
+without $J$ it varies); $Q\,X(P) - P\,X(Q) = 0$ for each integral $P/Q$ (on all of $\mathbb{R}^{10}$); the rank 8 of
+$(df_1..df_6, dR_1, dR_2)$ at the image of a seeded rational point; $\dim P/SO(4) = 8$ (orbit rank 6);
+$\det(\lambda - L_\gamma) = (\lambda-2)^3(\lambda-2-a-b)(\lambda^2 - (4+a+b)\lambda + \Delta)^3$ on $S^4$, and that "all eigenvalues
+positive for every $x \in [-1, 1]$" ($2+a+b$, $4+a+b$, $\Delta(0) = (2+a)(2+b)$, $\Delta(1) = 2(2+a+b)$ positive) is the
+range $a, b > -2$, $a + b > -2$ (exact on one sample of every cell of the arrangement of those linear forms,
+:func:`symbolic.family.euler_jacobi_n5.positivity_cells`); every eigenvalue is at most $4 + a + b$ (the
+quadratic is symmetric under $\lambda \mapsto 4 + a + b - \lambda$), so $H \ge \lVert M\rVert^2/(2(4+a+b))$ and $H$ is proper;
+the equilibrium identities; exact points of both kinds of equilibria (:mod:`symbolic.family.equilibria_n5`:
+$\Omega E_5 = 0$, and $\eta \ne 0$ fixing $p$), each with the reduced field zero, on the principal stratum and of
+rank $< 8$. **Argued** (one part, :data:`ARGUED`): the theorem, applied on the principal stratum, with
+standard facts: a push-forward of an invariant measure by an equivariant map is invariant; a continuous
+image of a compact set is compact; equilibria on the principal stratum are the points fixed by some
+$\eta = \Omega + \xi$, $\xi \in \mathfrak{so}(4)$; and a point fixed by $\eta \ne 0$ is conjugate to $(\mu e_{12} + M', e_5)$ (normal
+forms), on which family $\operatorname{rank} dc \le 3$ is computed exactly — which with the collapse identity puts
+every equilibrium in the critical set.
 
 **Uses** S6:reduced-n5, S6:sixth-integral-n5, S6:open-reduced-n5, eq:Delta, eq:action.
 """
@@ -124,9 +137,49 @@ def positivity_part() -> Part:
     a, b, x = ej.r5.a, ej.r5.b, ej.r5.x
     Dl = (2 + a) * (2 + b) - a * b * x**2
     ends = sp.expand(Dl.subs(x, 0) - (2 + a) * (2 + b)), sp.expand(Dl.subs(x, 1) - 2 * (2 + a + b))
-    return _part(f"L_gamma positive definite on S^4 iff {RANGE}", [
+    cells = {eng: ej.positivity_cells(eng) for eng in ("sympy", "flint")}
+    same = all(not c["differ"] for c in cells.values())
+    # control: the cell check tells ranges apart (the physical range a > -1, b > 0 is smaller)
+    control = any(not (av > -1 and bv > 0) and av > -2 and bv > -2 and av + bv > -2
+                  for av, bv in ej._cad_samples(ej.POSITIVITY_FORMS, sp.Rational))
+    return _part(f"L_gamma positive definite on S^4 iff {RANGE}; H proper", [
         ("char. polynomial of L_gamma", rational_identity(res, sphere=sph, label="EJ5 charpoly")),
-        ("Delta(0) = (2+a)(2+b), Delta(1) = 2(2+a+b)", rational_identity(list(ends), label="EJ5 ends"))])
+        ("Delta(0) = (2+a)(2+b), Delta(1) = 2(2+a+b)", rational_identity(list(ends), label="EJ5 ends")),
+        (f"all eigenvalues positive for every x iff {RANGE}", Check(
+            same and control, f"the two conditions agree on a sample of each of the "
+            f"{cells['sympy']['samples']} cells of the arrangement of 2+a, 2+b, 2+a+b, 4+a+b "
+            f"(SymPy QQ and FLINT fmpq); control: a sample cell lies in the range but not in a > -1, b > 0")),
+        ("eigenvalues <= 4 + a + b, so H >= |M|^2/(2(4+a+b))", rational_identity(
+            [ej.quadratic_reflection_residual()], label="EJ5 reflection"))])
+
+
+def measure_chart_part() -> Part:
+    r"""The density $\Delta^{-3/2}/J$ in the chart $r \setminus \{S_{qq}, A_+\}$ of $Z$: invariant (Liouville in the chart,
+    exact identity modulo $R_1, R_2$), and equal to the push-forward of $\Delta^{-3/2}dM\,d\gamma$ with its
+    fibre-volume factor (a constant ratio at seeded points of $P$, both engines)."""
+    from chaplygin_nd.symbolic.family import quotient_measure_n5 as qm
+
+    T, (q1, q2), rem = qm.chart_divergence()
+    R1, R2 = ej.relations()
+    liouville = rational_identity([T - q1 * R1 - q2 * R2], label="EJ5 chart divergence")
+    ratios, naive = {"sympy": [], "flint": []}, []
+    for t in range(2):
+        rng = points.generator(ledger_seed(), "S6:euler-jacobi-n5 push-forward", t)
+        M, g = points.skew_matrix(rng, 5), points.sphere_point(rng, 5)
+        for eng in ratios:
+            ratios[eng].append(qm.pushforward_ratio(M, g, eng))
+        J, _ = qm.chart_jacobian()
+        Jv = qm.ev_inv(J, ej.quotient_point(M, g), sp.Rational, sp.Integer(0), sp.Integer(1))
+        naive.append(ratios["sympy"][-1] / Jv**2)   # without the chart factor J: must vary
+    same = all(len({str(v) for v in vals}) == 1 for vals in ratios.values()) and \
+        str(ratios["sympy"][0]) == str(ratios["flint"][0])
+    varies = len(set(naive)) > 1
+    return _part("the chart density is invariant and is the push-forward of the measure of P", [
+        ("Liouville in the chart: T = q1 R1 + q2 R2, remainder 0", liouville),
+        ("remainder zero", Check(rem == 0, "multivariate division of T by (R1, R2) leaves 0")),
+        ("push-forward = Delta^(-3/2)/J up to a constant", Check(
+            same and varies, f"det Gram(orbit) J^2 / det(dz Pi dz^T) = {ratios['sympy'][0]} at 2 seeded points "
+            f"(SymPy QQ and FLINT fmpq); control: without J the ratio varies ({len(set(naive))} values)"))])
 
 
 def equilibria_part() -> Part:
@@ -147,39 +200,95 @@ def equilibria_part() -> Part:
 
 
 def relative_equilibria_part(a, b) -> Part:
-    r"""At seeded points of the relative equilibria with $\Omega E_5 = 0$ ($\Omega \in \mathfrak{so}(4)$, any $\gamma$,
-    $M = L_\gamma\Omega$: then $\dot M = [M, \Omega]$ and $\dot\gamma = -\Omega\gamma$ are the velocity of the $SO(4)$ orbit,
-    a 4-parameter family of equilibria of the reduced field): the reduced field vanishes and the
-    six integrals have rank < 6 + 2 there, i.e. these equilibria lie in the critical set."""
+    r"""Both kinds of equilibria of :mod:`symbolic.family.equilibria_n5`, at seeded exact points: the reduced
+    field is zero there, the $SO(4)$-orbit has dimension 6 (principal stratum) and $(df_1..df_6, dR_1, dR_2)$ has rank
+    $< 8$ (both engines). First kind ($\Omega E_5 = 0$): the $SO(5)$-orbit has dimension 10 and $dc_i$, $dH$ vanish on
+    $Y_{e_m\wedge E_5}$. Second kind ($\eta \ne 0$ fixes $p$): $Y_\eta(p) = 0$ and the $SO(5)$-orbit has dimension $< 10$."""
     from chaplygin_nd.symbolic import algebra, model
     from chaplygin_nd.symbolic.exact import flint_engine
+    from chaplygin_nd.symbolic.family import equilibria_n5 as eqm
+    from chaplygin_nd.symbolic.family import independence_all_n as ia
 
-    ranks, zero = [], True
     field = ej.r5.field()
-    for t in range(3):
+
+    def at_point(M, g):
+        pt = ej.quotient_point(M, g)
+        at = {ej.r5.SYMBOLS[n]: v for n, v in pt.items()} | {ej.r5.a: a, ej.r5.b: b}
+        zero = all(sp.cancel(field[n].xreplace(at)) == 0 for n in ej.r5.COORDS)
+        J = ej.jacobian_at(pt, a, b)
+        with flint_engine.use_engine("flint"):
+            ranks = (J.rank(), flint_engine.rank(J))
+        orb = {eng: eqm.orbit_checks(M, g, a, b, eng) for eng in ("sympy", "flint")}
+        return zero, ranks, orb
+
+    first, second = [], []
+    for t in range(2):
         rng = points.generator(ledger_seed(), "S6:euler-jacobi-n5 relative equilibria", t)
         g = points.sphere_point(rng, 5)
         Om = sp.zeros(5, 5)
         Om[:4, :4] = points.skew_matrix(rng, 4)
         L = model.L_matrix(g, sp.diag(1, 1, 1, 1, 1 + a), b)
         M = algebra.unvec(list(L * sp.Matrix(algebra.vec(Om))), 5)
-        pt = ej.quotient_point(M, g)
-        at = {ej.r5.SYMBOLS[n]: v for n, v in pt.items()} | {ej.r5.a: a, ej.r5.b: b}
-        zero = zero and all(sp.cancel(field[n].xreplace(at)) == 0 for n in ej.r5.COORDS)
-        J = ej.jacobian_at(pt, a, b)
-        with flint_engine.use_engine("flint"):
-            ranks.append((J.rank(), flint_engine.rank(J)))
-    return _part("the relative equilibria with Omega E = 0 lie in the critical set", [
-        ("reduced field zero, rank < 8", Check(zero and max(max(r) for r in ranks) < 8,
-                                             f"at 3 seeded points: reduced field zero {zero}, ranks (SymPy, FLINT) {ranks} "
-                                             f"of (df_1..df_6, dR_1, dR_2), a = {a}, b = {b}"))])
+        zero, ranks, orb = at_point(M, g)
+        first.append(zero and max(ranks) < 8 and all(o["orbit_rank"] == 10 and o["so4_rank"] == 6
+                                                     and not any(o["values"]) for o in orb.values()))
+    tries = 0
+    while len(second) < 2 and tries < 10:
+        rng = points.generator(ledger_seed(), "S6:euler-jacobi-n5 fixed equilibria", tries)
+        tries += 1
+        drawn = eqm.eta_point(rng, a, b)
+        if drawn is None:
+            continue
+        M, g, eta = drawn
+        zero, ranks, orb = at_point(M, g)
+        crank = {eng: ia.c_rank(M, g, eng) for eng in ("sympy", "flint")}
+        second.append(zero and max(ranks) < 8 and eqm.fixed_by(M, g, eta)
+                      and not (eta * sp.Matrix([0, 0, 0, 0, 1])).is_zero_matrix
+                      and max(crank.values()) <= 3
+                      and all(o["orbit_rank"] < 10 and o["so4_rank"] == 6 for o in orb.values()))
+    # every point fixed by some eta != 0: the SO(5)-invariant c have rank <= 3 (symbolic, and FLINT at points)
+    import itertools
+
+    import flint
+
+    G, syms = eqm.isotropy_family_matrix()
+    cols = [j for j in range(G.cols) if any(G[i, j] != 0 for i in range(G.rows))]
+    minors = [sp.expand(G.extract(list(range(4)), list(c)).det(method="berkowitz"))
+              for c in itertools.combinations(cols, 4)]
+    vanish = all(m == 0 for m in minors)            # every 4x4 minor vanishes identically: rank <= 3
+    r_pts = []
+    for t in range(3):
+        vals = points.rationals(points.generator(ledger_seed(), "S6:euler-jacobi-n5 isotropy", t), 4)
+        Gv = G.xreplace(dict(zip(syms, vals, strict=True)))
+        r_pts.append(flint.fmpq_mat(4, 14, [flint.fmpq(int(v.p), int(v.q)) for v in Gv]).rank())
+    rng = points.generator(ledger_seed(), "S6:euler-jacobi-n5 isotropy control")
+    ctrl = ia.c_rank(points.skew_matrix(rng, 5), points.sphere_point(rng, 5), "flint")   # generic: 4
+    return _part("equilibria of both kinds lie in the critical set", [
+        ("fixed by eta != 0: rank dc <= 3", Check(
+            vanish and max(r_pts) <= 3 and ctrl == 4,
+            f"rank of dc on the family (mu e_12 + M', e_5) that every point with a fixed eta != 0 is conjugate to: "
+            f"<= 3 over QQ(mu, m1, m2, m3) (SymPy: each of the {len(minors)} 4x4 minors expands to 0: {vanish}), {r_pts} at 3 seeded points (FLINT); control: {ctrl} at a "
+            f"generic point")),
+        ("Omega E = 0", Check(len(first) == 2 and all(first),
+                              f"at 2 seeded points: reduced field zero, SO(4)-orbit 6, SO(5)-orbit 10, dc_i and dH "
+                              f"zero on Y_(e_m ^ E_5), rank < 8 (SymPy and FLINT), a = {a}, b = {b}: {first}")),
+        ("eta != 0 fixes p", Check(len(second) == 2 and all(second),
+                                   f"at 2 seeded points (eta of rank 2): Y_eta(p) = 0, eta E_5 != 0, reduced field "
+                                   f"zero, SO(4)-orbit 6, SO(5)-orbit < 10, the SO(5)-invariant coefficients of p of rank <= 3 "
+                                   f"(as on the family), rank < 8 (SymPy and FLINT): {second}"))])
 
 
 ARGUED = ("the Euler-Jacobi theorem (as the paper cites it at line 884: Arnold-Kozlov-Neishtadt, "
-          "Mathematical Aspects of Classical and Celestial Mechanics; Borisov-Mamaev 2008), applied through two textbook facts: "
-          "the Leray residue rho dr/(dR_1 ^ dR_2) is invariant on {R = 0} iff div(rho X) = rho tr(C)/D there "
-          "(L_X dR_i = d(X R_i)); the image of a compact set under the quotient by the compact SO(4) is "
-          "compact, and H >= |M|^2/(2 lambda_max(L_gamma)) makes {H <= h} compact when L_gamma > 0")
+          "Mathematical Aspects of Classical and Celestial Mechanics; Borisov-Mamaev 2008), applied on the "
+          "principal stratum of P/SO(4) (charted by Z where J != 0), with standard facts that are not computed: "
+          "the push-forward of the flow-invariant measure of P (P:Measure) under the equivariant quotient map is "
+          "invariant; a continuous image of a compact set is compact (so each pi({f = c}) is compact, {f = c} "
+          "being closed in the compact {H <= h}); on the principal stratum pi(p) is an equilibrium iff X(p) is "
+          "tangent to the SO(4)-orbit, i.e. eta = Omega + xi fixes p for some xi in so(4); with eta = 0 "
+          "(Omega E = 0) the collapse identity (S6:wedge-integrals, k = 1) makes dH and the dc_i vanish on the "
+          "4-dimensional span of the Y_(w ^ E) (SO(5)-orbit of dimension 10), so rank <= 4 + 1 < 6; a point "
+          "fixed by eta != 0 is conjugate under SO(5) to (mu e_12 + M', e_5) (normal forms of eta and of M), "
+          "where rank dc <= 3 is computed, so rank <= 3 + 2 < 6")
 
 
 @claim("S6:euler-jacobi-n5", uses=("S6:reduced-n5", "S6:sixth-integral-n5", "S6:open-reduced-n5",
@@ -193,13 +302,15 @@ def s6_euler_jacobi_n5() -> Verdict:
     rng = points.generator(ledger_seed(), "S6:euler-jacobi-n5 parameters")
     a, b = points.rational(rng, -1, 1, nonzero=True), points.rational(rng, 1, 3)
     measure, alpha = measure_part()
-    parts = [quotient_part(), measure, integrals_part(a, b), positivity_part(), equilibria_part(),
+    parts = [quotient_part(), measure, measure_chart_part(), integrals_part(a, b), positivity_part(),
+             equilibria_part(),
              relative_equilibria_part(a, b),
              Verdict.by_argument(ARGUED).as_part("the theorem (cited) and how it applies")]
     notes = (f"invariant density on the quotient: Delta^({alpha}) / |d(R_1, R_2)/d(y, y')| in the chart "
              "r minus {y, y'}; L_gamma > 0 on S^4 iff " + RANGE + "; at every equilibrium G = S_uq = 0; "
-             "the relative equilibria with Omega E = 0 (a 4-parameter family) lie in the critical set; "
-             "open: that every equilibrium does (so that regular level sets carry none)")
+             "every equilibrium lies in the critical set (Omega E = 0, or fixed by some eta != 0: exact points of "
+             "both kinds computed; rank dc <= 3 computed on the family every point fixed by eta != 0 is conjugate to), "
+             "so regular level sets carry none")
     return Verdict.of_parts(parts, n_values=(5,), notes=notes, method=(
         "exact identities on the quotient R^10 (SymPy and FLINT): invariant ideal of the relations, the "
         "measure exponent derived from an ansatz, the integrals, the characteristic polynomial of L_gamma; "

@@ -47,3 +47,67 @@ def test_positivity_range_at_sample_parameters():
         for gamma in (sp.Matrix([0, 0, 0, 1, 0]), sp.Matrix([0, 0, 0, sp.Rational(4, 5), sp.Rational(3, 5)])):
             L = model.L_matrix(gamma, sp.diag(1, 1, 1, 1, 1 + a), b)
             assert all(ev > 0 for ev in L.eigenvals()) == positive
+
+
+def test_the_chart_density_is_invariant_and_is_the_push_forward():
+    from chaplygin_nd.symbolic.family import quotient_measure_n5 as qm
+
+    _, _, rem = qm.chart_divergence()
+    assert rem == 0
+    ratios, without_J = set(), set()
+    J, _ = qm.chart_jacobian()
+    for t in range(2):
+        rng = points.generator(11, "push-forward test", t)
+        M, g = points.skew_matrix(rng, 5), points.sphere_point(rng, 5)
+        r = qm.pushforward_ratio(M, g, "flint")
+        assert str(r) == str(qm.pushforward_ratio(M, g, "sympy"))
+        ratios.add(str(r))
+        Jv = qm.ev_inv(J, ej.quotient_point(M, g), sp.Rational, sp.Integer(0), sp.Integer(1))
+        without_J.add(sp.Rational(str(r)) / Jv**2)
+    assert len(ratios) == 1 and len(without_J) == 2
+
+
+def test_the_cell_certificate_tells_ranges_apart():
+    for eng in ("sympy", "flint"):
+        assert not ej.positivity_cells(eng)["differ"]
+        # the physical range and a range missing a + b > -2 are not the positivity range
+        assert ej.positivity_cells(eng, stated=lambda l1, l2, l3: l1 > 1 and l2 > 2)["differ"]
+        assert ej.positivity_cells(eng, stated=lambda l1, l2, l3: l1 > 0 and l2 > 0)["differ"]
+    assert ej.quadratic_reflection_residual() == 0
+
+
+def test_equilibria_fixed_by_eta_are_equilibria_and_critical():
+    from chaplygin_nd.symbolic.exact import flint_engine
+    from chaplygin_nd.symbolic.family import equilibria_n5 as eqm
+
+    a, b = sp.Rational(-1, 3), sp.Rational(3, 2)
+    drawn = None
+    for t in range(5):
+        drawn = eqm.eta_point(points.generator(3, "eta test", t), a, b)
+        if drawn:
+            break
+    M, g, eta = drawn
+    assert eqm.fixed_by(M, g, eta) and not eqm.fixed_by(M, g, points.skew_matrix(points.generator(3, "x"), 5))
+    pt = ej.quotient_point(M, g)
+    field = ej.r5.field()
+    at = {ej.r5.SYMBOLS[n]: v for n, v in pt.items()} | {ej.r5.a: a, ej.r5.b: b}
+    assert all(sp.cancel(field[n].xreplace(at)) == 0 for n in ej.r5.COORDS)
+    with flint_engine.use_engine("flint"):
+        assert flint_engine.rank(ej.jacobian_at(pt, a, b)) < 8
+    # a generic point is neither an equilibrium nor critical
+    rng = points.generator(3, "generic")
+    pt = ej.quotient_point(points.skew_matrix(rng, 5), points.sphere_point(rng, 5))
+    at = {ej.r5.SYMBOLS[n]: v for n, v in pt.items()} | {ej.r5.a: a, ej.r5.b: b}
+    assert any(sp.cancel(field[n].xreplace(at)) != 0 for n in ej.r5.COORDS)
+    assert ej.jacobian_at(pt, a, b).rank() == 8
+
+
+def test_points_fixed_by_eta_have_dependent_invariants_but_generic_points_do_not():
+    from chaplygin_nd.symbolic.family import equilibria_n5 as eqm
+    from chaplygin_nd.symbolic.family import independence_all_n as ia
+    from sympy.polys.matrices import DomainMatrix
+
+    G, syms = eqm.isotropy_family_matrix()
+    assert DomainMatrix.from_Matrix(G).convert_to(sp.QQ.frac_field(*syms)).rank() == 3
+    rng = points.generator(4, "generic c rank")
+    assert ia.c_rank(points.skew_matrix(rng, 5), points.sphere_point(rng, 5), "sympy") == 4

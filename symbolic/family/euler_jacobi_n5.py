@@ -37,7 +37,8 @@ from chaplygin_nd.symbolic.reduction import reduced_n5 as r5
 
 __all__ = ["coordinates", "field", "relations", "relation_cofactors", "measure_polynomials",
            "measure_exponent", "integral_fractions", "integral_memberships", "charpoly_residual",
-           "quotient_point", "jacobian_at"]
+           "quotient_point", "jacobian_at", "POSITIVITY_FORMS", "positivity_cells",
+           "quadratic_reflection_residual"]
 
 
 def coordinates() -> dict:
@@ -167,3 +168,72 @@ def jacobian_at(point: dict, a, b) -> sp.Matrix:
     for Rr in relations():
         rows.append([ev(Rr.diff(c[n])) for n in r5.COORDS])
     return sp.Matrix(rows)
+
+
+#: The linear forms whose signs decide positivity: $2 + a$, $2 + b$, $2 + a + b$, $4 + a + b$
+#: (coefficients of $a$, $b$ and the constant).
+POSITIVITY_FORMS = ((1, 0, 2), (0, 1, 2), (1, 1, 2), (1, 1, 4))
+
+
+def _cad_samples(forms, num):
+    r"""Sample points, one in every cell of the arrangement of the lines $\alpha a + \beta b + c = 0$ (a
+    cylindrical decomposition: the $a$-coordinates of the vertical lines and of the pairwise
+    intersections, the points between them and one beyond each end; over each, the $b$-roots of the
+    other lines, the points between and beyond). Exact (``num`` makes the numbers)."""
+    def around(vals):
+        vals = sorted(set(vals))
+        if not vals:
+            return [num(0)]
+        out = [vals[0] - 1, vals[-1] + 1] + vals
+        out += [(u + v) / 2 for u, v in zip(vals, vals[1:], strict=False)]
+        return out
+    acrit = [num(-c) / al for al, be, c in forms if be == 0]
+    for i, (a1, b1, c1) in enumerate(forms):
+        for a2, b2, c2 in forms[i + 1:]:
+            det = a1 * b2 - a2 * b1
+            if det:
+                acrit.append(num(-c1 * b2 + c2 * b1) / det)
+    pts = []
+    for av in around(acrit):
+        broots = [(-(al * av) - c) / be for al, be, c in forms if be != 0]
+        pts += [(av, bv) for bv in around(broots)]
+    return pts
+
+
+def positivity_cells(engine: str = "sympy", stated=None) -> dict:
+    r"""Exact certificate that, with the eigenvalues of $L_\gamma$ on $S^4$ read off :func:`charpoly_residual`
+    (2, $2+a+b$, the roots of $\lambda^2 - (4+a+b)\lambda + \Delta(x)$, real as $L_\gamma$ is symmetric), the set where
+    all are positive for every $x \in [-1, 1]$, $\Phi = \{2+a+b > 0,\ 4+a+b > 0,\ \Delta(0) = (2+a)(2+b) > 0,\
+    \Delta(1) = 2(2+a+b) > 0\}$ ($\Delta$ is affine in $x^2$; two real roots are positive iff their sum and product
+    are), equals $\Psi = \{a > -2,\ b > -2,\ a + b > -2\}$: both are decided by the signs of
+    :data:`POSITIVITY_FORMS`, and they agree on a sample point of every cell of their arrangement
+    (:func:`_cad_samples`). Returns the number of samples and those where they differ. ``stated``: another
+    condition on $(2+a, 2+b, 2+a+b)$ to compare instead of $\Psi$ (the tests' controls)."""
+    if engine == "flint":
+        import flint
+        num = flint.fmpq
+    else:
+        num = sp.Rational
+    bad, pts = [], _cad_samples(POSITIVITY_FORMS, num)
+    for av, bv in pts:
+        l1, l2, l3, l4 = (al * av + be * bv + c for al, be, c in POSITIVITY_FORMS)
+        phi = l3 > 0 and l4 > 0 and l1 * l2 > 0 and 2 * l3 > 0
+        psi = (l1 > 0 and l2 > 0 and l3 > 0) if stated is None else stated(l1, l2, l3)
+        if phi != psi:
+            bad.append((str(av), str(bv)))
+    return {"samples": len(pts), "differ": bad}
+
+
+def quadratic_reflection_residual():
+    r"""$q(\Lambda - \lambda) - q(\lambda)$ for $q = \lambda^2 - \Lambda\lambda + \Delta(x)$, $\Lambda = 4 + a + b$: zero, so the two roots of $q$
+    are $r$ and $\Lambda - r$; when both are positive each is $< \Lambda$, and with $2 < \Lambda$, $2 + a + b < \Lambda$ every
+    eigenvalue of $L_\gamma$ is at most $\Lambda$: $H = \tfrac12\langle M, L_\gamma^{-1}M\rangle \ge \lVert M\rVert^2/(2\Lambda)$, so
+    $\{H \le h\} \subset \{\lVert M\rVert^2 \le 2\Lambda h\}\times S^4$ is compact (H is proper)."""
+    a, b, x = r5.a, r5.b, r5.x
+    lam = sp.Symbol("lambda")
+    Lam = 4 + a + b
+    Dl = (2 + a) * (2 + b) - a * b * x**2
+
+    def qf(t):
+        return t**2 - Lam * t + Dl
+    return sp.expand(qf(Lam - lam) - qf(lam))

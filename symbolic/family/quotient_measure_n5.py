@@ -1,0 +1,151 @@
+r"""The invariant measure of the reduced $n = 5$ sphere in a chart of the quotient, and the
+push-forward of the measure of $P$ (row S6:euler-jacobi-n5).
+
+$Z = \{R_1 = R_2 = 0\} \subset \mathbb{R}^{10}$ (S6:reduced-n5) is, where $J = \det\partial(R_1, R_2)/\partial(y, y') \ne 0$,
+the graph of $(y, y') = \phi(z)$ over the chart $z = r \setminus \{y, y'\} \in \mathbb{R}^8$; here
+$(y, y') = (S_{qq}, A_+)$, so $J = B\,(A_-(B(x^2-1) + G^2) + E_-^2)$. On $Z$ the reduced field is $X = N/D$
+(it is tangent to $Z$), and in the chart its components are $X_i$, $i \in z$.
+
+**Liouville in the chart** (no lemma on residues). The density $\tilde\rho = \Delta^{-3/2}/J$ on the chart
+is invariant iff $\sum_{i\in z}\frac{d}{dz_i}(\tilde\rho X_i) = 0$ on $Z$, where $\frac{d}{dz_i}h = \partial_ih - (\partial_yh, \partial_{y'}h)
+\,J_{yy'}^{-1}(\partial_iR_1, \partial_iR_2)^T$ is the derivative along $Z$ (implicit functions). Writing
+$\frac{d}{dz_i}(\Delta^{-3/2}g) = \Delta^{-3/2}(\frac{d}{dz_i}g - \tfrac32 g\,\partial_i\Delta/\Delta)$ and clearing denominators,
+this is the polynomial identity :func:`chart_divergence` $= q_1R_1 + q_2R_2$, checked exactly
+(symbolic $a, b$) by the row.
+
+**Push-forward.** The measure of $P$ is $\Delta^{-3/2}\,dM\,d\gamma$ (P:Measure, $n = 5$), the volume of the
+Euclidean metric in $((M_{ij})_{i<j}, \gamma)$ restricted to $P$, times $\Delta^{-3/2}$. By the coarea formula its
+push-forward under $z\circ\pi : P \to \mathbb{R}^8$ has, on the principal stratum, the density
+$\Delta^{-3/2}\,\operatorname{vol}(SO(4)\cdot p)/J_\pi$ with $J_\pi^2 = \det(dz\,\Pi\,dz^T)$ ($\Pi$ the projection on $TP$)
+and $\operatorname{vol}(SO(4)\cdot p)^2 = c\,\det\operatorname{Gram}(Y_{12}, \dots, Y_{34})$, $Y_{ij}$ the generators of the
+action at $p$ ($c$ a constant: the volume of $SO(4)$ and the order of the isotropy, constant on the
+principal stratum). :func:`pushforward_ratio` returns $\det\operatorname{Gram}\cdot J^2/\det(dz\,\Pi\,dz^T)$ at a point
+of $P$: it is the same number at every point iff the push-forward *is* $\tilde\rho$ up to a constant,
+the fibre-volume factor included.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+
+from chaplygin_nd.symbolic.family import euler_jacobi_n5 as ej
+
+__all__ = ["CHART_OUT", "chart_jacobian", "chart_divergence", "pushforward_ratio"]
+
+#: The two coordinates solved for on $Z$: $(y, y') = (S_{qq}, A_+)$.
+CHART_OUT = ("Sqq", "Ap")
+
+
+def _d(h, name):
+    return h.diff(ej.coordinates()[name])
+
+
+@cache
+def chart_jacobian():
+    r"""$J = \det\partial(R_1, R_2)/\partial(y, y')$ and the $2\times2$ matrix (ring elements)."""
+    R1, R2 = ej.relations()
+    y, yp = CHART_OUT
+    mat = [[_d(R1, y), _d(R1, yp)], [_d(R2, y), _d(R2, yp)]]
+    return mat[0][0] * mat[1][1] - mat[0][1] * mat[1][0], mat
+
+
+@cache
+def chart_divergence():
+    r"""$T = 2J^3D^2\Delta^{5/2}\sum_{i\in z}\frac{d}{dz_i}(\Delta^{-3/2}X_i/J)$ as a polynomial of
+    :data:`symbolic.reduction.invariants_n5.INV_RING` (module docstring): zero on $Z$ iff the chart
+    density $\Delta^{-3/2}/J$ is invariant. Returns ``(T, (q1, q2), remainder)`` with $T = q_1R_1 + q_2R_2 +$
+    remainder (multivariate division)."""
+    N, D = ej.field()
+    R1, R2 = ej.relations()
+    J, (r1, r2) = chart_jacobian()
+    y, yp = CHART_OUT
+    adj = [[r2[1], -r1[1]], [-r2[0], r1[0]]]   # adjugate of [[dR1/dy, dR1/dy'], [dR2/dy, dR2/dy']]
+    Dl = ej._Delta()
+    DJ = D * J
+
+    def Jd(h, i):
+        """J times the derivative of h along Z in the direction z_i."""
+        hy, hyp = _d(h, y), _d(h, yp)
+        Ri = (_d(R1, i), _d(R2, i))
+        corr = sum((hv * sum((adj[s][t] * Ri[t] for t in range(2)), R1 * 0)
+                    for s, hv in enumerate((hy, hyp))), R1 * 0)
+        return J * _d(h, i) - corr
+
+    T = R1 * 0
+    for i in ej.r5.COORDS:
+        if i in CHART_OUT:
+            continue
+        T += (Jd(N[i], i) * DJ - N[i] * Jd(DJ, i)) * Dl * 2 - 3 * N[i] * DJ * Jd(Dl, i)
+    (q1, q2), rem = T.div([R1, R2])
+    return T, (q1, q2), rem
+
+
+def _det(rows, engine):
+    n = len(rows)
+    if engine == "flint":
+        import flint
+        return flint.fmpq_mat(n, n, [v for r in rows for v in r]).det()
+    import sympy as sp
+    from sympy.polys.matrices import DomainMatrix
+    return DomainMatrix([list(r) for r in rows], (n, n), sp.QQ).det()
+
+
+def pushforward_ratio(M, gamma, engine: str = "sympy"):
+    r"""$\det\operatorname{Gram}(Y_{ij})\cdot J^2/\det(dz\,\Pi\,dz^T)$ at the point $(M, \gamma)$ of $P$ (module
+    docstring), exactly, every step in ``engine``'s numbers (``sympy``: ``QQ``; ``flint``: ``fmpq``)."""
+    from chaplygin_nd.symbolic.family import wedge_integrals as wi
+    from chaplygin_nd.symbolic.reduction import invariants_n5 as ri5
+
+    num, zero, one = wi.numbers(engine)
+    n = 5
+    pairs = [(i, j) for i in range(n) for j in range(i + 1, n)]
+    Mq = [[num(M[i, j]) for j in range(n)] for i in range(n)]
+    g = [num(v) for v in gamma]
+    # generators Y_ij = ([e_ij, M], e_ij gamma) of so(4) (i < j < 5), in the coordinates (M_ij (i<j), gamma)
+    gens = []
+    for i, j in [(r, c) for r in range(4) for c in range(r + 1, 4)]:
+        X = [[zero] * n for _ in range(n)]
+        X[i][j], X[j][i] = one, -one
+        XM = [[sum((X[r][t] * Mq[t][c] - Mq[r][t] * X[t][c] for t in range(n)), zero) for c in range(n)]
+              for r in range(n)]
+        gens.append([XM[r][c] for r, c in pairs] + [sum((X[r][t] * g[t] for t in range(n)), zero)
+                                                  for r in range(n)])
+    gram = [[sum((u * v for u, v in zip(Y, Z, strict=True)), zero) for Z in gens] for Y in gens]
+    # gradients of the chart coordinates z (as polynomials in M_ij, gamma) at the point
+    polys = ri5.generator_polys()
+    R = ri5.RING
+    phase = {"x": R.gens[2], **{k: v for k, v in polys.items() if k != "s"}}
+    var_idx = [3 + k for k in range(len(pairs))] + list(range(13, 17)) + [2]   # M_ij, q1..q4, x
+    at = [zero, zero, g[4]] + [Mq[i][j] for i, j in pairs] + g[:4]
+
+    def ev(p):
+        return sum((num(c) * _monomial(m, at, one) for m, c in p.terms()), zero)
+    rows = []
+    for name in ej.r5.COORDS:
+        if name in CHART_OUT:
+            continue
+        p = phase[name]
+        rows.append([ev(p.diff(R.gens[v])) for v in var_idx])
+    tang = [row[:len(pairs)] + [row[len(pairs) + s] - g[s] * sum((row[len(pairs) + t] * g[t] for t in range(n)), zero)
+                                for s in range(n)] for row in rows]
+    gz = [[sum((u * v for u, v in zip(r1, r2, strict=True)), zero) for r2 in tang] for r1 in tang]
+    vals = ej.quotient_point(M, gamma)
+    J, _ = chart_jacobian()
+    Jv = ev_inv(J, vals, num, zero, one)
+    return _det(gram, engine) * Jv * Jv / _det(gz, engine)
+
+
+def _monomial(m, at, one):
+    out = one
+    for v, e in zip(at, m, strict=True):
+        if e:
+            out *= v**e
+    return out
+
+
+def ev_inv(p, vals: dict, num, zero, one):
+    """Evaluate an element of INV_RING at reduced coordinates ``vals`` (a, b unused by J)."""
+    from chaplygin_nd.symbolic.reduction import invariants_n5 as ri5
+    names = [str(s) for s in ri5.INV_RING.symbols]
+    at = [num(vals[n]) if n in vals else zero for n in names]
+    return sum((num(c) * _monomial(m, at, one) for m, c in p.terms()), zero)

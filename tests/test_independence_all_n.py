@@ -1,0 +1,34 @@
+"""symbolic/family/independence_all_n.py (row S6:wedge-integrals): the finite identities of the argument
+that the invariant integrals are independent for every n, and controls that show each check can fail."""
+
+from __future__ import annotations
+
+import pytest
+import sympy as sp
+from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.family import independence_all_n as ia
+from chaplygin_nd.symbolic.family import wedge_integrals as wi
+
+
+@pytest.mark.parametrize("n", [5, 6, 7, 8])
+def test_closed_form_and_ranks(n):
+    M, g, f, theta = ia.frame_point(points.generator(5, "all-n test", n), n)
+    a = sp.Rational(-1, 3)
+    K = (n + 1) // 2 - 1
+    for eng in ("sympy", "flint"):
+        assert all(ia.closed_form_residual(M, g, f, theta, a, k, eng) == 0 for k in range(1, n // 2 + 1))
+        assert ia.phi_rank(f, theta, eng) == K
+        assert ia.c_rank(M, g, eng) == n - 1
+
+
+def test_controls_the_checks_can_fail():
+    n = 7
+    M, g, f, theta = ia.frame_point(points.generator(5, "all-n control"), n)
+    # equal eigenvalues: the determinant of e_(k-1)(t_(!=j)) vanishes and the rank falls
+    assert ia.phi_rank(f, [theta[0]] * len(theta), "flint") < (n + 1) // 2 - 1
+    # gamma along a frame vector: its weights on the other planes vanish and rank dc falls
+    assert ia.c_rank(M, f[:, 0], "flint") < n - 1
+    # the closed form is that of b = 0: at b != 0 the value differs
+    a = sp.Rational(-1, 3)
+    assert wi.value(M, g, a, 1, 2, "flint") != wi.value(M, g, a, 0, 2, "flint")
+    assert ia.closed_form_residual(M, g, f, theta, a, 2, "flint") == 0
