@@ -12,7 +12,9 @@ the $SO(n-1)$ orbits (:mod:`simulate.analysis.gali`), sampled every $dt = 1/2$. 
 * **NAFF** on the two $SO(n-1)$-invariant signals $x + i(M\gamma)_n$, $\|ME_n\|^2 + i\langle ME_n,
   M\gamma\rangle$ (:func:`simulate.analysis.drawn_evidence.observables`; they see only the reduced
   motion): the number of independent frequencies and the diffusion $D$ (resolved iff
-  $D < 10^{-5}$); a count above $\lfloor n/2\rfloor$ is searched again with combinations up to
+  $D < 10^{-5}$), over the horizon ladder $T$, $2T$, $4T$ (:mod:`simulate.analysis.naff_ladder`:
+  an orbit unresolved at $T$ is continued without deviation vectors; the diagnosis there says why:
+  at $T$ the NAFF precision, not the dynamics, left most orbits unresolved); a count above $\lfloor n/2\rfloor$ is searched again with combinations up to
   $|c| \le 12$ (:func:`simulate.analysis.combinations.recount`, as every drawn row), and a line whose
   only explanation is not credible makes the orbit unresolved (``extra["ambiguous"]``) unless the
   count is above $\lfloor n/2\rfloor$ all the same (an excess, as
@@ -40,7 +42,7 @@ import os
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
-from chaplygin_nd.simulate.analysis import combinations, draws, gali_runs, kept, naff
+from chaplygin_nd.simulate.analysis import draws, gali_runs, kept, naff_ladder
 from chaplygin_nd.simulate.analysis import result_cache as rc
 from chaplygin_nd.simulate.analysis.frequencies import REGULAR
 from chaplygin_nd.simulate.dynamics import so
@@ -72,7 +74,9 @@ def predicted(n: int) -> int:
 @dataclass
 class TorusOrbit:
     """One drawn orbit: its parameters, the GALI verdict (``gali``: ``cls``, ``dimension``,
-    ``slopes``, ``late``), the NAFF count on the invariant signals, the drift of the integrals."""
+    ``slopes``, ``late``) at $T$, the NAFF count on the invariant signals and its $D$ at the horizon
+    of the count (``extra["horizon"]``; $D$ at $T$ in ``extra["diffusion_T"]``), the drift of the
+    integrals over $[0, T]$."""
 
     a: float
     b: float
@@ -87,11 +91,22 @@ class TorusOrbit:
 
     @property
     def resolved(self) -> bool:
-        """NAFF resolved: $D <$ ``REGULAR``, and no line left ambiguous by the recount unless the
-        count is above the prediction all the same (then it is an excess, as
+        """NAFF resolved at the horizon of its count (:mod:`simulate.analysis.naff_ladder`):
+        $D <$ ``REGULAR``, and no line left ambiguous by the recount unless the count is above the
+        prediction all the same (then it is an excess, as
         :func:`simulate.analysis.drawn_evidence.classify` says)."""
         excess = self.count > self.extra.get("expected", self.count)
         return bool(self.diffusion < REGULAR and (excess or not self.extra.get("ambiguous", 0)))
+
+    @property
+    def diffusion_T(self) -> float:
+        """$D$ at $T$ (the controls' separation compares the same horizon)."""
+        return float(self.extra.get("diffusion_T", self.diffusion))
+
+    @property
+    def horizon(self) -> float:
+        """The horizon of the count, in units of $T$ (1, 2 or 4)."""
+        return float(self.extra.get("horizon", 1.0))
 
 
 def _signals(n: int, ens):
@@ -106,16 +121,17 @@ def _signals(n: int, ens):
 
 
 def _measure(system, ens, n: int, K: int, seed: int, symmetric: bool, kind: str, J=(),
-             expected: int = 0):
+             expected: int = 0, factors=naff_ladder.FACTORS):
     y0 = np.concatenate([so.vec(ens.M0), ens.gamma0], -1)
     pars = np.stack([ens.a, ens.b])
     captured: dict = {}
+    signals_of = _signals(n, ens)
 
     def signals(Y, idx):
         stride = max(1, (len(Y) - 1) // 1024)
         captured[tuple(idx)] = kept.drift(kind, Y[::stride], ens.a[idx], ens.b[idx], ens.scale[idx],
                                           n, J)
-        return _signals(n, ens)(Y, idx)
+        return signals_of(Y, idx)
 
     out = gali_runs.integrate(system, y0, pars, K=K, T=T, dt=DT, seed=seed,
                               time_factor=ens.time_factor, n=n, symmetric=symmetric,
@@ -124,22 +140,14 @@ def _measure(system, ens, n: int, K: int, seed: int, symmetric: bool, kind: str,
     for idx, (d, nm) in captured.items():
         for i, k in enumerate(idx):
             drift[k], names[k] = d[i], nm[i]
+    extend = gali_runs.continuation(system, out["final"], pars, dt=DT, signals=signals_of,
+                                    time_factor=ens.time_factor)
     res = []
     for start in range(0, ens.count, 32):
-        whole, first, second = naff.lines_batch(out["signals"][start:start + 32], DT)
-        for j, (w, f, h) in enumerate(zip(whole, first, second)):
-            k = start + j
-            spec = naff.spectrum_from_lines(w, f, h)
-            extra = {"count4": int(spec.count), "ambiguous": 0, "relations": [],
-                     "expected": int(expected)}
-            if spec.diffusion < REGULAR and spec.count > expected:
-                # as every drawn row (simulate.analysis.drawn_evidence): lines beyond the
-                # |c| <= 4 lattice searched as combinations up to |c| <= 12
-                scale = max(abs(x) for x, _ in spec.lines)
-                basis, info = combinations.recount(spec.lines, spec.tolerance * scale, expected + 2,
-                                                   resolution=2 * np.pi / T)
-                spec = naff.Spectrum(spec.lines, sorted(basis), spec.diffusion, spec.tolerance)
-                extra.update(ambiguous=int(info["ambiguous"]), relations=list(info["relations"]))
+        stop = min(start + 32, ens.count)
+        counted = naff_ladder.ladder(out["signals"][start:stop], DT, T, expected,
+                                     lambda idx, t0, t1, s=start: extend(idx + s, t0, t1), factors)
+        for k, (spec, extra) in zip(range(start, stop), counted):
             res.append(TorusOrbit(float(ens.a[k]), float(ens.b[k]), float(ens.scale[k]),
                                   out["gali"][k].to_dict(), int(spec.count),
                                   [float(x) for x in spec.frequencies], float(spec.diffusion),
@@ -169,7 +177,7 @@ def torus_row(n: int, seed: int, count: int | None = None) -> list[TorusOrbit]:
     K = predicted(n) + 1
     ens = draws.draw(f"S6:torus-n{n}", "generic", n, count, seed)
     settings = {"kind": "torus", "n": n, "K": K, "T": T, "dt": DT, "tol": gali_runs.TOL,
-                "draw": ens.describe(), "seed": int(seed)}
+                "ladder": list(naff_ladder.FACTORS), "draw": ens.describe(), "seed": int(seed)}
     return _cached(f"torus-n{n}", settings,
                    lambda: _measure(hs.full(n), ens, n, K, seed, True, "full", expected=predicted(n)))
 
@@ -182,6 +190,7 @@ def control_row(seed: int, count: int | None = None) -> list[TorusOrbit]:
     J = CHAOTIC_J[4]
     ens = draws.draw("S6:torus control", "generic", 4, count, seed)
     settings = {"kind": "torus-control", "J": list(J), "K": 2, "T": T, "dt": DT,
-                "tol": gali_runs.TOL, "draw": ens.describe(), "seed": int(seed)}
+                "tol": gali_runs.TOL, "ladder": [], "draw": ens.describe(), "seed": int(seed)}
     return _cached("torus-control", settings,
-                   lambda: _measure(general_system(J), ens, 4, 2, seed, False, "control", J, expected=99))
+                   lambda: _measure(general_system(J), ens, 4, 2, seed, False, "control", J,
+                                    expected=99, factors=()))
