@@ -20,8 +20,9 @@ whose $D$ fell steeply with the horizon — NAFF's precision, not the dynamics; 
 by :mod:`simulate.analysis.naff_study`, before any run of the rows' draws with it).
 
 **Rule (fixed before the rows' runs; the GALI rule validated first by
-:mod:`simulate.analysis.gali_study`, whose numbers the method states).** Per orbit, *contradicting*:
-GALI-chaotic, or NAFF-resolved ($D < 10^{-5}$) with more than $s$ frequencies after the search of
+:mod:`simulate.analysis.gali_study`, the NAFF count over the horizon ladder by
+:mod:`simulate.analysis.naff_study`, whose numbers the method states).** Per orbit, *contradicting*:
+GALI-chaotic, or NAFF-resolved ($D < 10^{-5}$ at $T$, $2T$ or $4T$) with more than $s$ frequencies after the search of
 combinations up to $|c| \le 12$ that every drawn row makes (the first run omitted that search; it
 read 4 on one $n = 7$ orbit, and the row reports both counts). ``evidence`` iff
 (integrals) at least 98 % of the orbits keep the proved integrals; at most 2 % contradict; at most
@@ -118,8 +119,9 @@ def torus_verdict(n: int) -> Verdict:
         f"{_tally((_gali_read(r, K), r.count) for r in resolved) or 'none'}; contradicting "
         f"{100 * contradicting:.0f} %; D median {d_row:.1e}; proved integrals kept (drift <= 1e-6) on "
         f"{sum(r.drift <= 1e-6 for r in res)} of {N} over [0, T] (worst {worst.drift:.1e} in {worst.drift_of})"
-        + ("" if tr.deep() else f"; in make verify {N} orbits, in make verify-deep "
-                                f"{tr.DEEP_COUNTS[n]}"))
+        + (f"; this is the make verify-deep run ({N} orbits; make verify runs {tr.COUNTS[n]})"
+           if tr.deep() else f"; this is the make verify run ({N} orbits; make verify-deep runs "
+                             f"{tr.DEEP_COUNTS[n]})"))
     control = (f"non-symmetric n = 4 sphere J = diag{CHAOTIC_J[4]} ({len(ctl)} orbits, shared by the "
                f"n = 6, 7, 8 rows): GALI {_tally(_gali_read(r, 2) for r in ctl)}, D median {d_ctl:.1e} "
                f"({d_ctl / max(d_row, 1e-300):.0f} x the row's, both at T); separates on GALI: "
@@ -131,7 +133,7 @@ def torus_verdict(n: int) -> Verdict:
         not unmet, measured=measured, initial_conditions=N,
         tolerance=(f"heyoka Taylor tol 1e-10, batch 8, compact mode, T = {tr.T:g} at energy scale 1, "
                    f"dt = {tr.DT:g}; GALI_k, k <= {K}, from the QR of the projected unit vectors "
-                   f"every 4 samples; flat iff the log-log slope between [T/8, T/4] and [T/2, T] is "
+                   f"every {tr.STRIDE} samples; flat iff the log-log slope between [T/8, T/4] and [T/2, T] is "
                    f"> {gali.FLAT_SLOPE} and log10 GALI > {gali.FLOOR:g}; chaotic iff the slope of "
                    f"GALI_2 <= {gali.CHAOTIC_SLOPE} or log10 GALI_2 <= {gali.FLOOR:g}; NAFF "
                    "vectorised, |coefficients| <= 4, D < 1e-5 resolved at T, else at 2T, else at 4T "
