@@ -131,6 +131,8 @@ def extend(system: System, y: np.ndarray, pars: np.ndarray, *, t0: float, t1: fl
         if sig is None:
             sig = np.empty((count,) + z.shape[1:], dtype=z.dtype)
         sig[idx] = z
+    if sig is None:
+        raise ValueError("extend: no orbit to continue")
     return sig, final
 
 
