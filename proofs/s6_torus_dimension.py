@@ -13,11 +13,16 @@ count are excluded by the search of S6:first-integrals only in its boxes).
 **Measured** (:mod:`simulate.analysis.torus_rows`): on each drawn orbit GALI$_k$ on the quotient,
 $k \le s + 1$ (deviation vectors transverse to the $SO(n-1)$ orbits, :mod:`simulate.analysis.gali`):
 chaotic, or the dimension read; and the NAFF count of independent frequencies on the two
-$SO(n-1)$-invariant signals with its diffusion $D$.
+$SO(n-1)$-invariant signals with its diffusion $D$, at $T$ or, for an orbit unresolved there, at
+$2T$ or $4T$ (the horizon ladder of every drawn row, :mod:`simulate.analysis.naff_ladder`, whose
+docstring gives the measurement that chose it: at $T$ most unresolved orbits had isolated lines
+whose $D$ fell steeply with the horizon — NAFF's precision, not the dynamics; fixed, and validated
+by :mod:`simulate.analysis.naff_study`, before any run of the rows' draws with it).
 
 **Rule (fixed before the rows' runs; the GALI rule validated first by
-:mod:`simulate.analysis.gali_study`, whose numbers the method states).** Per orbit, *contradicting*:
-GALI-chaotic, or NAFF-resolved ($D < 10^{-5}$) with more than $s$ frequencies after the search of
+:mod:`simulate.analysis.gali_study`, the NAFF count over the horizon ladder by
+:mod:`simulate.analysis.naff_study`, whose numbers the method states).** Per orbit, *contradicting*:
+GALI-chaotic, or NAFF-resolved ($D < 10^{-5}$ at $T$, $2T$ or $4T$) with more than $s$ frequencies after the search of
 combinations up to $|c| \le 12$ that every drawn row makes (the first run omitted that search; it
 read 4 on one $n = 7$ orbit, and the row reports both counts). ``evidence`` iff
 (integrals) at least 98 % of the orbits keep the proved integrals; at most 2 % contradict; at most
@@ -91,8 +96,8 @@ def torus_verdict(n: int) -> Verdict:
     ambiguous = sum(r.diffusion < REGULAR and not r.resolved for r in res)   # unresolved, count <= s
     naff_exact = dc.fraction(resolved, lambda r: r.count == s)
     kept = dc.fraction(res, lambda r: r.drift <= 1e-6)
-    d_row = float(np.median([r.diffusion for r in res]))
-    d_ctl = float(np.median([r.diffusion for r in ctl]))
+    d_row = float(np.median([r.diffusion_T for r in res]))     # both at T: the same horizon
+    d_ctl = float(np.median([r.diffusion_T for r in ctl]))
     ctl_chaotic = dc.fraction(ctl, chaotic)
     separates = ctl_chaotic >= dc.CONTROL_CHAOTIC_MIN and d_ctl >= dc.SEPARATION * max(d_row, 1e-300)
     parts = {"integrals": kept >= dc.KEPT_MIN, "contradicting": contradicting <= dc.CONTRADICTING_MAX,
@@ -104,7 +109,8 @@ def torus_verdict(n: int) -> Verdict:
         f"predicted: {prediction}. Measured on {N} drawn orbits (T = {tr.T:g}, {K} deviation vectors "
         f"on the quotient): GALI {_tally(_gali_read(r, K) for r in res)} (dimension read: "
         f"{100 * gali_exact:.0f} % exactly {s}, {100 * gali_over:.0f} % above); NAFF on the two "
-        f"SO({n - 1})-invariant signals resolved (D < 1e-5) on {len(resolved)} of {N}"
+        f"SO({n - 1})-invariant signals resolved (D < 1e-5) on {len(resolved)} of {N} (at T, 2T, 4T: "
+        f"{', '.join(str(sum(r.horizon == h for r in resolved)) for h in (1.0, 2.0, 4.0))})"
         f"{f' (and {ambiguous} with D < 1e-5 but a line only an incredible combination explains: unresolved, as in every drawn row)' if ambiguous else ''}: counts "
         f"{_tally(r.count for r in resolved) or 'none'} ({100 * naff_exact:.0f} % exactly {s}; "
         f"with |c| <= 4 only: {_tally(r.extra.get('count4', r.count) for r in res if r.diffusion < 1e-5) or 'none'}"
@@ -112,24 +118,27 @@ def torus_verdict(n: int) -> Verdict:
         f"GALI and NAFF on the resolved orbits: "
         f"{_tally((_gali_read(r, K), r.count) for r in resolved) or 'none'}; contradicting "
         f"{100 * contradicting:.0f} %; D median {d_row:.1e}; proved integrals kept (drift <= 1e-6) on "
-        f"{sum(r.drift <= 1e-6 for r in res)} of {N} (worst {worst.drift:.1e} in {worst.drift_of})"
-        + ("" if tr.deep() else f"; in make verify {N} orbits, in make verify-deep "
-                                f"{tr.DEEP_COUNTS[n]}"))
+        f"{sum(r.drift <= 1e-6 for r in res)} of {N} over [0, T] (worst {worst.drift:.1e} in {worst.drift_of})"
+        + (f"; this is the make verify-deep run ({N} orbits; make verify runs {tr.COUNTS[n]})"
+           if tr.deep() else f"; this is the make verify run ({N} orbits; make verify-deep runs "
+                             f"{tr.DEEP_COUNTS[n]})"))
     control = (f"non-symmetric n = 4 sphere J = diag{CHAOTIC_J[4]} ({len(ctl)} orbits, shared by the "
                f"n = 6, 7, 8 rows): GALI {_tally(_gali_read(r, 2) for r in ctl)}, D median {d_ctl:.1e} "
-               f"({d_ctl / max(d_row, 1e-300):.0f} x the row's); separates on GALI: "
+               f"({d_ctl / max(d_row, 1e-300):.0f} x the row's, both at T); separates on GALI: "
                f"{ctl_chaotic >= dc.CONTROL_CHAOTIC_MIN}, on the diffusion: "
                f"{d_ctl >= dc.SEPARATION * max(d_row, 1e-300)}")
-    from chaplygin_nd.simulate.analysis import gali
+    from chaplygin_nd.simulate.analysis import gali, naff_study
 
     return Verdict.numerical(
         not unmet, measured=measured, initial_conditions=N,
         tolerance=(f"heyoka Taylor tol 1e-10, batch 8, compact mode, T = {tr.T:g} at energy scale 1, "
                    f"dt = {tr.DT:g}; GALI_k, k <= {K}, from the QR of the projected unit vectors "
-                   f"every 4 samples; flat iff the log-log slope between [T/8, T/4] and [T/2, T] is "
+                   f"every {tr.STRIDE} samples; flat iff the log-log slope between [T/8, T/4] and [T/2, T] is "
                    f"> {gali.FLAT_SLOPE} and log10 GALI > {gali.FLOOR:g}; chaotic iff the slope of "
                    f"GALI_2 <= {gali.CHAOTIC_SLOPE} or log10 GALI_2 <= {gali.FLOOR:g}; NAFF "
-                   "vectorised, |coefficients| <= 4, D < 1e-5 resolved (no re-run at longer T)"),
+                   "vectorised, |coefficients| <= 4, D < 1e-5 resolved at T, else at 2T, else at 4T "
+                   "(frequency-only continuations, the ladder of simulate/analysis/naff_ladder.py; "
+                   "the control at T only, its separation compares D at T)"),
         contradiction=(f"chaos (GALI) or a resolved NAFF count above {s} on more than 2 % of the "
                        f"orbits, a GALI dimension above {s} on more than 10 %, fewer than 50 % reading "
                        f"exactly {s} by GALI, or fewer than half of the NAFF-resolved orbits counting "
@@ -139,7 +148,8 @@ def torus_verdict(n: int) -> Verdict:
                 "deviation vectors (Skokos, Bountis, Antonopoulos, Physica D 231 (2007) 30) "
                 "transverse to the SO(n-1) orbits, NAFF on the invariant signals, the proved "
                 "integrals along every orbit; the GALI rule validated on systems of known torus "
-                f"dimension: {gali_study.STUDY}"),
+                f"dimension: {gali_study.STUDY}; the NAFF count over the horizon ladder validated "
+                f"likewise: {naff_study.STUDY}"),
         n_values=(n,), unmet=unmet,
         notes=("a measurement, not a proof: " + (
             f"the reduced orbits read as {s}-tori by both indicators, as the {2 * n - 2 - s} "
@@ -147,6 +157,7 @@ def torus_verdict(n: int) -> Verdict:
         data={"orbits": [{"a": r.a, "b": r.b, "scale": r.scale, "gali": _gali_read(r, K),
                           "gali_slopes": [round(v, 3) for v in r.gali["slopes"]],
                           "naff_count": r.count, "diffusion": float(f"{r.diffusion:.3g}"),
+                          "horizon": r.horizon, "diffusion_T": float(f"{r.diffusion_T:.3g}"),
                           "drift": float(f"{r.drift:.3g}")} for r in res],
               "control_orbits": [{"gali": _gali_read(r, 2), "diffusion": float(f"{r.diffusion:.3g}")}
                           for r in ctl],

@@ -12,7 +12,10 @@ the $SO(n-1)$ orbits (:mod:`simulate.analysis.gali`), sampled every $dt = 1/2$. 
 * **NAFF** on the two $SO(n-1)$-invariant signals $x + i(M\gamma)_n$, $\|ME_n\|^2 + i\langle ME_n,
   M\gamma\rangle$ (:func:`simulate.analysis.drawn_evidence.observables`; they see only the reduced
   motion): the number of independent frequencies and the diffusion $D$ (resolved iff
-  $D < 10^{-5}$); a count above $\lfloor n/2\rfloor$ is searched again with combinations up to
+  $D < 10^{-5}$), over the horizon ladder $T$, $2T$, $4T$ (:mod:`simulate.analysis.naff_ladder`:
+  an orbit unresolved at $T$ is continued without deviation vectors; the diagnosis there says why:
+  at $T$ the NAFF precision, not the dynamics, left most orbits unresolved); a count above
+  $\lfloor n/2\rfloor$ is searched again with combinations up to
   $|c| \le 12$ (:func:`simulate.analysis.combinations.recount`, as every drawn row), and a line whose
   only explanation is not credible makes the orbit unresolved (``extra["ambiguous"]``) unless the
   count is above $\lfloor n/2\rfloor$ all the same (an excess, as
@@ -24,14 +27,14 @@ the $SO(n-1)$ orbits (:mod:`simulate.analysis.gali`), sampled every $dt = 1/2$. 
 The chaos control, shared by the three rows: ``CONTROL_COUNT`` generic orbits of the non-symmetric
 $n = 4$ sphere ``CHAOTIC_J[4]`` (the control of the drawn rows), the same integration with 2 vectors
 (GALI$_2$ is all the chaos rule reads) projected onto $TP$ only (no symmetry), the same NAFF on the
-same two signals. (The general-$\mathbb J$ sphere of the row's own $n$ was measured too: at $n = 6$,
+same two signals at $T$ only (no ladder: the separation compares the medians of $D$ at $T$, the
+rows' and the control's). (The general-$\mathbb J$ sphere of the row's own $n$ was measured too: at $n = 6$,
 8 of 8 pilot orbits GALI-chaotic, but 68 s of wall time at load 8 for 8 orbits — its field is an
 $LDL^T$ solve of a $15\times 15$ system — against ~6 s at $n = 4$; not affordable in ``make verify``.)
 
 ``make verify`` runs ``COUNTS``; ``make verify-deep`` (``CHAPLYGIN_ND_DEEP=1``) runs ``DEEP_COUNTS``:
-GALI reads a dimension on all 96 orbits of each $n$, NAFF resolves fewer at $T = 4096$ (42, 48, 17
-for $n = 6, 7, 8$ in the run of the evidence page): 50 NAFF-resolved orbits per $n$ would need
-longer orbits or more of them.
+GALI reads a dimension on all 96 orbits of each $n$; NAFF resolves 42, 48 and 17 of them at $T$
+and, over the ladder, 89, 85 and 61 for $n = 6, 7, 8$ (the run of the evidence page).
 """
 
 from __future__ import annotations
@@ -40,7 +43,7 @@ import os
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
-from chaplygin_nd.simulate.analysis import combinations, draws, gali_runs, kept, naff
+from chaplygin_nd.simulate.analysis import draws, gali_runs, kept, naff_ladder
 from chaplygin_nd.simulate.analysis import result_cache as rc
 from chaplygin_nd.simulate.analysis.frequencies import REGULAR
 from chaplygin_nd.simulate.dynamics import so
@@ -49,6 +52,10 @@ __all__ = ["COUNTS", "DEEP_COUNTS", "CONTROL_COUNT", "T", "DT", "TorusOrbit", "t
            "control_row", "deep", "predicted"]
 
 T, DT = 4096.0, 0.5
+#: the deviation vectors read every STRIDE samples: 8, the sampling of the validation study
+#: (simulate.analysis.gali_study.run); the rows read every 4th before, which cost 4x the projections
+#: (a QR per sample and lane) and was not the sampling the rule was validated on
+STRIDE = 8
 COUNTS = {6: 16, 7: 16, 8: 8}
 DEEP_COUNTS = {6: 96, 7: 96, 8: 96}
 #: 24, not the 8 of the first run: that run read 7 of 8 control orbits chaotic (87.5 % < the 90 %
@@ -72,7 +79,9 @@ def predicted(n: int) -> int:
 @dataclass
 class TorusOrbit:
     """One drawn orbit: its parameters, the GALI verdict (``gali``: ``cls``, ``dimension``,
-    ``slopes``, ``late``), the NAFF count on the invariant signals, the drift of the integrals."""
+    ``slopes``, ``late``) at $T$, the NAFF count on the invariant signals and its $D$ at the horizon
+    of the count (``extra["horizon"]``; $D$ at $T$ in ``extra["diffusion_T"]``), the drift of the
+    integrals over $[0, T]$."""
 
     a: float
     b: float
@@ -87,11 +96,22 @@ class TorusOrbit:
 
     @property
     def resolved(self) -> bool:
-        """NAFF resolved: $D <$ ``REGULAR``, and no line left ambiguous by the recount unless the
-        count is above the prediction all the same (then it is an excess, as
+        """NAFF resolved at the horizon of its count (:mod:`simulate.analysis.naff_ladder`):
+        $D <$ ``REGULAR``, and no line left ambiguous by the recount unless the count is above the
+        prediction all the same (then it is an excess, as
         :func:`simulate.analysis.drawn_evidence.classify` says)."""
         excess = self.count > self.extra.get("expected", self.count)
         return bool(self.diffusion < REGULAR and (excess or not self.extra.get("ambiguous", 0)))
+
+    @property
+    def diffusion_T(self) -> float:
+        """$D$ at $T$ (the controls' separation compares the same horizon)."""
+        return float(self.extra.get("diffusion_T", self.diffusion))
+
+    @property
+    def horizon(self) -> float:
+        """The horizon of the count, in units of $T$ (1, 2 or 4)."""
+        return float(self.extra.get("horizon", 1.0))
 
 
 def _signals(n: int, ens):
@@ -106,40 +126,33 @@ def _signals(n: int, ens):
 
 
 def _measure(system, ens, n: int, K: int, seed: int, symmetric: bool, kind: str, J=(),
-             expected: int = 0):
+             expected: int = 0, factors=naff_ladder.FACTORS):
     y0 = np.concatenate([so.vec(ens.M0), ens.gamma0], -1)
     pars = np.stack([ens.a, ens.b])
     captured: dict = {}
+    signals_of = _signals(n, ens)
 
     def signals(Y, idx):
         stride = max(1, (len(Y) - 1) // 1024)
         captured[tuple(idx)] = kept.drift(kind, Y[::stride], ens.a[idx], ens.b[idx], ens.scale[idx],
                                           n, J)
-        return _signals(n, ens)(Y, idx)
+        return signals_of(Y, idx)
 
     out = gali_runs.integrate(system, y0, pars, K=K, T=T, dt=DT, seed=seed,
                               time_factor=ens.time_factor, n=n, symmetric=symmetric,
-                              signals=signals)
+                              signals=signals, stride=STRIDE)
     drift, names = np.empty(ens.count), [""] * ens.count
     for idx, (d, nm) in captured.items():
         for i, k in enumerate(idx):
             drift[k], names[k] = d[i], nm[i]
+    extend = gali_runs.continuation(system, out["final"], pars, dt=DT, signals=signals_of,
+                                    time_factor=ens.time_factor)
     res = []
     for start in range(0, ens.count, 32):
-        whole, first, second = naff.lines_batch(out["signals"][start:start + 32], DT)
-        for j, (w, f, h) in enumerate(zip(whole, first, second)):
-            k = start + j
-            spec = naff.spectrum_from_lines(w, f, h)
-            extra = {"count4": int(spec.count), "ambiguous": 0, "relations": [],
-                     "expected": int(expected)}
-            if spec.diffusion < REGULAR and spec.count > expected:
-                # as every drawn row (simulate.analysis.drawn_evidence): lines beyond the
-                # |c| <= 4 lattice searched as combinations up to |c| <= 12
-                scale = max(abs(x) for x, _ in spec.lines)
-                basis, info = combinations.recount(spec.lines, spec.tolerance * scale, expected + 2,
-                                                   resolution=2 * np.pi / T)
-                spec = naff.Spectrum(spec.lines, sorted(basis), spec.diffusion, spec.tolerance)
-                extra.update(ambiguous=int(info["ambiguous"]), relations=list(info["relations"]))
+        stop = min(start + 32, ens.count)
+        counted = naff_ladder.ladder(out["signals"][start:stop], DT, T, expected,
+                                     lambda idx, t0, t1, s=start: extend(idx + s, t0, t1), factors)
+        for k, (spec, extra) in zip(range(start, stop), counted):
             res.append(TorusOrbit(float(ens.a[k]), float(ens.b[k]), float(ens.scale[k]),
                                   out["gali"][k].to_dict(), int(spec.count),
                                   [float(x) for x in spec.frequencies], float(spec.diffusion),
@@ -168,8 +181,8 @@ def torus_row(n: int, seed: int, count: int | None = None) -> list[TorusOrbit]:
     count = (DEEP_COUNTS if deep() else COUNTS)[n] if count is None else count
     K = predicted(n) + 1
     ens = draws.draw(f"S6:torus-n{n}", "generic", n, count, seed)
-    settings = {"kind": "torus", "n": n, "K": K, "T": T, "dt": DT, "tol": gali_runs.TOL,
-                "draw": ens.describe(), "seed": int(seed)}
+    settings = {"kind": "torus", "n": n, "K": K, "T": T, "dt": DT, "stride": STRIDE, "tol": gali_runs.TOL,
+                "ladder": list(naff_ladder.FACTORS), "draw": ens.describe(), "seed": int(seed)}
     return _cached(f"torus-n{n}", settings,
                    lambda: _measure(hs.full(n), ens, n, K, seed, True, "full", expected=predicted(n)))
 
@@ -181,7 +194,8 @@ def control_row(seed: int, count: int | None = None) -> list[TorusOrbit]:
     count = (DEEP_CONTROL_COUNT if deep() else CONTROL_COUNT) if count is None else count
     J = CHAOTIC_J[4]
     ens = draws.draw("S6:torus control", "generic", 4, count, seed)
-    settings = {"kind": "torus-control", "J": list(J), "K": 2, "T": T, "dt": DT,
-                "tol": gali_runs.TOL, "draw": ens.describe(), "seed": int(seed)}
+    settings = {"kind": "torus-control", "J": list(J), "K": 2, "T": T, "dt": DT, "stride": STRIDE,
+                "tol": gali_runs.TOL, "ladder": [], "draw": ens.describe(), "seed": int(seed)}
     return _cached("torus-control", settings,
-                   lambda: _measure(general_system(J), ens, 4, 2, seed, False, "control", J, expected=99))
+                   lambda: _measure(general_system(J), ens, 4, 2, seed, False, "control", J,
+                                    expected=99, factors=()))
