@@ -30,7 +30,9 @@ $n = 4$ sphere ``CHAOTIC_J[4]`` (the control of the drawn rows), the same integr
 same two signals at $T$ only (no ladder: the separation compares the medians of $D$ at $T$, the
 rows' and the control's). (The general-$\mathbb J$ sphere of the row's own $n$ was measured too: at $n = 6$,
 8 of 8 pilot orbits GALI-chaotic, but 68 s of wall time at load 8 for 8 orbits — its field is an
-$LDL^T$ solve of a $15\times 15$ system — against ~6 s at $n = 4$; not affordable in ``make verify``.)
+$LDL^T$ solve of a $15\times 15$ system — against ~6 s at $n = 4$. That figure predates the
+$n \times n$ solve for $v = \Omega\gamma$ in :mod:`simulate.analysis.control`, which runs the $n = 6$
+control about 7× and compiles it 3× faster; moving the control to the row's own $n$ is not done.)
 
 ``make verify`` runs ``COUNTS``; ``make verify-deep`` (``CHAPLYGIN_ND_DEEP=1``) runs ``DEEP_COUNTS``:
 GALI reads a dimension on all 96 orbits of each $n$; NAFF resolves 42, 48 and 17 of them at $T$
