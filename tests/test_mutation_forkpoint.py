@@ -133,3 +133,20 @@ def test_the_verdicts_are_those_of_rows_run_whole():
     result = compare(("model.L_matrix", "vertical.chi_coefficient"))
     assert result["mutants"] >= 10
     assert result["verdicts differ"] == []
+
+
+def test_on_fork_runs_in_each_copy_before_the_mutant(tmp_path, monkeypatch):
+    log = tmp_path / "log"
+    monkeypatch.setenv("FORKPOINT_TEST_LOG", str(log))
+
+    def mark():
+        with open(log, "a", encoding="utf-8") as out:
+            out.write("copy\n")
+
+    parked = forkpoint.Parked(f, _guarded, on_fork=mark)
+    try:
+        codes = [_mutant(src) for src in MUTANTS[:2]]
+        assert [parked.run(c) for c in codes] == [_in_place(c) for c in codes]
+    finally:
+        parked.close()
+    assert log.read_text().count("copy") == 2

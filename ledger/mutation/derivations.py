@@ -119,7 +119,7 @@ def _evaluate(task: Task) -> dict:
         if task.target == "runtime":
             record = mr.evaluate(fn, code, m.function, task.rows, record)
         elif not task.rows:
-            record = mr.evaluate(fn, code, m.function, task.tests, record)
+            record = mr.evaluate(fn, code, m.function, task.tests, record, FORK)
         else:
             record = _decide_by_rows(task, fn, code, record)
         if record["outcome"] == "survived":  # the last resort: the slow tests of its module
@@ -196,9 +196,10 @@ def _tests_reaching(key: str, fn) -> tuple[str, ...]:
     return _TESTS[key]
 
 
-#: Whether a row is run with a mutant from a process parked at the function's first call
-#: (:mod:`.forkpoint`); ``False``: in the worker itself, from the row's start (the same answer,
-#: slower: ``chaplygin bench mutation`` runs both side by side).
+#: Whether a row (or, for a derivation no row reaches, its tests) is run with a mutant from a
+#: process parked at the function's first call (:mod:`.forkpoint`); ``False``: in the worker
+#: itself, from the start (the same answer, slower: ``chaplygin bench mutation`` runs both side
+#: by side).
 FORK = True
 #: This worker's parked processes ((function, row) -> :class:`.forkpoint.Parked`), of the current
 #: function only (tasks come grouped by function; :func:`end_group` ends them).
@@ -206,10 +207,12 @@ _PARKED: dict[tuple[str, str], forkpoint.Parked] = {}
 
 
 def end_group() -> None:
-    """End this worker's parked processes (after a group of one function's mutants)."""
+    """End this worker's parked processes, rows' and tests' (after a group of one function's
+    mutants)."""
     for parked in _PARKED.values():
         parked.close()
     _PARKED.clear()
+    mr.end_parked()
 
 
 def _row_from_fork(key: str, fn, code, check: str, base, budget: float) -> tuple | None:

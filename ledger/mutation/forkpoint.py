@@ -67,7 +67,8 @@ class Parked:
     and stopped at the first call of ``fn``; :meth:`run` finishes it with a mutant, once per
     mutant, each in a fork of that stopped process. :meth:`close` ends the parked process."""
 
-    def __init__(self, fn: FunctionType, run: Callable[[], object]):
+    def __init__(self, fn: FunctionType, run: Callable[[], object],
+                 on_fork: Callable[[], object] | None = None):
         self.first_call: float | None = None  # CPU seconds of the row before the first call
         self._dead = False
         cmd_r, self._cmd = os.pipe()
@@ -78,7 +79,7 @@ class Parked:
         if pid == 0:  # the parked process: it never returns from here
             os.close(self._cmd)
             os.close(self._res)
-            _parked_main(fn, run, cmd_r, res_w)
+            _parked_main(fn, run, cmd_r, res_w, on_fork)
         self.pid = pid
         os.close(cmd_r)
         os.close(res_w)
@@ -144,8 +145,9 @@ def _wait(pid: int, seconds: float) -> bool:
     return False
 
 
-def _parked_main(fn: FunctionType, run, cmd_r: int, res_w: int) -> None:
-    """The parked process: run ``run()`` with ``fn``'s first call caught; serve mutants there."""
+def _parked_main(fn: FunctionType, run, cmd_r: int, res_w: int, on_fork=None) -> None:
+    """The parked process: run ``run()`` with ``fn``'s first call caught; serve mutants there
+    (``on_fork()`` is called first thing in each copy)."""
     from chaplygin_nd import processes
 
     status = 1
@@ -171,6 +173,8 @@ def _parked_main(fn: FunctionType, run, cmd_r: int, res_w: int) -> None:
                 if child == 0:
                     processes.die_with_parent(os.getppid())
                     state["copy"] = True
+                    if on_fork is not None:
+                        on_fork()
                     fn.__code__ = code
                     if budget:
                         signal.setitimer(signal.ITIMER_REAL, budget)
