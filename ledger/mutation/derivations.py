@@ -296,7 +296,7 @@ def _decide_by_rows(task: Task, fn, code, record: dict) -> dict:
             if check not in record.get("not replayed", {}):
                 differing.append(check)
         changed, why = _run_check(fn, code, original, check, base, max(seconds, rec.seconds),
-                                  m.function)
+                                  key=m.function)
         if changed:
             record.update(outcome="killed", row=check, reason=why)
             return record
