@@ -324,9 +324,10 @@ def kill(fn, code, key: str, tests: tuple[str, ...], fork: bool = False) -> str 
     return note if status != 0 else None
 
 
-#: A copy of the parked test session that has not answered this long is killed, and the tests
-#: are then run in the worker as without ``fork`` (a budget far above any test of the quick suite:
-#: the test path has no budget of its own, so none is imposed here).
+#: A copy of the parked test session that has not answered this long is killed and the mutant
+#: counted killed, as a row past its budget is (far above what the quick tests that reach one
+#: function take; run in the worker, such a mutant holds it with no limit: seen with
+#: ``search.multimodular.run``, a worker waiting on the tests' process pool for over ten minutes).
 TESTS_GRACE = 600.0
 #: This worker's parked test sessions ((function, tests) -> forkpoint.Parked); :func:`end_parked`.
 _PARKED: dict = {}
@@ -370,6 +371,8 @@ def _tests_from_fork(fn, code, key: str, tests: tuple[str, ...]) -> tuple[int, s
     answer = _PARKED[(key, tests)].run(code, budget_grace=TESTS_GRACE)
     if isinstance(answer, tuple) and len(answer) == 2 and isinstance(answer[0], int):
         return answer
+    if isinstance(answer, tuple) and answer[:1] == (("timeout",),):  # in the worker it never ended
+        return 1, f"the tests ran past {TESTS_GRACE:.0f} s with the mutant in place (stopped)"
     return None
 
 
