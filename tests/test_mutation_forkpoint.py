@@ -150,3 +150,15 @@ def test_on_fork_runs_in_each_copy_before_the_mutant(tmp_path, monkeypatch):
     finally:
         parked.close()
     assert log.read_text().count("copy") == 2
+
+
+def test_two_parked_processes_close_in_any_order(tmp_path, monkeypatch):
+    """The second parked process holds a copy of the first one's command pipe (forked after
+    it): closing the first must still end it (it once waited there for good)."""
+    monkeypatch.setenv("FORKPOINT_TEST_LOG", str(tmp_path / "log"))
+    first = forkpoint.Parked(f, _guarded)
+    second = forkpoint.Parked(f, _guarded)
+    start = time.perf_counter()
+    first.close()
+    second.close()
+    assert time.perf_counter() - start < 10

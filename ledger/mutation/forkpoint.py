@@ -117,7 +117,9 @@ class Parked:
             return None
 
     def close(self) -> None:
-        """End the parked process (and wait for it)."""
+        """End the parked process (and wait for it). It is killed, not told: a parked process
+        forked later from the same worker holds a copy of this one's command pipe, so closing
+        the pipe here is no end of file there."""
         if self._dead:
             return
         self._dead = True
@@ -126,10 +128,18 @@ class Parked:
                 os.close(fd)
             except OSError:
                 pass
+        _kill(self.pid)
         try:
             os.waitpid(self.pid, 0)
         except ChildProcessError:
             pass
+
+
+def _kill(pid: int) -> None:
+    try:
+        os.kill(pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass
 
 
 def _wait(pid: int, seconds: float) -> bool:
