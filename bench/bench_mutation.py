@@ -23,7 +23,7 @@ import tempfile
 import time
 from pathlib import Path
 
-FUNCTIONS = ("search.known_integrals.products", "search.multimodular.run",
+FUNCTIONS = ("search.known_integrals.products", "search.weights.tensor_product",
              "search.sampled_field.axisymmetric", "family.wedge_integrals.interior",
              "family.euler_jacobi_n5.field")
 
