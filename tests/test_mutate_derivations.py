@@ -303,7 +303,7 @@ def test_a_replay_that_never_returns_is_cut_at_the_budget_and_the_check_is_run(m
     monkeypatch.setattr(md, "_recording", lambda *a: Recording(calls=[((), {}, 1, (), {})]))
     monkeypatch.setattr(md, "replay", forever)
     monkeypatch.setattr(md, "_run_check",
-                        lambda fn, code, original, check, base, seconds: (ran.append(check) or True,
+                        lambda fn, code, original, check, base, seconds, key='': (ran.append(check) or True,
                                                                           "ran past its budget"))
     fn = md.functions("derivations")["reduction.reduced_n4.horizontal_frequency_squared"]
     m = operators.all_mutants("reduction.reduced_n4.horizontal_frequency_squared", fn)[0][0]

@@ -44,7 +44,7 @@ from types import FunctionType
 from typing import Any
 
 from chaplygin_nd.ledger.catalog import ROOT
-from chaplygin_nd.ledger.mutation import cache_scope, checks
+from chaplygin_nd.ledger.mutation import cache_scope, checks, forkpoint
 from chaplygin_nd.ledger.mutation import runtime as mr
 from chaplygin_nd.ledger.mutation.argued import argued
 from chaplygin_nd.ledger.mutation.equivalence import settle
@@ -119,7 +119,7 @@ def _evaluate(task: Task) -> dict:
         if task.target == "runtime":
             record = mr.evaluate(fn, code, m.function, task.rows, record)
         elif not task.rows:
-            record = mr.evaluate(fn, code, m.function, task.tests, record)
+            record = mr.evaluate(fn, code, m.function, task.tests, record, FORK)
         else:
             record = _decide_by_rows(task, fn, code, record)
         if record["outcome"] == "survived":  # the last resort: the slow tests of its module
@@ -196,8 +196,47 @@ def _tests_reaching(key: str, fn) -> tuple[str, ...]:
     return _TESTS[key]
 
 
-def _run_check(fn, code, original, check: str, base, seconds: float) -> tuple[bool, str]:
+#: Whether a row (or, for a derivation no row reaches, its tests) is run with a mutant from a
+#: process parked at the function's first call (:mod:`.forkpoint`); ``False``: in the worker
+#: itself, from the start (the same answer, slower: ``chaplygin bench mutation`` runs both side
+#: by side).
+FORK = True
+#: This worker's parked processes ((function, row) -> :class:`.forkpoint.Parked`), of the current
+#: function only (tasks come grouped by function; :func:`end_group` ends them).
+_PARKED: dict[tuple[str, str], forkpoint.Parked] = {}
+
+
+def end_group() -> None:
+    """End this worker's parked processes, rows' and tests' (after a group of one function's
+    mutants)."""
+    for parked in _PARKED.values():
+        parked.close()
+    _PARKED.clear()
+    mr.end_parked()
+
+
+def _row_from_fork(key: str, fn, code, check: str, base, budget: float) -> tuple | None:
+    """``checks.run_row(check, budget, base)`` with ``code`` in ``fn``, run from the process parked
+    at ``fn``'s first call in that row (:mod:`.forkpoint`), or None (then run in the worker)."""
+    if not FORK or check == GENERATED_CHECK:
+        return None
+    if any(k != key for k, _ in _PARKED):
+        end_group()
+    if (key, check) not in _PARKED:
+        cache_scope.clear()  # the parked process starts from the state a run here would
+        _PARKED[(key, check)] = forkpoint.Parked(fn, lambda: checks.run_row(check, budget, base))
+    answer = _PARKED[(key, check)].run(code)
+    return answer if isinstance(answer, tuple) and len(answer) == 2 else None
+
+
+def _run_check(fn, code, original, check: str, base, seconds: float, key: str = ""
+               ) -> tuple[bool, str]:
     """Run one check with the mutant ``code`` in place of ``original``: (changed, why)."""
+    budget = max(checks.MIN_BUDGET, checks.BUDGET_FACTOR * seconds)
+    answer = _row_from_fork(key, fn, code, check, base, budget) if key else None
+    if answer is not None:
+        got, note = answer
+        return got != base, note or (checks.difference(base, got) if got != base else "")
     fn.__code__ = code
     try:
         if check == GENERATED_CHECK:
@@ -256,7 +295,8 @@ def _decide_by_rows(task: Task, fn, code, record: dict) -> dict:
                 continue
             if check not in record.get("not replayed", {}):
                 differing.append(check)
-        changed, why = _run_check(fn, code, original, check, base, max(seconds, rec.seconds))
+        changed, why = _run_check(fn, code, original, check, base, max(seconds, rec.seconds),
+                                  key=m.function)
         if changed:
             record.update(outcome="killed", row=check, reason=why)
             return record

@@ -56,10 +56,13 @@ def evaluate_group(tasks: list[Task]) -> list[dict]:
     """Decide the mutants of one group in this worker, in order; each record is also sent to the
     parent as soon as it is decided (:data:`_DECIDED`)."""
     out = []
-    for t in tasks:
-        out.append(derivations.evaluate(t))
-        if _DECIDED is not None:
-            _DECIDED.put(out[-1])
+    try:
+        for t in tasks:
+            out.append(derivations.evaluate(t))
+            if _DECIDED is not None:
+                _DECIDED.put(out[-1])
+    finally:
+        derivations.end_group()
     return out
 
 

@@ -204,7 +204,9 @@ def test_map(functions: dict[str, FunctionType] | None = None,
              *(runtime_tests() if files is None else files)], plugins=[watch], none_ok=slow)
     out: dict[str, list[tuple[str, float]]] = {key: [] for key in functions}
     for test, (seconds, calls) in reached.items():
-        for key in () if test in failed else calls:
+        # calls may name functions not watched here: a cache hit is credited with everything its
+        # computation called in any earlier watched run of this process (reach.CALLEES)
+        for key in () if test in failed else set(calls) & set(out):
             out[key].append((test, round(seconds, 3)))
     return {key: sorted(tests, key=lambda t: (t[1], t[0])) for key, tests in out.items()}
 
@@ -313,11 +315,65 @@ def _pytest_with(fn, code, key: str, args: list[str], none_ok: bool = False) -> 
         clear()
 
 
-def kill(fn, code, key: str, tests: tuple[str, ...]) -> str | None:
+def kill(fn, code, key: str, tests: tuple[str, ...], fork: bool = False) -> str | None:
     """Run ``tests`` (fastest first) with ``code`` in place of ``fn``'s, ``pytest -x``: the first
-    failure's line, or None when every test passes."""
-    status, note = _pytest_with(fn, code, key, ["-x", *tests])
+    failure's line, or None when every test passes. ``fork``: from the test session parked at
+    ``fn``'s first call (:func:`_tests_from_fork`) when it answers."""
+    answer = _tests_from_fork(fn, code, key, tests) if fork else None
+    status, note = answer if answer is not None else _pytest_with(fn, code, key, ["-x", *tests])
     return note if status != 0 else None
+
+
+#: A copy of the parked test session that has not answered this long is killed and the mutant
+#: counted killed, as a row past its budget is (far above what the quick tests that reach one
+#: function take; run in the worker, such a mutant holds it with no limit: seen with
+#: ``search.multimodular.run``, a worker waiting on the tests' process pool for over ten minutes).
+TESTS_GRACE = 600.0
+#: This worker's parked test sessions ((function, tests) -> forkpoint.Parked); :func:`end_parked`.
+_PARKED: dict = {}
+
+
+def end_parked() -> None:
+    """End this worker's parked test sessions."""
+    for parked in _PARKED.values():
+        parked.close()
+    _PARKED.clear()
+
+
+def _own_cache_folder() -> None:
+    """In a copy of a parked test session: an empty ``$CHAPLYGIN_ND_CACHE`` of its own (what an
+    earlier copy, under another mutant, wrote to the session's folder must not be read)."""
+    from chaplygin_nd.cache import ENV
+
+    parent = os.environ.get(WORK_ENV) or tempfile.gettempdir()
+    os.environ[ENV] = tempfile.mkdtemp(prefix="mutant-", dir=parent)
+
+
+def _tests_from_fork(fn, code, key: str, tests: tuple[str, ...]) -> tuple[int, str] | None:
+    """``pytest -x tests`` with ``code`` in place of ``fn``'s, as :func:`_pytest_with` runs it,
+    but from a session run unmutated up to ``fn``'s first call and parked there
+    (:mod:`.forkpoint`): (status, first failure's line), or None (then run in the worker). Not for
+    ``runtime.jit_cache`` (its tests need a fresh cache root per mutant)."""
+    from chaplygin_nd.ledger.mutation import forkpoint
+    from chaplygin_nd.ledger.mutation.cache_scope import clear
+
+    if key.startswith("runtime.jit_cache."):
+        return None
+    if (key, tests) not in _PARKED:
+        end_parked()
+        clear()
+
+        def session():
+            with _cache_root(False):
+                return _pytest(["-x", *tests])
+
+        _PARKED[(key, tests)] = forkpoint.Parked(fn, session, on_fork=_own_cache_folder)
+    answer = _PARKED[(key, tests)].run(code, budget_grace=TESTS_GRACE)
+    if isinstance(answer, tuple) and len(answer) == 2 and isinstance(answer[0], int):
+        return answer
+    if isinstance(answer, tuple) and answer[:1] == (("timeout",),):  # in the worker it never ended
+        return 1, f"the tests ran past {TESTS_GRACE:.0f} s with the mutant in place (stopped)"
+    return None
 
 
 def _runnable(test: str, files: tuple[str, ...]) -> str:
@@ -358,7 +414,7 @@ def kill_slow(fn, code, key: str) -> str | None:
     return note if status != 0 else None
 
 
-def evaluate(fn, code, key: str, tests: tuple[str, ...], record: dict) -> dict:
+def evaluate(fn, code, key: str, tests: tuple[str, ...], record: dict, fork: bool = False) -> dict:
     """Decide one mutant (``code`` for ``fn``) against ``tests`` alone (the ids that reach it,
     fastest first); fills and returns ``record``. The caller clears the functools caches."""
     from chaplygin_nd.ledger.mutation.cache_scope import clear
@@ -369,7 +425,7 @@ def evaluate(fn, code, key: str, tests: tuple[str, ...], record: dict) -> dict:
                              "not run per mutant)"
                       + ("" if key.startswith("runtime.") else " and no ledger row reaches it"))
         return record
-    note = kill(fn, code, key, tests)
+    note = kill(fn, code, key, tests, fork)
     if note is not None:
         record.update(outcome="killed", row="tests", reason=note)
         return record
