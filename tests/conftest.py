@@ -35,6 +35,41 @@ def _session_heyoka_cache(tmp_path_factory):
         os.environ[heyoka_cache.ENV] = old
 
 
+@pytest.fixture(scope="session", autouse=True)
+def _session_temp_dir(tmp_path_factory):
+    """``TMPDIR`` (and :mod:`tempfile`'s cached choice) is one folder of pytest's base temporary
+    folder for the whole session, in this process and in every process the tests start: what
+    multiprocessing (``pymp-*``), Dask (``dask-scratch-space``), a mutation worker or a killed
+    command leaves there goes with pytest's own folder (removed after a green run:
+    ``tmp_path_retention_policy`` in pyproject.toml), never into the user's ``/tmp``."""
+    import tempfile
+
+    folder = str(tmp_path_factory.mktemp("tmp"))
+    saved_env, saved_cached = os.environ.get("TMPDIR"), tempfile.tempdir
+    os.environ["TMPDIR"], tempfile.tempdir = folder, folder
+    yield
+    tempfile.tempdir = saved_cached
+    if saved_env is None:
+        os.environ.pop("TMPDIR", None)
+    else:
+        os.environ["TMPDIR"] = saved_env
+
+
+@pytest.hookimpl(trylast=True)
+def pytest_sessionfinish(session):
+    """After a green run pytest has removed its base folder (``tmp_path_retention_policy``); its
+    per-user parent ``pytest-of-<user>`` goes too when nothing else is left in it."""
+    factory = getattr(session.config, "_tmp_path_factory", None)
+    basetemp = getattr(factory, "_basetemp", None)
+    if hasattr(session.config, "workerinput") or basetemp is None or basetemp.exists():
+        return
+    if basetemp.parent.name.startswith("pytest-of-"):
+        try:
+            basetemp.parent.rmdir()  # only if empty: another run's folders stay
+        except OSError:
+            pass
+
+
 @pytest.fixture(scope="session")
 def installed(tmp_path_factory):
     """(wheel, install folder, scratch folder): built and installed once per pytest process (used by
