@@ -13,7 +13,8 @@ by CPU time on boxes $n = 3..6$, $d \le 2$ (bench/bench_fields_cost.py reprints 
 * the conditions at the sample points (values and first derivatives of every column,
   $[X, Q]$ at a point; $P$ points, but at these sizes each point's fixed part dominates):
   $c_4 C N^{3/2}$;
-* the kernel over $\mathbb{Q}$ (FLINT ``fmpq_mat.rref``): $c_5 R C^2$;
+* the kernel over $\mathbb{Q}$ (FLINT ``fmpq_mat.rref`` of $R \approx 2C$ rows, entries growing
+  with $N$): $c_5 C^2 N$ (milliseconds at every box measured);
 * the exact orbit-direction proofs, one per kernel vector that is not a trivial column: each
   converts $Q(I)$ for the :func:`invariants` to SymPy and reduces it modulo the sphere, about
   $c_6$ seconds per term. Their number is known only after the kernel, so the estimate gives the
@@ -39,12 +40,12 @@ FIELDS = 34
 #: the stages of symmetry_fields.search_fields, in order, as its FieldBox.stages names them
 STAGES = ("columns", "column rank", "syzygy proofs", "conditions", "kernel", "orbit proofs", "generic")
 #: CPU seconds: fixed, per N^2 and per C N of the columns; per C N^2 of the syzygy proofs; per
-#: C N^1.5 of the conditions; per R C^2 of the kernel; per term of an orbit-direction proof, and
+#: C N^1.5 of the conditions; per C^2 N of the kernel; per term of an orbit-direction proof, and
 #: terms per N^3 (d + 1) of one candidate (fitted on n = 3..5, d <= 1, see the module docstring)
 C_FIXED, C_COL_N2, C_COL_CN = 0.2, 4.4e-3, 2.9e-4
 C_SYZ = 3.5e-5
 C_COND = 3e-4
-C_KERNEL = 1e-8
+C_KERNEL = 1e-7
 C_TERM = 2.7e-3
 T_PER_N3 = 3.1
 
@@ -105,7 +106,7 @@ def field_cost(n: int, degree: int) -> FieldCost:
         "column rank": 0.0,
         "syzygy proofs": C_SYZ * C * N * N,
         "conditions": C_COND * C * N**1.5,
-        "kernel": C_KERNEL * R * C * C,
+        "kernel": C_KERNEL * C * C * N,
         "generic": 0.0,
     }
     candidate = C_TERM * T_PER_N3 * N**3 * (degree + 1)

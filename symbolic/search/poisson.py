@@ -43,6 +43,7 @@ from chaplygin_nd.symbolic.axisymmetric import Delta, mass_tensor
 from chaplygin_nd.symbolic.exact.points import generator, skew_matrix, sphere_point
 from chaplygin_nd.symbolic.model import angular_velocity
 from chaplygin_nd.symbolic.search import bivector_ansatz as ba
+from chaplygin_nd.symbolic.search.cost import StageClock
 from chaplygin_nd.symbolic.search.point_values import bivector_values as _values
 from chaplygin_nd.symbolic.search.point_values import dH_gamma
 from chaplygin_nd.symbolic.search.point_values import fq as _fq
@@ -124,6 +125,7 @@ class BoxResult:
     free: int = -1              # dimension of the sampled affine space (-1: empty)
     jacobi_equations: int = 0
     groebner: list = field(default_factory=list)
+    stages: dict = field(default_factory=dict)  # CPU seconds per stage (cost.StageClock)
     outcome: str = ""           # "excluded (linear)", "excluded (Jacobi)", "solutions"
     generic: str = ""           # over which (a, b) an exclusion holds (generic_extension.py)
     seconds: float = 0.0
@@ -221,13 +223,16 @@ def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None,
     t0 = time.perf_counter()
     a, b = sp.Rational(a), sp.Rational(b)
     res = BoxResult(n, degree, e, a, b)
+    clock = StageClock(res.stages)
     ans = ba.ansatz(n, degree)
     fb = flint_bivectors(ans)
+    clock("columns")
     res.unknowns = len(fb)
     key = (n, degree, seed)
     if key not in _COLUMNS:     # the box's columns and their values do not depend on (a, b) or e
         _COLUMNS[key] = _independent_columns(ans, fb, seed)
     cols, res.syzygies = _COLUMNS[key]
+    clock("column rank and syzygy proofs")
     res.independent = len(cols)
     N = len(ans.coords)
     m = N - n
@@ -249,7 +254,9 @@ def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None,
         for i in range(m):
             rows.append([sum((V[i][m + k] * gg[k] for k in range(n)), flint.fmpq(0)) for V in Vs])
             rhs.append(flint.fmpq(0))
+    clock("conditions")
     part, kernel = _rref_solve(rows, rhs)
+    clock("kernel")
     if progress:
         progress(f"  n={n} d={degree} e={e}: linear stage done ({time.perf_counter() - t0:.1f} s)")
     ctx = _ctx(ans.coords)
@@ -257,6 +264,7 @@ def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None,
         res.linear, res.outcome = "inconsistent", "excluded (linear)"
         if generic:
             _generic(res, fb, cols, seed)
+        clock("generic")
         res.seconds = time.perf_counter() - t0
         return res
     res.free = len(kernel)
@@ -265,17 +273,20 @@ def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None,
     Ks = [_combine(fb, cols, k, ctx) for k in kernel]
     eqs, ring_gens = jacobi_equations(n, a, b, P0, Ks, seed, ctx)
     res.jacobi_equations = len(eqs)
+    clock("jacobi equations")
     if not eqs:
         gb = []
     else:
         gb = list(sp.groebner(eqs, *ring_gens, order="grevlex", domain=sp.QQ).exprs)
     res.groebner = gb
+    clock("groebner")
     res.outcome = "excluded (Jacobi)" if gb == [1] else "solutions"
     if res.outcome == "excluded (Jacobi)" and generic:
         _generic(res, fb, cols, seed)
     if res.outcome == "solutions":
         res.solution = {"groebner": gb, "gens": ring_gens, "cols": cols, "part": part,
                         "kernel": kernel, "ansatz": ans}
+    clock("generic")
     res.seconds = time.perf_counter() - t0
     return res
 

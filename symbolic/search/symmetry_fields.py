@@ -39,6 +39,7 @@ from chaplygin_nd.symbolic.axisym_inverse import ansatz_terms, inverse_numerator
 from chaplygin_nd.symbolic.axisymmetric import Delta, mass_tensor
 from chaplygin_nd.symbolic.model import L_matrix, L_matrix_derivative
 from chaplygin_nd.symbolic.search import bivector_ansatz as ba
+from chaplygin_nd.symbolic.search.cost import StageClock
 from chaplygin_nd.symbolic.search.poisson import _ctx, _fq, _points, _q, _rref_solve, _sphere_reduce
 
 __all__ = ["field_blocks", "FieldBox", "search_fields", "estimate", "invariants"]
@@ -228,7 +229,7 @@ def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
     t0 = time.perf_counter()
     a, b, s, tau = sp.Rational(a), sp.Rational(b), sp.Rational(s), sp.Rational(tau)
     res = FieldBox(n, degree, s, tau, stages={})
-    clock = _Clock(res.stages)
+    clock = StageClock(res.stages)
     z, cols, labels, triv = _columns(n, degree, a, b)
     N = len(z)
     m = N - n
@@ -300,19 +301,6 @@ def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
     clock("generic")
     res.seconds = time.perf_counter() - t0
     return res
-
-
-class _Clock:
-    """Adds the CPU time since the last call to ``stages[name]`` (time.process_time: CPU, not
-    wall, so the figures hold on a loaded machine)."""
-
-    def __init__(self, stages: dict):
-        self.stages, self.t = stages, time.process_time()
-
-    def __call__(self, name: str) -> None:
-        t = time.process_time()
-        self.stages[name] = self.stages.get(name, 0.0) + t - self.t
-        self.t = t
 
 
 def _independent(z, cols, seed, n, labels=None, clock=None) -> tuple[list[int], bool]:
