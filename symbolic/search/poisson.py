@@ -142,14 +142,10 @@ class BoxResult:
 
 
 def estimate(n: int, degree: int) -> str:
-    """A one-line size and time estimate of a box before it runs (scale measured on a loaded
-    2-core machine: n = 4, d = 6 about 18 s; n = 5, d = 2 about 12 s)."""
-    blocks = len(ba.MM_NAMES) + len(ba.MG_NAMES)
-    unknowns = blocks * (degree + 1)
-    N = n * (n - 1) // 2 + n
-    cost = unknowns * N * N * 1e-3 + 1
-    return (f"n={n} degree={degree}: {unknowns} unknowns, {N}x{N} bivectors, "
-            f"about {cost:.0f} s and < 1 GB")
+    """A one-line size and CPU-time estimate of a box, stage by stage (symbolic/search/poisson_cost.py)."""
+    from chaplygin_nd.symbolic.search.poisson_cost import poisson_cost
+
+    return poisson_cost(n, degree).line()
 
 
 def _rref_solve(rows: list[list], rhs: list) -> tuple[list | None, list[list]]:
