@@ -99,5 +99,6 @@ def main(argv: list[str]) -> int:
         rows.append(r.as_dict())
         print(f"n={args.n} d={args.degree} s={s} tau={tau}: {r.independent} unknowns, {r.solutions} "
               f"solutions, {r.trivial} trivial ({r.orbit_proved} orbit-direction proved), excess "
-              f"{r.excess}: {r.outcome}{_over(r.generic)}, {r.seconds:.1f} s", flush=True)
+              f"{r.excess}: {r.outcome}{_over(r.generic)}, {r.seconds:.1f} s ({sum(r.stages.values()):.1f} s CPU)",
+              flush=True)
     return write_json(args.json, rows)

@@ -95,5 +95,6 @@ def main(argv: list[str]) -> int:
             rows.append(r.as_dict())
             gb = [str(g) for g in r.groebner][:6]
             print(f"n={args.n} d={d} e={e} a={a} b={b}: {r.independent} unknowns, linear "
-                  f"{r.linear}, Groebner {gb}, {r.outcome}{_over(r.generic)}, {r.seconds:.1f} s", flush=True)
+                  f"{r.linear}, Groebner {gb}, {r.outcome}{_over(r.generic)}, {r.seconds:.1f} s "
+                  f"({sum(r.stages.values()):.1f} s CPU)", flush=True)
     return write_json(args.json, rows)
