@@ -26,7 +26,7 @@ def test_the_field_estimate_grows_with_n_and_d_stage_by_stage():
         assert e.columns == fc.FIELDS * (d + 1) - d and e.coordinates == n * (n - 1) // 2 + n
         for bigger in (fc.field_cost(n + 1, d), fc.field_cost(n, d + 1)):
             assert all(bigger.stages[k] >= e.stages[k] for k in fc.STAGES)
-            assert bigger.sure > e.sure and bigger.candidate > e.candidate
+            assert bigger.sure > e.sure and bigger.candidate >= e.candidate
         assert e.cpu(2) > e.cpu(1) > e.cpu(0) == e.sure
     f, load = fc.wall_factor()
     assert f >= 1 and load >= 0

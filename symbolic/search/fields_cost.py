@@ -6,7 +6,7 @@ before anything is built: $N = n(n-1)/2 + n$ coordinates, $C = 34(d+1) - d$ colu
 of :func:`~chaplygin_nd.symbolic.search.symmetry_fields.field_blocks` times $x^k$, $k \le d$, $DX$
 once; the independent ones are at most $C$, so $C$ bounds them), $P = \lfloor 2C/(N-1)\rfloor + 4$
 sample points and at most $R = P(N + n)$ condition rows. The growth laws, with constants fitted
-by CPU time on boxes $n = 3..6$, $d \le 2$ (bench/bench_fields_cost.py reprints them):
+by CPU time on boxes $n = 3..6$, $d \le 3$:
 
 * building the columns (SymPy expansion of the fields): $c_0 + c_1 N^2 + c_2 C N$;
 * the column rank and the exact proofs of its syzygies (SymPy, modulo the sphere): $c_3 C N^2$;
@@ -16,10 +16,14 @@ by CPU time on boxes $n = 3..6$, $d \le 2$ (bench/bench_fields_cost.py reprints 
 * the kernel over $\mathbb{Q}$ (FLINT ``fmpq_mat.rref`` of $R \approx 2C$ rows, entries growing
   with $N$): $c_5 C^2 N$ (milliseconds at every box measured);
 * the exact orbit-direction proofs, one per kernel vector that is not a trivial column: each
-  converts $Q(I)$ for the :func:`invariants` to SymPy and reduces it modulo the sphere, about
-  $c_6$ seconds per term. Their number is known only after the kernel, so the estimate gives the
-  cost of one candidate, $c_6 T$ with $T = t_0 N^3 (d+1)$ terms, beside the sure part; this is the
-  stage that dominates every box with a candidate.
+  converts $Q(I)$ for the 21 :func:`invariants` to SymPy and reduces it modulo the sphere. One
+  candidate's $Q(I)$ have $T \approx 4300\,(N/10)^{4.2}$ terms in all (counted at $n = 4, 5, 6$,
+  $d = 1$, and the same at $n = 4$, $d = 1..3$: the candidate does not grow with $d$), and each
+  check costs about the square of its terms (SymPy builds the sum by repeated addition: measured
+  $T^{2.1}$ for the conversion, $T^{1.7}$ for the reduction), so one candidate costs
+  $c_6 (N/10)^{8.4}$, $c_6$ fitted at $n = 4$. Their number is known only after the kernel
+  (one in every box with a candidate measured), so the estimate gives the cost of one beside the
+  sure part; this stage dominates every box with a candidate from $n = 4$ on.
 
 The wall time is the CPU time divided by the share of a core the process gets: at most
 $(L + 1)/c$ times longer on $c$ cores at 1-minute load $L$ (``os.getloadavg``), the bound printed.
@@ -40,14 +44,14 @@ FIELDS = 34
 #: the stages of symmetry_fields.search_fields, in order, as its FieldBox.stages names them
 STAGES = ("columns", "column rank", "syzygy proofs", "conditions", "kernel", "orbit proofs", "generic")
 #: CPU seconds: fixed, per N^2 and per C N of the columns; per C N^2 of the syzygy proofs; per
-#: C N^1.5 of the conditions; per C^2 N of the kernel; per term of an orbit-direction proof, and
-#: terms per N^3 (d + 1) of one candidate (fitted on n = 3..5, d <= 1, see the module docstring)
+#: C N^1.5 of the conditions; per C^2 N of the kernel; one orbit-direction candidate at N = 10, and
+#: its growth exponent in N (fitted on n = 3..6, d <= 3, see the module docstring)
 C_FIXED, C_COL_N2, C_COL_CN = 0.2, 4.4e-3, 2.9e-4
 C_SYZ = 3.5e-5
 C_COND = 3e-4
 C_KERNEL = 1e-7
-C_TERM = 2.7e-3
-T_PER_N3 = 3.1
+C_CANDIDATE = 16.3
+CANDIDATE_POWER = 8.4
 
 
 @dataclass(frozen=True)
@@ -109,6 +113,6 @@ def field_cost(n: int, degree: int) -> FieldCost:
         "kernel": C_KERNEL * C * C * N,
         "generic": 0.0,
     }
-    candidate = C_TERM * T_PER_N3 * N**3 * (degree + 1)
+    candidate = C_CANDIDATE * (N / 10) ** CANDIDATE_POWER
     stages["orbit proofs"] = candidate
     return FieldCost(n, degree, N, C, P, R, stages, candidate)
