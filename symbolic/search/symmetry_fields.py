@@ -30,7 +30,7 @@ candidates are reported (a candidate still needs an exact proof before it is cla
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import flint
 import sympy as sp
@@ -129,7 +129,7 @@ class FieldBox:
     kernel: list | None = None
     columns: list | None = None
     seconds: float = 0.0
-    stages: dict | None = None  # CPU seconds (time.process_time) per stage, the names of STAGES
+    stages: dict = field(default_factory=dict)  # CPU seconds per stage (fields_cost.STAGES)
 
     def as_dict(self) -> dict:
         return {"n": self.n, "degree": self.degree, "s": str(self.s), "tau": str(self.tau),
@@ -228,7 +228,7 @@ def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
 
     t0 = time.perf_counter()
     a, b, s, tau = sp.Rational(a), sp.Rational(b), sp.Rational(s), sp.Rational(tau)
-    res = FieldBox(n, degree, s, tau, stages={})
+    res = FieldBox(n, degree, s, tau)
     clock = StageClock(res.stages)
     z, cols, labels, triv = _columns(n, degree, a, b)
     N = len(z)
