@@ -19,11 +19,13 @@ never a verdict):
 from __future__ import annotations
 
 import os
+import time
 from collections import Counter
 from dataclasses import dataclass
 from math import comb
 
-__all__ = ["Estimate", "estimate", "available_bytes", "duration", "weight_zero_count", "EXACT_COUNT_MAX_N"]
+__all__ = ["Estimate", "estimate", "available_bytes", "duration", "weight_zero_count", "EXACT_COUNT_MAX_N",
+           "StageClock"]
 
 #: seconds per entry of the condition values, per unit b^3 of a block's rank, per (character x
 #: orbit) of the weight-zero split, and the fixed cost of a box (idle 2-core machine)
@@ -51,6 +53,20 @@ class Estimate:
         bound = "" if self.exact else " (from that bound)"
         return (f"box (M-degree {d}, gamma-degree <= {dg}, D^{k}): {u} unknowns, largest block "
                 f"~{self.largest}, estimated {duration(self.seconds)} and {_size(self.bytes)}{bound}")
+
+
+class StageClock:
+    """Adds the CPU time since the previous call to ``stages[name]`` (``time.process_time``: CPU,
+    not wall, so a stage's figure holds on a loaded machine); what a search's estimate is fitted
+    to."""
+
+    def __init__(self, stages: dict):
+        self.stages, self.t = stages, time.process_time()
+
+    def __call__(self, name: str) -> None:
+        t = time.process_time()
+        self.stages[name] = self.stages.get(name, 0.0) + t - self.t
+        self.t = t
 
 
 def duration(s: float) -> str:

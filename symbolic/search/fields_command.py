@@ -4,7 +4,8 @@ line (row S7:symmetry-fields; symbolic/search/symmetry_fields.py).
     chaplygin symmetry-fields 6 0 --pairs 1:2,-1/2:2       # n = 6, degree 0, (s, tau) pairs
     chaplygin symmetry-fields 4 2 --a 1/3 --b 2/5 --json out.json
 
-Before each box: its size and a time estimate (stderr). Then one line per box: sampled solutions,
+Before each box: its size and a CPU-time estimate by stage (stderr; symbolic/search/fields_cost.py);
+a box estimated above ``--max-hours`` is refused before anything runs. Then one line per box: sampled solutions,
 the exact trivial ones (orbit fields, Delta X, orbit-direction fields proved), the excess (an upper
 bound of the fields beyond them; 0 is an exact exclusion) and over which (a, b) it holds,
 seconds. Bad input: one line ``error: ...`` and exit status 2.
@@ -20,6 +21,21 @@ def _over(generic: str) -> str:
     if not generic:
         return ""
     return " (for generic (a, b))" if generic.startswith("generic") else " (at this (a, b) only)"
+
+
+def _refusal(n: int, degree: int, max_hours: float) -> str:
+    """Why the box (n, degree) is refused before it runs ('' if it is not): its estimated CPU time
+    with one orbit-direction candidate (symbolic/search/fields_cost.py) above ``max_hours``."""
+    from chaplygin_nd.symbolic.search.cost import duration
+    from chaplygin_nd.symbolic.search.fields_cost import field_cost
+
+    est = field_cost(n, degree)
+    if est.cpu() <= max_hours * 3600:
+        return ""
+    return (f"box n={n} d={degree} needs an estimated {duration(est.cpu())} of CPU "
+            f"({duration(est.candidate)} per orbit-direction candidate), above --max-hours "
+            f"{max_hours:g}; nothing was run (raise --max-hours to run it anyway, or ask for a "
+            f"lower degree or a smaller n)")
 
 
 def main(argv: list[str]) -> int:
@@ -40,6 +56,9 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--b", default="2/5", help="b > 0 (default 2/5)")
     parser.add_argument("--seed", type=int, default=None, help="the seed of the sampled points")
     parser.add_argument("--json", type=path_argument, help="write the table to this file")
+    parser.add_argument("--max-hours", type=float, default=24.0,
+                        help="refuse a box whose estimated CPU time (with one orbit-direction "
+                             "candidate) is above this many hours (default 24)")
     args = parser.parse_args(argv)
     try:
         if args.n < 3:
@@ -62,6 +81,9 @@ def main(argv: list[str]) -> int:
                 raise ValueError(f"--pairs {args.pairs!r}: give s:tau pairs, e.g. 1:2,-1/2:2")
         if args.json is not None and not args.json.absolute().parent.is_dir():
             raise ValueError(f"--json {args.json}: no folder {args.json.absolute().parent}")
+        refusal = _refusal(args.n, args.degree, args.max_hours)
+        if refusal:
+            raise ValueError(refusal)
     except ValueError as err:
         return fail(str(err))
     import sys
@@ -77,5 +99,6 @@ def main(argv: list[str]) -> int:
         rows.append(r.as_dict())
         print(f"n={args.n} d={args.degree} s={s} tau={tau}: {r.independent} unknowns, {r.solutions} "
               f"solutions, {r.trivial} trivial ({r.orbit_proved} orbit-direction proved), excess "
-              f"{r.excess}: {r.outcome}{_over(r.generic)}, {r.seconds:.1f} s", flush=True)
+              f"{r.excess}: {r.outcome}{_over(r.generic)}, {r.seconds:.1f} s ({sum(r.stages.values()):.1f} s CPU)",
+              flush=True)
     return write_json(args.json, rows)

@@ -43,6 +43,7 @@ from chaplygin_nd.symbolic.axisymmetric import Delta, mass_tensor
 from chaplygin_nd.symbolic.exact.points import generator, skew_matrix, sphere_point
 from chaplygin_nd.symbolic.model import angular_velocity
 from chaplygin_nd.symbolic.search import bivector_ansatz as ba
+from chaplygin_nd.symbolic.search.cost import StageClock
 from chaplygin_nd.symbolic.search.point_values import bivector_values as _values
 from chaplygin_nd.symbolic.search.point_values import dH_gamma
 from chaplygin_nd.symbolic.search.point_values import fq as _fq
@@ -124,6 +125,7 @@ class BoxResult:
     free: int = -1              # dimension of the sampled affine space (-1: empty)
     jacobi_equations: int = 0
     groebner: list = field(default_factory=list)
+    stages: dict = field(default_factory=dict)  # CPU seconds per stage (cost.StageClock)
     outcome: str = ""           # "excluded (linear)", "excluded (Jacobi)", "solutions"
     generic: str = ""           # over which (a, b) an exclusion holds (generic_extension.py)
     seconds: float = 0.0
@@ -140,14 +142,10 @@ class BoxResult:
 
 
 def estimate(n: int, degree: int) -> str:
-    """A one-line size and time estimate of a box before it runs (scale measured on a loaded
-    2-core machine: n = 4, d = 6 about 18 s; n = 5, d = 2 about 12 s)."""
-    blocks = len(ba.MM_NAMES) + len(ba.MG_NAMES)
-    unknowns = blocks * (degree + 1)
-    N = n * (n - 1) // 2 + n
-    cost = unknowns * N * N * 1e-3 + 1
-    return (f"n={n} degree={degree}: {unknowns} unknowns, {N}x{N} bivectors, "
-            f"about {cost:.0f} s and < 1 GB")
+    """A one-line size and CPU-time estimate of a box, stage by stage (symbolic/search/poisson_cost.py)."""
+    from chaplygin_nd.symbolic.search.poisson_cost import poisson_cost
+
+    return poisson_cost(n, degree).line()
 
 
 def _rref_solve(rows: list[list], rhs: list) -> tuple[list | None, list[list]]:
@@ -221,13 +219,16 @@ def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None,
     t0 = time.perf_counter()
     a, b = sp.Rational(a), sp.Rational(b)
     res = BoxResult(n, degree, e, a, b)
+    clock = StageClock(res.stages)
     ans = ba.ansatz(n, degree)
     fb = flint_bivectors(ans)
+    clock("columns")
     res.unknowns = len(fb)
     key = (n, degree, seed)
     if key not in _COLUMNS:     # the box's columns and their values do not depend on (a, b) or e
         _COLUMNS[key] = _independent_columns(ans, fb, seed)
     cols, res.syzygies = _COLUMNS[key]
+    clock("column rank and syzygy proofs")
     res.independent = len(cols)
     N = len(ans.coords)
     m = N - n
@@ -249,7 +250,9 @@ def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None,
         for i in range(m):
             rows.append([sum((V[i][m + k] * gg[k] for k in range(n)), flint.fmpq(0)) for V in Vs])
             rhs.append(flint.fmpq(0))
+    clock("conditions")
     part, kernel = _rref_solve(rows, rhs)
+    clock("kernel")
     if progress:
         progress(f"  n={n} d={degree} e={e}: linear stage done ({time.perf_counter() - t0:.1f} s)")
     ctx = _ctx(ans.coords)
@@ -257,6 +260,7 @@ def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None,
         res.linear, res.outcome = "inconsistent", "excluded (linear)"
         if generic:
             _generic(res, fb, cols, seed)
+        clock("generic")
         res.seconds = time.perf_counter() - t0
         return res
     res.free = len(kernel)
@@ -265,17 +269,20 @@ def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None,
     Ks = [_combine(fb, cols, k, ctx) for k in kernel]
     eqs, ring_gens = jacobi_equations(n, a, b, P0, Ks, seed, ctx)
     res.jacobi_equations = len(eqs)
+    clock("jacobi equations")
     if not eqs:
         gb = []
     else:
         gb = list(sp.groebner(eqs, *ring_gens, order="grevlex", domain=sp.QQ).exprs)
     res.groebner = gb
+    clock("groebner")
     res.outcome = "excluded (Jacobi)" if gb == [1] else "solutions"
     if res.outcome == "excluded (Jacobi)" and generic:
         _generic(res, fb, cols, seed)
     if res.outcome == "solutions":
         res.solution = {"groebner": gb, "gens": ring_gens, "cols": cols, "part": part,
                         "kernel": kernel, "ansatz": ans}
+    clock("generic")
     res.seconds = time.perf_counter() - t0
     return res
 

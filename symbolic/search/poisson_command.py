@@ -4,7 +4,8 @@ S7:poisson-controls, S7:poisson-n4, S7:poisson-n5; symbolic/search/poisson.py).
     chaplygin poisson 3 2 --a 1/3 --b 2/5            # n = 3, degrees 0..2, e in -1..3
     chaplygin poisson 4 6 --from 4 --e 1,2 --a 1/3 --b 2/5 --json out.json
 
-Before each box: one line with its size and a time estimate (stderr). Then one line per box:
+Before each box: one line with its size and a CPU-time estimate by stage (stderr;
+symbolic/search/poisson_cost.py); boxes estimated above ``--max-hours`` are refused before any runs. Then one line per box:
 the linear stage (inconsistent, or the dimension of the sampled affine space), the Gröbner basis
 of the Jacobi stage, the outcome (``excluded (linear)``, ``excluded (Jacobi)`` — both exact —
 or ``solutions``) and over which (a, b) an exclusion holds (``for generic (a, b)`` or ``at this
@@ -21,6 +22,22 @@ def _over(generic: str) -> str:
     if not generic:
         return ""
     return " for generic (a, b)" if generic.startswith("generic") else " at this (a, b) only"
+
+
+def _refusal(n: int, start: int, degree: int, exponents: int, max_hours: float) -> str:
+    """Why the boxes are refused before any runs ('' if not): a degree whose estimated CPU time
+    for ``exponents`` values of e, Jacobi stage included (symbolic/search/poisson_cost.py), is
+    above ``max_hours``."""
+    from chaplygin_nd.symbolic.search.cost import duration
+    from chaplygin_nd.symbolic.search.poisson_cost import poisson_cost
+
+    for d in range(start, degree + 1):
+        cpu = exponents * poisson_cost(n, d).cpu()
+        if cpu > max_hours * 3600:
+            return (f"box n={n} d={d} needs an estimated {duration(cpu)} of CPU for {exponents} "
+                    f"exponent(s) e, above --max-hours {max_hours:g}; nothing was run (raise "
+                    f"--max-hours to run it anyway, or ask for a lower degree or a smaller n)")
+    return ""
 
 
 def main(argv: list[str]) -> int:
@@ -40,6 +57,9 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--b", default="2/5", help="b >= 0 (default 2/5; b = 0 is the free body)")
     parser.add_argument("--seed", type=int, default=None, help="the seed of the sampled points")
     parser.add_argument("--json", type=path_argument, help="write the table to this file")
+    parser.add_argument("--max-hours", type=float, default=24.0,
+                        help="refuse when a degree's estimated CPU time over all e (with the "
+                             "Jacobi stage) is above this many hours (default 24)")
     args = parser.parse_args(argv)
     try:
         if args.n < 3:
@@ -55,6 +75,9 @@ def main(argv: list[str]) -> int:
             raise ValueError(f"--e {args.e!r}: comma-separated integers, e.g. 0,1,2") from None
         if args.json is not None and not args.json.absolute().parent.is_dir():
             raise ValueError(f"--json {args.json}: no folder {args.json.absolute().parent}")
+        refusal = _refusal(args.n, args.start, args.degree, len(es), args.max_hours)
+        if refusal:
+            raise ValueError(refusal)
     except ValueError as err:
         return fail(str(err))
     import sys
@@ -72,5 +95,6 @@ def main(argv: list[str]) -> int:
             rows.append(r.as_dict())
             gb = [str(g) for g in r.groebner][:6]
             print(f"n={args.n} d={d} e={e} a={a} b={b}: {r.independent} unknowns, linear "
-                  f"{r.linear}, Groebner {gb}, {r.outcome}{_over(r.generic)}, {r.seconds:.1f} s", flush=True)
+                  f"{r.linear}, Groebner {gb}, {r.outcome}{_over(r.generic)}, {r.seconds:.1f} s "
+                  f"({sum(r.stages.values()):.1f} s CPU)", flush=True)
     return write_json(args.json, rows)

@@ -30,7 +30,7 @@ candidates are reported (a candidate still needs an exact proof before it is cla
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import flint
 import sympy as sp
@@ -39,6 +39,7 @@ from chaplygin_nd.symbolic.axisym_inverse import ansatz_terms, inverse_numerator
 from chaplygin_nd.symbolic.axisymmetric import Delta, mass_tensor
 from chaplygin_nd.symbolic.model import L_matrix, L_matrix_derivative
 from chaplygin_nd.symbolic.search import bivector_ansatz as ba
+from chaplygin_nd.symbolic.search.cost import StageClock
 from chaplygin_nd.symbolic.search.poisson import _ctx, _fq, _points, _q, _rref_solve, _sphere_reduce
 
 __all__ = ["field_blocks", "FieldBox", "search_fields", "estimate", "invariants"]
@@ -104,13 +105,10 @@ def field_blocks(n: int, M, gamma, a, b) -> tuple[list, list[str], int]:
 
 
 def estimate(n: int, degree: int) -> str:
-    """A one-line size and time estimate of a box (scale measured on a loaded 2-core machine:
-    n = 3, d = 2 about 10 s; n = 6, d = 0 about 30-50 s; n = 4, d = 2 up to 3 min, most of it in
-    the exact orbit-direction proofs)."""
-    cols = 36 * (degree + 1)
-    N = n * (n - 1) // 2 + n
-    return (f"n={n} degree={degree}: about {cols} unknowns, {N} coordinates, "
-            f"about {cols * N * N * 4e-3 + 5:.0f} s to a few minutes, < 1 GB")
+    """A one-line size and CPU-time estimate of a box, stage by stage (symbolic/search/fields_cost.py)."""
+    from chaplygin_nd.symbolic.search.fields_cost import field_cost
+
+    return field_cost(n, degree).line()
 
 
 @dataclass
@@ -131,6 +129,7 @@ class FieldBox:
     kernel: list | None = None
     columns: list | None = None
     seconds: float = 0.0
+    stages: dict = field(default_factory=dict)  # CPU seconds per stage (fields_cost.STAGES)
 
     def as_dict(self) -> dict:
         return {"n": self.n, "degree": self.degree, "s": str(self.s), "tau": str(self.tau),
@@ -230,12 +229,14 @@ def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
     t0 = time.perf_counter()
     a, b, s, tau = sp.Rational(a), sp.Rational(b), sp.Rational(s), sp.Rational(tau)
     res = FieldBox(n, degree, s, tau)
+    clock = StageClock(res.stages)
     z, cols, labels, triv = _columns(n, degree, a, b)
     N = len(z)
     m = N - n
     model = sampled_field.axisymmetric(n, a, b)
+    clock("columns")
     # independent columns (syzygies proved exactly, trivial columns kept first as pivots)
-    keep, dx_syzygy = _independent(z, cols, seed, n, labels)
+    keep, dx_syzygy = _independent(z, cols, seed, n, labels, clock)
     cols = [cols[u] for u in keep]
     triv = [triv[u] for u in keep]
     res.independent = len(cols)
@@ -272,7 +273,9 @@ def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
         for r in range(grads.rows):
             gr = [_fq(v) for v in grads.row(r)]
             rows.append([sum((gr[i] * Q[i] for i in range(N)), flint.fmpq(0)) for Q in vals])
+    clock("conditions")
     _, kernel = _rref_solve(rows, [flint.fmpq(0)] * len(rows))
+    clock("kernel")
     res.solutions = len(kernel)
     res.kernel, res.columns = kernel, [(labels[u], cols[i]) for i, u in enumerate(keep)]
     counted = [u for u, t in enumerate(triv) if t and (labels[keep[u]][0] != "D X" or s == tau - 1)]
@@ -281,6 +284,7 @@ def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
     exact_trivial = len(counted)
     others = [v for v in kernel if not _is_trivial_unit(v, triv)]
     proved = _orbit_fields(n, z, cols, others, seed) if others else []
+    clock("orbit proofs")
     res.orbit_proved = len(proved)
     res.trivial = exact_trivial + res.orbit_proved
     res.excess = res.solutions - res.trivial
@@ -294,11 +298,12 @@ def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
         res.generic = fields_generic(rows, res.solutions, res.trivial, f"(a, b) = ({a}, {b})", dx_syzygy,
                                      [labels[keep[u]][0] == "D X" for u in range(len(cols))],
                                      [coef for _, coef in proved])
+    clock("generic")
     res.seconds = time.perf_counter() - t0
     return res
 
 
-def _independent(z, cols, seed, n, labels=None) -> tuple[list[int], bool]:
+def _independent(z, cols, seed, n, labels=None, clock=None) -> tuple[list[int], bool]:
     """Indices of columns independent as functions on P (syzygies proved modulo the sphere), and
     whether a proved syzygy involves the column D X (which depends on a, b)."""
     N = len(z)
@@ -310,6 +315,8 @@ def _independent(z, cols, seed, n, labels=None) -> tuple[list[int], bool]:
         for i in range(N):
             rows.append([v[i] for v in vals])
     _, kernel = _rref_solve(rows, [flint.fmpq(0)] * len(rows))
+    if clock:
+        clock("column rank")
     gam = list(z[N - n:])
     dropped = set()
     for v in kernel:
@@ -320,6 +327,8 @@ def _independent(z, cols, seed, n, labels=None) -> tuple[list[int], bool]:
                 raise ArithmeticError("a sampled syzygy of the field box is not an identity")
         dropped.add(max(u for u, c in enumerate(v) if c != 0))
     dx = bool(labels) and any(c != 0 and labels[u][0] == "D X" for v in kernel for u, c in enumerate(v))
+    if clock:
+        clock("syzygy proofs")
     return [u for u in range(len(cols)) if u not in dropped], dx
 
 
