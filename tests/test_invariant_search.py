@@ -133,3 +133,13 @@ def test_n6_invariant_ring_finds_G_beyond_the_paper():
     r = invariant_search.InvariantRingSearch(model).run_box((4, 6, 1))
     paper = sum(invariant_search.InvariantRingSearch(model, include_new=False).known_ranks((4, 6, 1)).values())
     assert r.settled and r.recovered and r.found == paper + 1
+
+
+def test_a_ring_refuses_reflections_that_are_not_coordinate_indices():
+    ring = invariant_rings.ring_for(4, "axisymmetric")
+    fields = {f: getattr(ring, f) for f in ring.__dataclass_fields__}
+    for bad in ((0, 4), (0, 0), (-1, 3)):
+        with pytest.raises(ValueError, match="reflections"):
+            invariant_rings.Ring(**{**fields, "reflections": bad})
+    with pytest.raises(ValueError, match="generators"):
+        invariant_rings.Ring(**{**fields, "m_degree": fields["m_degree"][:-1]})

@@ -1,6 +1,7 @@
 """The search's known algebra records each integral found beyond the paper with the degrees of its
 definition: the generator's (M-degree, gamma-degree, power of Delta) are read off the formula that
-S6:sixth-integral and the n = 6 search prove conserved (``search.found_integral``), with Delta the
+S6:sixth-integral and the n = 6 search prove conserved (``search.found_integral``; F's form of
+gamma-degree 2 from ``family.sixth_integral``: F = N_F / Delta), with Delta the
 determinant of the derived block (eq:Delta).  A generator recorded as numerator / Delta^2 instead of
 / Delta would put the integral into the wrong boxes, and the sandwich could still close there."""
 
@@ -9,6 +10,7 @@ from __future__ import annotations
 import sympy as sp
 from chaplygin_nd.symbolic.algebra import skew_symbols, vector_symbols
 from chaplygin_nd.symbolic.axisymmetric import Delta
+from chaplygin_nd.symbolic.family import sixth_integral
 from chaplygin_nd.symbolic.search import found_integral, known_integrals
 from chaplygin_nd.symbolic.search.sampled_field import axisymmetric
 
@@ -53,3 +55,13 @@ def test_G_is_recorded_with_the_degrees_of_its_definition():
     n = 6
     g = _declared(n, "G")
     assert (g.m_degree, g.g_degree, g.d_power) == _defined_degrees(n, found_integral.new_integral_6)
+
+
+def test_F2_is_recorded_with_the_degrees_of_its_definition():
+    n = 5
+    g = _declared(n, "F2")
+
+    def lowest_form(M, gam, a, b):
+        return sixth_integral.numerator_expr(M, gam, a, b), Delta(gam[n - 1], a, b)
+
+    assert (g.m_degree, g.g_degree, g.d_power) == _defined_degrees(n, lowest_form)

@@ -8,6 +8,12 @@ from __future__ import annotations
 #: that survived every row and test reaching it (the outcome becomes ``equivalent``, the reason
 #: says "argued"). The mutation text names the line: a change of the function renews the review.
 ARGUED: dict[tuple[str, str], str] = {
+    ("search.invariant_rings.ring_for", "const: line 160 col 96: 0 -> 1"):
+        "the SO(3) ring (n = 4) then splits by the reflections g_2 and g_4 instead of g_1 and g_4: "
+        "g_1 g_2 = diag(-1, -1, 1, 1) lies in the group SO(3) acting on the first three "
+        "coordinates, so g_2 acts on every SO(3)-invariant (the generators, x and the known "
+        "integrals) exactly as g_1 does; the characters, the blocks, the projected known products "
+        "and every rank are the same",
     ("runtime.axisym.angular_velocity", "const: line 88 col 34: 3 -> 4"):
         "n = 3 then takes the documented method='matrix' path (inverse_coefficients + the six "
         "terms, valid for any n >= 3) instead of the n = 3 component kernel: both evaluate the "

@@ -48,6 +48,17 @@ class Ring:
     dimension: Callable[[int, int], int]               # (d, l) -> dim I_{d,l}
     reflections: tuple[int, ...]   # coordinate indices k of the reflections g_k (0-based)
 
+    def __post_init__(self):
+        # g_k = diag(1, .., -1_k, .., 1) exists only for 0 <= k < n; reflect() would read any
+        # other index as the identity, and the split by characters would silently lose a sign
+        if len(set(self.reflections)) != len(self.reflections) or not all(
+                0 <= k < self.n for k in self.reflections):
+            raise ValueError(f"ring {self.name}: reflections {self.reflections} are not distinct "
+                             f"coordinate indices 0..{self.n - 1}")
+        if not len(self.names) == len(self.m_degree) == len(self.q_degree):
+            raise ValueError(f"ring {self.name}: {len(self.names)} generators but "
+                             f"{len(self.m_degree)} M-degrees and {len(self.q_degree)} q-degrees")
+
 
 def phase_arrays(z: np.ndarray, n: int, p: int):
     """(M, gamma) mod p as arrays (points, n, n) and (points, n) from the rows
