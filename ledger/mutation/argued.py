@@ -14,6 +14,11 @@ ARGUED: dict[tuple[str, str], str] = {
         "coordinates, so g_2 acts on every SO(3)-invariant (the generators, x and the known "
         "integrals) exactly as g_1 does; the characters, the blocks, the projected known products "
         "and every rank are the same",
+    ("search.invariant_rings.ring_for", "const: line 165 col 37: 0 -> 1"):
+        "the SO(4) ring (n = 5) then splits by the reflections g_2 and g_5 instead of g_1 and g_5: "
+        "g_1 g_2 = diag(-1, -1, 1, 1, 1) lies in the group SO(4) acting on the first four "
+        "coordinates, so g_2 acts on every SO(4)-invariant exactly as g_1 does; the characters, "
+        "the blocks, the projected known products and every rank are the same",
     ("runtime.axisym.angular_velocity", "const: line 88 col 34: 3 -> 4"):
         "n = 3 then takes the documented method='matrix' path (inverse_coefficients + the six "
         "terms, valid for any n >= 3) instead of the n = 3 component kernel: both evaluate the "
