@@ -128,7 +128,7 @@ def test_a_copy_that_never_answers_is_killed(tmp_path, monkeypatch):
 def test_the_verdicts_are_those_of_rows_run_whole():
     """Every mutant of two derivations with cheap rows: decided with the rows run from the
     first call and run whole in the worker, the same outcome and the same row."""
-    from bench.bench_mutation import compare
+    from chaplygin_nd.bench.bench_mutation import compare
 
     result = compare(("model.L_matrix", "vertical.chi_coefficient"))
     assert result["mutants"] >= 10
