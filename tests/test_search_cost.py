@@ -25,7 +25,8 @@ def test_the_invariant_estimate_counts_the_unknowns_exactly():
 def test_n_100_is_refused_before_anything_runs(capsys):
     assert main(["100", "2", "--a", "-1/3", "--b", "3/2"]) == 2
     out, err = capsys.readouterr()
-    assert out.count("box (M-degree") == 2 and "2^100 characters" in err
+    assert out.count("box (M-degree") == 1 and "2^100 characters" in err
+    assert "boxes M-degree 2..2: larger still, not estimated" in out
     assert len(err.strip().splitlines()) == 1 and "--max-hours" in err
 
 
@@ -58,3 +59,20 @@ def test_primes_mapped_over_processes_print_the_same_table(capsys):
     two = [line for line in capsys.readouterr().out.splitlines() if line.startswith("n=5 d=4")]
     assert "2 primes" not in one[0] and "(primes 2)" in two[0]
     assert one[0].split(", found ")[1].split(",")[0] == two[0].split(", found ")[1].split(",")[0]
+
+
+def test_a_refusal_names_the_first_box_past_the_limit_and_estimates_no_later_box(capsys, monkeypatch):
+    estimated = []
+    real = cost.estimate
+
+    def counting(search, box):
+        estimated.append(box[0])
+        return real(search, box)
+
+    monkeypatch.setattr(cost, "estimate", counting)
+    assert main(["9", "30", "--a", "1/3", "--b", "2/5"]) == 2
+    captured = capsys.readouterr()
+    error = [line for line in captured.err.splitlines() if line.startswith("error:")]
+    assert len(error) == 1 and "box (M-degree 4," in error[0] and "--max-hours" in error[0], captured.err
+    assert estimated == [1, 2, 3, 4]
+    assert "boxes M-degree 5..30: larger still, not estimated" in captured.out
