@@ -109,8 +109,10 @@ def summary(results: Sequence[Result]) -> str:
     kinds = Counter(r.verdict.kind for r in results if r.verdict.kind)
     found = f" [{', '.join(f'{kinds[k]} {k}' for k in KINDS if kinds[k])}]" if kinds else ""
     seconds = sum(r.seconds for r in results)
-    return (f"{len(results)} rows: {parts}{found}; {len(argued(results))} parts argued, not "
-            f"machine-checked ({seconds:.1f} s of proof time)")
+    rows, argued_parts = len(results), len(argued(results))
+    return (f"{rows} row{'' if rows == 1 else 's'}: {parts}{found}; {argued_parts} "
+            f"part{'' if argued_parts == 1 else 's'} argued, not machine-checked "
+            f"({seconds:.1f} s of proof time)")
 
 
 def missing_kind(results: Sequence[Result]) -> list[str]:

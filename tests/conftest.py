@@ -11,6 +11,12 @@ import os
 # before any test module imports SymPy: the same ground types as the package (chaplygin_nd/__init__)
 os.environ.setdefault("SYMPY_GROUND_TYPES", "gmpy")
 
+# before any test module imports matplotlib: its configuration and font cache go to the project's
+# cache folder, as the commands place them, not to ~/.config/matplotlib or ~/.cache/matplotlib
+from chaplygin_nd.cache import place_matplotlib_cache  # noqa: E402
+
+place_matplotlib_cache()
+
 import shutil  # noqa: E402
 import subprocess  # noqa: E402
 import sys  # noqa: E402
@@ -48,6 +54,13 @@ def _session_temp_dir(tmp_path_factory):
     saved_env, saved_cached = os.environ.get("TMPDIR"), tempfile.tempdir
     os.environ["TMPDIR"], tempfile.tempdir = folder, folder
     yield
+    # multiprocessing removes its pymp-* folder at interpreter exit, after pytest has removed this
+    # one (a FileNotFoundError traceback at exit): run its own finalizer for that folder now
+    from multiprocessing import util as mp_util
+
+    for finalizer in list(getattr(mp_util, "_finalizer_registry", {}).values()):
+        if getattr(finalizer, "_callback", None) is getattr(mp_util, "_remove_temp_dir", None):
+            finalizer()
     tempfile.tempdir = saved_cached
     if saved_env is None:
         os.environ.pop("TMPDIR", None)

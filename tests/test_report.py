@@ -86,7 +86,7 @@ def test_totals_count_kinds_and_argued_parts():
     line = report.summary(_sample_results())
     assert "2 holds, 2 corrected" in line
     assert "[1 formula, 1 scope]" in line
-    assert "1 parts argued, not machine-checked" in line
+    assert "1 part argued, not machine-checked" in line
 
 
 def test_markdown_keeps_prose_out_of_math_and_shows_each_formula_once(tmp_path):
