@@ -228,6 +228,9 @@ def _stale(rows: list[dict], paper_ids: list[str]) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
+    from chaplygin_nd.cache import place_matplotlib_cache
+
+    place_matplotlib_cache()  # before the tutorials import matplotlib: not ~/.config/matplotlib
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--report", default=str(ROOT / "verification.json"))
     ap.add_argument("--out", default=str(DOCS / "_build" / "src"))
