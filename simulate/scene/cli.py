@@ -43,7 +43,7 @@ __all__ = ["main"]
 
 def _parser() -> OneLineParser:
     """The options of ``chaplygin simulate``."""
-    ap = OneLineParser(prog="chaplygin simulate", description=__doc__.split("\n\n")[0],
+    ap = OneLineParser(prog="chaplygin simulate", description=__doc__.split("\n\n")[0].replace("``", ""),
                        epilog="built-in scenes: " + ", ".join(builtin_scenes()))
     ap.add_argument("--version", action="version", version=version_line())
     ap.add_argument("scene", nargs="?",
