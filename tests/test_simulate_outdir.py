@@ -237,3 +237,29 @@ def test_a_run_refused_after_the_claim_leaves_no_lock(tmp_path, capsys):
     out = tmp_path / "o"
     assert cli.main([str(scene), "--out", str(out), "--no-plots"]) == 2
     assert sorted(p.name for p in tmp_path.iterdir()) == ["s.toml"], capsys.readouterr().err
+
+
+def test_a_file_at_the_lock_path_that_is_not_a_lock_is_left_alone(tmp_path):
+    """The lock's name is ours, but a file already there that the program did not write (or a
+    symbolic link) is neither truncated nor removed: the claim is refused in one line."""
+    from chaplygin_nd.simulate.scene.outdir import lock_file
+
+    out = tmp_path / "result"
+    lock = lock_file(out)
+    lock.write_text("my notes\n")
+    with pytest.raises(OutputError, match="is not a lock file"):
+        claim(out, "s")
+    assert lock.read_text() == "my notes\n" and not out.exists()
+    lock.unlink()
+    target = tmp_path / "elsewhere.txt"
+    target.write_text("keep\n")
+    lock.symlink_to(target)
+    with pytest.raises(OutputError, match="cannot open the lock file"):
+        claim(out, "s")
+    assert target.read_text() == "keep\n" and lock.is_symlink()
+    lock.unlink()
+    stale = claim(out, "s")  # an empty file (a run killed before writing) or a stale lock is ours
+    stale.release()
+    lock.write_text("12345 /some/where\n")
+    claim(out, "s").release()
+    assert not lock.exists()

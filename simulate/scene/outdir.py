@@ -43,6 +43,7 @@ import errno
 import fcntl
 import json
 import os
+import re
 import tempfile
 import uuid
 from collections.abc import Callable, Iterable
@@ -138,6 +139,12 @@ def lock_file(path: str | Path) -> Path:
     return real.parent / f".{real.name}{LOCK}"
 
 
+def _looks_like_a_lock(content: bytes) -> bool:
+    """Empty (just created, or its run was killed between create and write) or ``"<pid> <path>\\n"``
+    as :class:`_Lock` writes it."""
+    return content == b"" or re.fullmatch(rb"\d+ /.*\n", content, re.S) is not None
+
+
 class _Lock:
     """An exclusive lock on an output folder, keyed by its real path (see the module docstring)."""
 
@@ -168,7 +175,13 @@ class _Lock:
                 raise busy
             return
         while True:
-            fd = os.open(self.file, os.O_RDWR | os.O_CREAT | getattr(os, "O_CLOEXEC", 0), 0o600)
+            try:  # never through a symbolic link: the lock file is ours or nothing
+                fd = os.open(self.file, os.O_RDWR | os.O_CREAT | getattr(os, "O_CLOEXEC", 0)
+                             | getattr(os, "O_NOFOLLOW", 0), 0o600)
+            except OSError as exc:
+                self.release()
+                raise OutputError(f"--out {given}: cannot open the lock file {self.file} "
+                                  f"({exc.strerror or exc}); remove it if no run holds it") from None
             self.fd = fd
             if not self._flock():
                 raise busy
@@ -180,6 +193,13 @@ class _Lock:
                 break
             os.close(fd)
             self.fd = None
+        if not _looks_like_a_lock(os.pread(fd, 4096, 0)):  # a file we did not write: keep it
+            os.close(fd)
+            self.fd = None
+            self.file = None
+            self.release()
+            raise OutputError(f"--out {given}: {lock_file(path)} exists and is not a lock file of "
+                              "chaplygin-nd; it is left as it is (move it, or give another folder)")
         os.ftruncate(fd, 0)
         os.write(fd, f"{os.getpid()} {real}\n".encode())
 
