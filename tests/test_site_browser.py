@@ -7,6 +7,7 @@ P:inversion page is written to ``docs/_build/screenshots/``, and no internal lin
 
 from __future__ import annotations
 
+import os
 import shutil
 import sys
 from pathlib import Path
@@ -33,7 +34,7 @@ const deadline = Date.now() + 30000;
 
 
 @pytest.fixture(scope="module")
-def browser():
+def browser(tmp_path_factory):
     from selenium import webdriver
     from selenium.webdriver.chrome.service import Service
 
@@ -43,8 +44,14 @@ def browser():
     for arg in ("--headless=new", "--no-sandbox", "--disable-dev-shm-usage", "--disable-gpu",
                 "--window-size=1280,1600", "--allow-file-access-from-files"):
         options.add_argument(arg)
+    # Chromium's profile, crash database and GTK settings cache go to pytest's temporary folder (a
+    # home of its own), never to the user's ~/.config or ~/.cache
+    home = tmp_path_factory.mktemp("chromium-home")
+    options.add_argument(f"--user-data-dir={home / 'profile'}")
+    env = dict(os.environ, HOME=str(home), XDG_CONFIG_HOME=str(home / "config"),
+               XDG_CACHE_HOME=str(home / "cache"))
     driver = webdriver.Chrome(options=options, service=Service(
-        shutil.which("chromedriver") or "/usr/bin/chromedriver"))
+        shutil.which("chromedriver") or "/usr/bin/chromedriver", env=env))
     driver.set_script_timeout(60)
     yield driver
     driver.quit()
