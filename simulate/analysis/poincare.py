@@ -87,7 +87,7 @@ def figure(path, panels, title: str) -> None:
         ax.set_ylabel(r"$\delta = \langle q, k\times u\rangle$")
         ax.set_title(sub, fontsize=10)
         ax.legend(fontsize=8, markerscale=1.5, loc="upper center", bbox_to_anchor=(0.5, -0.11),
-                  ncol=3, frameon=False)
+                  ncol=2 if max(len(lab) for lab, _ in series) > 24 else 3, frameon=False)
         ax.grid(alpha=0.3)
     fig.suptitle(title, fontsize=11)
     fig.tight_layout()

@@ -284,7 +284,10 @@ def _contact_figure(plt, t, arr):
         ax.set_aspect("equal", "datalim")
         ax.grid(True, lw=0.3)
         where = "in the plane $(c_1, c_2)$, seen from above"
-    ax.legend(fontsize=8, loc="best")
+    if three:    # a 3D view has no empty corner to find: the legend goes below the panels
+        fig.legend(*ax.get_legend_handles_labels(), fontsize=8, ncol=3, loc="outside lower left")
+    else:
+        ax.legend(fontsize=8, loc="best")
     ax.set_title(where, fontsize=9)
     right = fig.add_subplot(1, 2, 2)
     for i in range(d):
@@ -346,8 +349,7 @@ def _zeta_figure(plt, arr):
     ax.set_xlabel("column j")
     ax.set_ylabel("row i")
     fig.colorbar(im, ax=ax, label=r"$\zeta_{ij}$")
-    ax.plot([], [], " ", label=r"$\zeta E_n = 0$: last row and column vanish")
-    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.18))
+    ax.set_title(r"$\zeta E_n = 0$: the last row and column vanish (up to rounding)", fontsize=8)
     more = f" (first of {arr.shape[0]} initial conditions)" if arr.shape[0] > 1 else ""
     fig.suptitle(r"$\zeta \in \mathfrak{so}(n-1)$ of the vertical solution (Th:Re)" + more,
                  fontsize=10)

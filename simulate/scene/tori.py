@@ -75,6 +75,16 @@ def _reduced(scene, traj) -> Orbits:
     return Orbits(_experiment(scene, "reduced"), scene.t, sol.y, sol.seconds, sol.steps)
 
 
+def _reduced_origin(m: int) -> str:
+    """Where reduced orbit ``m`` of :func:`_reduced` starts: the first initial condition (level set
+    L), a point of L near it (one per shift), or a later initial condition (on its own level set)."""
+    if m == 0:
+        return "initial condition 1, on L"
+    if m <= len(SHIFTS):
+        return f"on L (shift {SHIFTS[m - 1]:g} from 1)"
+    return f"initial condition {m - len(SHIFTS) + 1}, own level set"
+
+
 def _control(scene) -> Orbits:
     f = FullField(4, scene.a, scene.b, kernels=general_inertia_kernels(fq.CONTROL_J, scene.b))
     sol = dop853.integrate(f, f.pack(scene.M0, scene.gamma0), scene.t, rtol=_rtol(scene),
@@ -128,8 +138,8 @@ def files(scene, traj, plots: bool = True) -> tuple[dict, list[str]]:
     if "poincare" in scene.outputs:
         F = active().require("reduced_integrals")(reduced.y[0, 0], scene.a, scene.b)
         level = ", ".join(f"{v:.4f}" for v in F)
-        red = [(f"orbit {m + 1}" + (" (level set L)" if m <= len(SHIFTS) else " (other level set)"),
-                section(reduced.y[:, m])) for m in range(reduced.y.shape[1])]
+        red = [(f"orbit {m + 1}: " + _reduced_origin(m), section(reduced.y[:, m]))
+               for m in range(reduced.y.shape[1])]
         ctl = [(f"control orbit {m + 1}", section(reduced_invariants(
             so.unvec(control.y[:, m, :6], 4), control.y[:, m, 6:]))) for m in range(scene.count)]
         panels = [(f"axisymmetric sphere, a = {scene.a:g}, b = {scene.b:g}: reduced flow "
