@@ -38,7 +38,7 @@ from chaplygin_nd.symbolic.reduction import reduced_n5 as r5
 __all__ = ["coordinates", "field", "relations", "relation_cofactors", "measure_polynomials",
            "measure_exponent", "integral_fractions", "integral_memberships", "charpoly_residual",
            "quotient_point", "jacobian_at", "POSITIVITY_FORMS", "positivity_cells",
-           "quadratic_reflection_residual"]
+           "quadratic_reflection_residual", "generator_bounds", "equilibrium_equations"]
 
 
 def coordinates() -> dict:
@@ -237,3 +237,68 @@ def quadratic_reflection_residual():
     def qf(t):
         return t**2 - Lam * t + Dl
     return sp.expand(qf(Lam - lam) - qf(lam))
+
+
+def generator_bounds(engine: str = "sympy") -> dict:
+    r"""For each reduced coordinate $g \ne x$ (the generators of :mod:`symbolic.reduction.invariants_n5` as polynomials in
+    the entries $M_{ij}$, $i < j$, and $q = (\gamma_1..\gamma_4)$): its degree $d$ in $M$ (it must be homogeneous in $M$) and
+    $C = \sum\lvert\text{coefficients}\rvert$. Since $\lvert M_{ij}\rvert \le \lVert M\rVert$ ($\lVert M\rVert^2 = \sum_{i<j}M_{ij}^2$, the norm of
+    :func:`quadratic_reflection_residual`) and $\lvert q_k\rvert \le 1$ on $S^4$, every monomial is at most $\lVert M\rVert^d$ in absolute
+    value, so $\lvert g\rvert \le C\lVert M\rVert^d$ on $P$; with $\lVert M\rVert^2 \le 2(4+a+b)h$ on $\{H \le h\}$ the image of
+    $\{H \le h\}$ lies in the box $\lvert g\rvert \le C(2(4+a+b)h)^{d/2}$, $\lvert x\rvert \le 1$ of $\mathbb{R}^{10}$. ``engine``: ``sympy``
+    (the generators in SymPy's sparse ring over QQ) or ``flint`` (rebuilt from the same formulas, :func:`generators_from`,
+    over FLINT's ``fmpq_mpoly``). Returns name -> (d, C) with C a ``str`` of the exact rational; raises
+    ``ArithmeticError`` if a generator is not homogeneous in $M$."""
+    from chaplygin_nd.symbolic.reduction import invariants_n5 as inv
+
+    n_m = 10                                      # the M entries come first, then q1..q4
+    if engine == "flint":
+        import flint
+        ctx = flint.fmpq_mpoly_ctx.get(tuple(f"v{i}" for i in range(n_m + 4)), "lex")
+        v = ctx.gens()
+        Mm = [[ctx.from_dict({}) for _ in range(5)] for _ in range(5)]
+        k = 0
+        for i in range(5):
+            for j in range(i + 1, 5):
+                Mm[i][j], Mm[j][i] = v[k], -v[k]
+                k += 1
+        polys = inv.generators_from(Mm, list(v[n_m:]))
+        terms = {name: [(m[:n_m], c) for m, c in zip(p.monoms(), p.coeffs(), strict=True)]
+                 for name, p in polys.items()}
+    else:
+        polys = inv.generator_polys()
+        first = 3                                 # RING's gens: a, b, x, M_ij, q
+        terms = {name: [(m[first:first + n_m], c) for m, c in p.terms()] for name, p in polys.items()}
+    out = {}
+    for name in r5.COORDS[1:]:
+        degs = {sum(m) for m, _ in terms[name]}
+        if len(degs) != 1:
+            raise ArithmeticError(f"{name} is not homogeneous in M: degrees {sorted(degs)}")
+        total = sum((abs(c) for _, c in terms[name]), 0 * terms[name][0][1])
+        out[name] = (degs.pop(), str(total))
+    return out
+
+
+def equilibrium_equations() -> dict:
+    r"""The reduced field at $G = S_{uq} = 0$ (where every equilibrium lies for $b > -2$, :mod:`proofs.s6_euler_jacobi_n5`):
+    ``vanishing``, the names of the components $N_i$ that are zero there as polynomials, and ``P`` $= (P_G, P_{uq})$ with
+    $N_G = (2+a+b)P_G$, $N_{S_{uq}} = (2+a+b)P_{uq}$ at $G = S_{uq} = 0$ (exact division; raises if $2 + a + b$ does not divide).
+    So for $a + b \ne -2$ the equilibria on $Z$ are $\{G = S_{uq} = P_G = P_{uq} = R_1 = R_2 = 0\}$; ``a_free`` says
+    whether $P_G, P_{uq}, R_1, R_2$ at $G = S_{uq} = 0$ are free of $a$ (then so is that set)."""
+    N, _ = field()
+    c = coordinates()
+    R = ri5.INV_RING
+    a, b = R.gens[:2]
+
+    def at0(p):
+        return p.compose([(c["G"], R(0)), (c["Suq"], R(0))])
+    vanishing = [n for n in r5.COORDS if at0(N[n]) == 0]
+    P = []
+    for n in ("G", "Suq"):
+        q_, rem = at0(N[n]).div([2 + a + b])
+        if rem != 0:
+            raise ArithmeticError(f"2 + a + b does not divide N_{n} at G = Suq = 0")
+        P.append(q_[0])
+    rels = [at0(r) for r in relations()]
+    a_free = all(p.degree(a) <= 0 for p in P + rels)
+    return {"vanishing": vanishing, "P": tuple(P), "a_free": a_free, "at0": at0}
