@@ -31,12 +31,15 @@ no equilibrium is a 2-torus with quasi-periodic motion after a change of time.
 **Equilibria**: at every equilibrium of the reduced field $G = S_{uq} = 0$ (for $b > -2$; exact, from
 $\dot x = G/(2+a+b)$ and the $\dot S_{qq}$, $\dot E_+$ components at $G = 0$). At $G = S_{uq} = 0$ eight of the ten
 components of the field vanish identically and the other two are $(2+a+b)P_G$, $(2+a+b)P_{uq}$: the equilibria on $Z$
-are exactly $\{G = S_{uq} = P_G = P_{uq} = R_1 = R_2 = 0\}$, a set free of $a$ (exact). On the principal stratum they are
-of two kinds (:mod:`symbolic.family.equilibria_n5`): $\Omega E_5 = 0$ (four parameters in the quotient), and
-points fixed by some $\eta \ne 0$ with $(\eta - \Omega)E_5 = 0$ (exact points of both are computed); at each the six
-integrals are dependent (computed on the family every point fixed by $\eta \ne 0$ is conjugate to; the
-reduction to that family by normal forms is argued), so the proviso "no equilibrium" is automatic on regular
-level sets.
+are exactly $\{G = S_{uq} = P_G = P_{uq} = R_1 = R_2 = 0\}$, a set free of $a$ (exact). **Every equilibrium is critical**
+(computed, :func:`critical_equilibria_part`): with $w = \partial_GN$, each row $\phi$ of the Jacobian of $(f_1..f_6, R_1, R_2)$
+has $\phi\cdot w$ in the ideal of $(N, R_1, R_2, \partial_GR_1, \partial_GR_2)$ — explicit cofactors, from the $G$-derivative of the
+conservation identities — so $Jw = 0$ at an equilibrium; there $G = S_{uq} = 0$, where the $G$ and $S_{uq}$ columns of $J$ and
+$\partial_GR_i$ vanish, and $w_x = 2\Delta \ne 0$: the kernel of the $8\times10$ matrix $J$ has dimension $\ge 3$, rank $\le 7 < 8$. So
+the proviso "no equilibrium" is automatic on regular level sets, at every equilibrium on $Z$ (not only on the
+principal stratum). The two kinds of equilibria of :mod:`symbolic.family.equilibria_n5` ($\Omega E_5 = 0$, and points
+fixed by some $\eta \ne 0$) are computed at exact points as well, with the rank of $dc$ on the normal-form family; the
+argument through them is no longer needed.
 
 **Computed here** (SymPy and FLINT, exact): $D\,X(R_1) = C_{11}R_1$, $D\,X(R_2) = C_{21}R_1 + C_{22}R_2$;
 $\alpha = -3/2$ from the ansatz and the identity $\operatorname{div}(\Delta^\alpha X) = \Delta^\alpha(C_{11}+C_{22})/D$ on $\mathbb{R}^{10}$
@@ -52,15 +55,13 @@ range $a, b > -2$, $a + b > -2$ (exact on one sample of every cell of the arrang
 :func:`symbolic.family.euler_jacobi_n5.positivity_cells`); every eigenvalue is at most $4 + a + b$ (the
 quadratic is symmetric under $\lambda \mapsto 4 + a + b - \lambda$), so $H \ge \lVert M\rVert^2/(2(4+a+b))$; the box
 $\lvert g\rvert \le C_g\lVert M\rVert^{d_g}$ (:func:`symbolic.family.euler_jacobi_n5.generator_bounds`, both engines, with the control that
-$d_g - 1$ fails); the equilibrium identities and the equilibrium set on $Z$; exact points of both kinds of equilibria
+$d_g - 1$ fails); the equilibrium identities, the equilibrium set on $Z$ and the kernel vector $w$ of the Jacobian at
+every equilibrium; exact points of both kinds of equilibria
 (:mod:`symbolic.family.equilibria_n5`: $\Omega E_5 = 0$, and $\eta \ne 0$ fixing $p$), each with the reduced field zero, on the
-principal stratum and of rank $< 8$. **Argued** (one part, :data:`ARGUED`): the theorem, applied on the principal
-stratum; named definition-level facts (Heine–Borel; the level set $\pi(P) \cap \{f = c\}$ is closed, as a limit of
-$\pi(p_k)$ with $p_k$ in the closed bounded $\{H \le h\}$ is $\pi$ of a limit point of the $p_k$ by Bolzano–Weierstrass;
-the chart densities agree on overlaps, being the Leray residue's); and **one step**, the description of the
-equilibria on the principal stratum: $\pi(p)$ is an equilibrium iff some $\eta = \Omega + \xi$, $\xi \in \mathfrak{so}(4)$, fixes $p$,
-and a point fixed by $\eta \ne 0$ is conjugate to $(\mu e_{12} + M', e_5)$ (normal forms), on which family
-$\operatorname{rank} dc \le 3$ is computed exactly — which with the collapse identity puts every equilibrium in the critical set.
+principal stratum and of rank $< 8$. **Argued** (one part, :data:`ARGUED`): the theorem (the citation), applied on the
+principal stratum, with named definition-level facts: Heine–Borel; the level set $\pi(P) \cap \{f = c\}$ is closed, as a
+limit of $\pi(p_k)$ with $p_k$ in the closed bounded $\{H \le h\}$ is $\pi$ of a limit point of the $p_k$ (Bolzano–Weierstrass);
+the chart densities agree on overlaps, being the expressions of one form, the Leray residue.
 Note: $Z(\mathbb{R})$ is larger than $\pi(P)$ (e.g. $A_+ = -1$, every other coordinate $0$, lies on $Z$; $A_+ = \lVert k_+\rVert^2 \ge 0$
 on $\pi(P)$), so the level sets are taken in $\pi(P)$, where the box bounds them, not in all of $Z$.
 
@@ -262,6 +263,46 @@ def equilibria_part() -> Part:
     return _part("at every equilibrium G = S_uq = 0 (b > -2), and the equilibrium set on Z", checks)
 
 
+def critical_equilibria_part(a, b) -> Part:
+    r"""Every equilibrium on $Z$ lies in the critical set of the six integrals, computed
+    (:func:`symbolic.family.euler_jacobi_n5.equilibrium_kernel_residuals`): with $w = \partial_GN$, each row of the Jacobian of
+    $(f_1..f_6, R_1, R_2)$ applied to $w$ lies in the ideal of $(N, R_1, R_2, \partial_GR_1, \partial_GR_2)$ (explicit cofactors, symbolic
+    $a, b$); at $G = S_{uq} = 0$ (every equilibrium, :func:`equilibria_part`) the $G$ and $S_{uq}$ columns and $\partial_GR_i$ vanish and
+    $w_x = 2\Delta \ne 0$, so the kernel has dimension $\ge 3$ and the rank is $\le 7$. Evaluated at exact equilibria
+    ($\Omega E_5 = 0$), with the control that $J w \ne 0$ at a point that is not one."""
+    from chaplygin_nd.symbolic import algebra, model
+
+    k = ej.equilibrium_kernel_residuals()
+    ident = rational_identity(list(k["residuals"].values()), label="EJ5 kernel vector")
+    cols = rational_identity(k["columns"] + [k["wx"]], label="EJ5 zero columns")
+    R = ri5.INV_RING
+
+    def Jw(pt):
+        at = [a, b] + [pt[n] for n in ej.r5.COORDS]
+        J = ej.jacobian_at(pt, a, b)
+        wv = sp.Matrix([sp.Rational(str(k["w"][n](*at))) if k["w"][n] != R(0) else 0 for n in ej.r5.COORDS])
+        return J * wv, J
+    at_eq = []
+    for t in range(2):
+        rng = points.generator(ledger_seed(), "S6:euler-jacobi-n5 kernel", t)
+        g = points.sphere_point(rng, 5)
+        Om = sp.zeros(5, 5)
+        Om[:4, :4] = points.skew_matrix(rng, 4)
+        L = model.L_matrix(g, sp.diag(1, 1, 1, 1, 1 + a), b)
+        M = algebra.unvec(list(L * sp.Matrix(algebra.vec(Om))), 5)
+        v, J = Jw(ej.quotient_point(M, g))
+        at_eq.append(v.is_zero_matrix and J.rank() < 8)
+    rng = points.generator(ledger_seed(), "S6:euler-jacobi-n5 kernel control")
+    ctrl, _ = Jw(ej.quotient_point(points.skew_matrix(rng, 5), points.sphere_point(rng, 5)))
+    return _part("every equilibrium on Z lies in the critical set (computed)", [
+        ("J w in the ideal of (N, R1, R2, d_G R1, d_G R2), w = d_G N (explicit cofactors)", ident),
+        ("G and S_uq columns and d_G R_i zero at G = S_uq = 0; w_x = 2 Delta", cols),
+        ("at exact equilibria J w = 0 and rank < 8; control", Check(
+            all(at_eq) and not ctrl.is_zero_matrix,
+            f"at 2 seeded points with Omega E_5 = 0 (a = {a}, b = {b}): J w = 0 and rank < 8: {at_eq}; control: "
+            f"J w != 0 at a seeded point that is not an equilibrium: {not ctrl.is_zero_matrix}"))])
+
+
 def relative_equilibria_part(a, b) -> Part:
     r"""Both kinds of equilibria of :mod:`symbolic.family.equilibria_n5`, at seeded exact points: the reduced
     field is zero there, the $SO(4)$-orbit has dimension 6 (principal stratum) and $(df_1..df_6, dR_1, dR_2)$ has rank
@@ -343,16 +384,12 @@ def relative_equilibria_part(a, b) -> Part:
 
 ARGUED = ("the Euler-Jacobi theorem (as the paper cites it at line 884: Arnold-Kozlov-Neishtadt, "
           "Mathematical Aspects of Classical and Celestial Mechanics; Borisov-Mamaev 2008), applied on the "
-          "principal stratum of P/SO(4) (charted by the regular part of Z); definition-level facts named: "
-          "Heine-Borel (the level set pi(P) & {f = c} is bounded by the computed box, and closed: a limit of "
-          "pi(p_k), p_k in the closed bounded {H <= h}, is pi of a limit point of the p_k, Bolzano-Weierstrass), "
-          "and the 44 chart densities Delta^(-3/2)/|J_yy'| are the expressions of one density, the Leray residue "
-          "Delta^(-3/2) dr/(dR_1 ^ dR_2); and ONE step, the description of the equilibria on the principal stratum: "
-          "pi(p) is an equilibrium iff X(p) is tangent to the SO(4)-orbit, i.e. eta = Omega + xi fixes p for some "
-          "xi in so(4); with eta = 0 (Omega E = 0) the collapse identity (S6:wedge-integrals, k = 1) makes dH and "
-          "the dc_i vanish on the 4-dimensional span of the Y_(w ^ E) (SO(5)-orbit of dimension 10), so rank "
-          "<= 4 + 1 < 6; a point fixed by eta != 0 is conjugate under SO(5) to (mu e_12 + M', e_5) (normal forms "
-          "of eta and of M), where rank dc <= 3 is computed, so rank <= 3 + 2 < 6")
+          "principal stratum of P/SO(4) (charted by the regular part of Z), with definition-level facts named, "
+          "not computed: Heine-Borel (the level set pi(P) & {f = c} is bounded by the computed box, and closed: a "
+          "limit of pi(p_k), p_k in the closed bounded {H <= h}, is pi of a limit point of the p_k, "
+          "Bolzano-Weierstrass); the 44 chart densities Delta^(-3/2)/|J_yy'| are the expressions of one density, "
+          "the Leray residue Delta^(-3/2) dr/(dR_1 ^ dR_2). Everything else (measure, integrals, compactness "
+          "bounds, every equilibrium critical) is computed")
 
 
 @claim("S6:euler-jacobi-n5", uses=("S6:reduced-n5", "S6:sixth-integral-n5", "S6:open-reduced-n5",
@@ -367,15 +404,14 @@ def s6_euler_jacobi_n5() -> Verdict:
     a, b = points.rational(rng, -1, 1, nonzero=True), points.rational(rng, 1, 3)
     measure, alpha = measure_part()
     parts = [quotient_part(), measure, measure_chart_part(), integrals_part(a, b), positivity_part(),
-             compactness_part(), equilibria_part(),
+             compactness_part(), equilibria_part(), critical_equilibria_part(a, b),
              relative_equilibria_part(a, b),
              Verdict.by_argument(ARGUED).as_part("the theorem (cited) and how it applies")]
     notes = (f"invariant density on the quotient: Delta^({alpha}) / |d(R_1, R_2)/d(y, y')| in the chart "
              "r minus {y, y'} (invariant in all 44 charts); L_gamma > 0 on S^4 iff " + RANGE + "; the image of {H <= h} in "
              "an exact box; at every equilibrium G = S_uq = 0; "
-             "every equilibrium lies in the critical set (Omega E = 0, or fixed by some eta != 0: exact points of "
-             "both kinds computed; rank dc <= 3 computed on the family every point fixed by eta != 0 is conjugate to), "
-             "so regular level sets carry none")
+             "every equilibrium lies in the critical set (computed: J d_G N = 0 there, with the G and S_uq columns zero "
+             "and (d_G N)_x = 2 Delta != 0, so rank <= 7), so regular level sets carry none")
     return Verdict.of_parts(parts, n_values=(5,), notes=notes, method=(
         "exact identities on the quotient R^10 (SymPy and FLINT): invariant ideal of the relations, the "
         "measure exponent derived from an ansatz, the integrals, the characteristic polynomial of L_gamma; "

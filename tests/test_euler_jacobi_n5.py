@@ -160,3 +160,18 @@ def test_the_equilibrium_set_on_z_is_cut_out_by_four_polynomials_free_of_a():
     assert eq["a_free"]
     PG, Puq = eq["P"]
     assert PG != 0 and Puq != 0
+
+
+def test_every_equilibrium_is_critical_by_an_explicit_kernel_vector():
+    """J d_G N lies in the ideal of (N, R1, R2, d_G R1, d_G R2) with explicit cofactors; the G and S_uq columns
+    vanish at G = S_uq = 0 and (d_G N)_x = 2 Delta. Controls: the G column does not vanish off G = S_uq = 0, and
+    dH . d_G N is not the zero polynomial (the membership has content: it vanishes only on the ideal's zeros)."""
+    k = ej.equilibrium_kernel_residuals()
+    assert all(r == 0 for r in k["residuals"].values())
+    assert all(col == 0 for col in k["columns"]) and k["wx"] == 0
+    P, Q = ej.integral_fractions()["H"]
+    G = ej.coordinates()["G"]
+    assert Q * P.diff(G) - P * Q.diff(G) != 0
+    c = ej.coordinates()
+    row = sum(((Q * P.diff(c[n]) - P * Q.diff(c[n])) * k["w"][n] for n in ej.r5.COORDS), 0 * P)
+    assert row != 0

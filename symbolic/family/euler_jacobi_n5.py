@@ -38,7 +38,8 @@ from chaplygin_nd.symbolic.reduction import reduced_n5 as r5
 __all__ = ["coordinates", "field", "relations", "relation_cofactors", "measure_polynomials",
            "measure_exponent", "integral_fractions", "integral_memberships", "charpoly_residual",
            "quotient_point", "jacobian_at", "POSITIVITY_FORMS", "positivity_cells",
-           "quadratic_reflection_residual", "generator_bounds", "equilibrium_equations"]
+           "quadratic_reflection_residual", "generator_bounds", "equilibrium_equations",
+           "equilibrium_kernel_residuals"]
 
 
 def coordinates() -> dict:
@@ -302,3 +303,51 @@ def equilibrium_equations() -> dict:
     rels = [at0(r) for r in relations()]
     a_free = all(p.degree(a) <= 0 for p in P + rels)
     return {"vanishing": vanishing, "P": tuple(P), "a_free": a_free, "at0": at0}
+
+
+def equilibrium_kernel_residuals() -> dict:
+    r"""Exact certificate that at every equilibrium the six integrals are dependent on $Z$.
+
+    Let $w = \partial_GN$ (the $G$-derivative of the field's numerators). For each row $\phi$ of the Jacobian of
+    $(f_1..f_6, R_1, R_2)$ — for $f = P/Q$ the row $Q\,dP - P\,dQ$ — the polynomial $\phi\cdot w$ is written in the ideal of
+    $(N_1, \dots, N_{10}, R_1, R_2, \partial_GR_1, \partial_GR_2)$ with explicit cofactors, obtained by differentiating in $G$ the identity
+    $Q\,DX(P) - P\,DX(Q) = q_1R_1 + q_2R_2$ (:func:`integral_memberships`; $DX(R_1) = C_{11}R_1$, $DX(R_2) = C_{21}R_1 + C_{22}R_2$ for
+    the relations): ``residuals`` (name -> $\phi\cdot w$ minus that combination) must all be 0. ``columns``: the $G$ and $S_{uq}$
+    columns of every row, and $\partial_GR_1$, $\partial_GR_2$, at $G = S_{uq} = 0$ (must be 0). ``wx``: $\partial_GN_x - 2\Delta$ (must be 0).
+
+    Consequence: at an equilibrium $p$ ($N(p) = 0$, $p \in Z$, with $G = S_{uq} = 0$ there) the $8\times10$ Jacobian has in its kernel
+    $e_G$, $e_{S_{uq}}$ (zero columns) and $w(p)$, whose $x$-component is $2\Delta(p) \ne 0$: rank $\le 7 < 8$."""
+    N, _ = field()
+    c = coordinates()
+    R1, R2 = relations()
+    C = relation_cofactors()
+    R = ri5.INV_RING
+    G = c["G"]
+    names = r5.COORDS
+    w = {n: N[n].diff(G) for n in names}
+    dGR = (R1.diff(G), R2.diff(G))
+    eq = equilibrium_equations()
+    at0 = eq["at0"]
+
+    def dot(grad):
+        return sum((grad[n] * w[n] for n in names), R(0))
+
+    def along_N(f):
+        return sum((f.diff(c[n]) * N[n] for n in names), R(0))
+    residuals, columns = {}, []
+    mem = integral_memberships()
+    for name, (P, Q) in integral_fractions().items():
+        q1, q2 = mem[name]["q1"], mem[name]["q2"]
+        row = {n: Q * P.diff(c[n]) - P * Q.diff(c[n]) for n in names}
+        combo = (q1.diff(G) * R1 + q1 * dGR[0] + q2.diff(G) * R2 + q2 * dGR[1]
+                 - (Q.diff(G) * along_N(P) + Q * along_N(P.diff(G)) - P.diff(G) * along_N(Q) - P * along_N(Q.diff(G))))
+        residuals[name] = dot(row) - combo
+        columns += [at0(row["G"]), at0(row["Suq"])]
+    dcof = {"R1": C["C11"].diff(G) * R1 + C["C11"] * dGR[0],                     # d/dG of C11 R1
+            "R2": C["C21"].diff(G) * R1 + C["C21"] * dGR[0] + C["C22"].diff(G) * R2 + C["C22"] * dGR[1]}
+    for name, Rr in (("R1", R1), ("R2", R2)):
+        row = {n: Rr.diff(c[n]) for n in names}
+        residuals[name] = dot(row) - (dcof[name] - along_N(Rr.diff(G)))
+        columns += [at0(row["G"]), at0(row["Suq"])]
+    columns += [at0(d) for d in dGR]
+    return {"residuals": residuals, "columns": columns, "wx": w["x"] - 2 * _Delta(), "w": w}
