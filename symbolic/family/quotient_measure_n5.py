@@ -11,7 +11,9 @@ is invariant iff $\sum_{i\in z}\frac{d}{dz_i}(\tilde\rho X_i) = 0$ on $Z$, where
 \,J_{yy'}^{-1}(\partial_iR_1, \partial_iR_2)^T$ is the derivative along $Z$ (implicit functions). Writing
 $\frac{d}{dz_i}(\Delta^{-3/2}g) = \Delta^{-3/2}(\frac{d}{dz_i}g - \tfrac32 g\,\partial_i\Delta/\Delta)$ and clearing denominators,
 this is the polynomial identity :func:`chart_divergence` $= q_1R_1 + q_2R_2$, checked exactly
-(symbolic $a, b$) by the row.
+(symbolic $a, b$) by the row — in this chart and in every other pair $(y, y')$ with $J_{yy'} \ne 0$
+(:func:`charts`, 44 pairs), which together cover the regular part of $Z$; the densities $\Delta^{-3/2}/\lvert J_{yy'}\rvert$ are the
+chart expressions of the Leray residue $\Delta^{-3/2}dr/(dR_1\wedge dR_2)$.
 
 **Push-forward.** The measure of $P$ is $\Delta^{-3/2}\,dM\,d\gamma$ (P:Measure, $n = 5$), the volume of the
 Euclidean metric in $((M_{ij})_{i<j}, \gamma)$ restricted to $P$, times $\Delta^{-3/2}$. By the coarea formula its
@@ -55,7 +57,8 @@ def chart_divergence(out: tuple[str, str] = CHART_OUT):
     r"""$T = 2J^3D^2\Delta^{5/2}\sum_{i\in z}\frac{d}{dz_i}(\Delta^{-3/2}X_i/J)$ as a polynomial of
     :data:`symbolic.reduction.invariants_n5.INV_RING` (module docstring): zero on $Z$ iff the chart
     density $\Delta^{-3/2}/J$ is invariant. Returns ``(T, (q1, q2), remainder)`` with $T = q_1R_1 + q_2R_2 +$
-    remainder (multivariate division)."""
+    remainder (multivariate division by $R_1, R_2$ and :func:`relation_s_polynomial`, its quotient on $g_3$ carried back
+    to $R_1, R_2$)."""
     N, D = ej.field()
     R1, R2 = ej.relations()
     J, (r1, r2) = chart_jacobian(out)
