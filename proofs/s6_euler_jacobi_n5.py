@@ -34,7 +34,8 @@ components of the field vanish identically and the other two are $(2+a+b)P_G$, $
 are exactly $\{G = S_{uq} = P_G = P_{uq} = R_1 = R_2 = 0\}$, a set free of $a$ (exact). **Every equilibrium is critical**
 (computed, :func:`critical_equilibria_part`): with $w = \partial_GN$, each row $\phi$ of the Jacobian of $(f_1..f_6, R_1, R_2)$
 has $\phi\cdot w$ in the ideal of $(N, R_1, R_2, \partial_GR_1, \partial_GR_2)$ — explicit cofactors, from the $G$-derivative of the
-conservation identities — so $Jw = 0$ at an equilibrium; there $G = S_{uq} = 0$, where the $G$ and $S_{uq}$ columns of $J$ and
+conservation identities, symbolic $a, b$, formed in SymPy's ring and recomputed from the inputs in FLINT — so
+$Jw = 0$ at an equilibrium; there $G = S_{uq} = 0$, where the $G$ and $S_{uq}$ columns of $J$ and
 $\partial_GR_i$ vanish, and $w_x = 2\Delta \ne 0$: the kernel of the $8\times10$ matrix $J$ has dimension $\ge 3$, rank $\le 7 < 8$. So
 the proviso "no equilibrium" is automatic on regular level sets, at every equilibrium on $Z$ (not only on the
 principal stratum). The two kinds of equilibria of :mod:`symbolic.family.equilibria_n5` ($\Omega E_5 = 0$, and points
@@ -275,6 +276,9 @@ def critical_equilibria_part(a, b) -> Part:
     k = ej.equilibrium_kernel_residuals()
     ident = rational_identity(list(k["residuals"].values()), label="EJ5 kernel vector")
     cols = rational_identity(k["columns"] + [k["wx"]], label="EJ5 zero columns")
+    kf = ej.equilibrium_kernel_residuals("flint")      # recomputed from the inputs in FLINT fmpq_mpoly
+    flint_zero = all(r == 0 for r in kf["residuals"].values()) and all(c == 0 for c in kf["columns"]) \
+        and kf["wx"] == 0
     R = ri5.INV_RING
 
     def Jw(pt):
@@ -297,6 +301,9 @@ def critical_equilibria_part(a, b) -> Part:
     return _part("every equilibrium on Z lies in the critical set (computed)", [
         ("J w in the ideal of (N, R1, R2, d_G R1, d_G R2), w = d_G N (explicit cofactors)", ident),
         ("G and S_uq columns and d_G R_i zero at G = S_uq = 0; w_x = 2 Delta", cols),
+        ("the same residuals recomputed in FLINT", Check(
+            flint_zero, f"N, P, Q, q_i, R_i and the cofactors C converted to fmpq_mpoly; every derivative, product and "
+            f"substitution redone there: residuals, columns and w_x - 2 Delta all zero: {flint_zero}")),
         ("at exact equilibria J w = 0 and rank < 8; control", Check(
             all(at_eq) and not ctrl.is_zero_matrix,
             f"at 2 seeded points with Omega E_5 = 0 (a = {a}, b = {b}): J w = 0 and rank < 8: {at_eq}; control: "

@@ -169,6 +169,8 @@ def test_every_equilibrium_is_critical_by_an_explicit_kernel_vector():
     k = ej.equilibrium_kernel_residuals()
     assert all(r == 0 for r in k["residuals"].values())
     assert all(col == 0 for col in k["columns"]) and k["wx"] == 0
+    kf = ej.equilibrium_kernel_residuals("flint")
+    assert all(r == 0 for r in kf["residuals"].values()) and kf["wx"] == 0
     P, Q = ej.integral_fractions()["H"]
     G = ej.coordinates()["G"]
     assert Q * P.diff(G) - P * Q.diff(G) != 0

@@ -305,7 +305,17 @@ def equilibrium_equations() -> dict:
     return {"vanishing": vanishing, "P": tuple(P), "a_free": a_free, "at0": at0}
 
 
-def equilibrium_kernel_residuals() -> dict:
+def _to_flint(polys: dict) -> dict:
+    """Elements of :data:`INV_RING` as FLINT ``fmpq_mpoly`` in the same variables (same names, same order)."""
+    import flint
+
+    names = tuple(str(v) for v in ri5.INV_RING.symbols)
+    ctx = flint.fmpq_mpoly_ctx.get(names, "lex")
+    return {k: ctx.from_dict({m: flint.fmpq(int(c.numerator), int(c.denominator)) for m, c in p.terms()})
+            for k, p in polys.items()}
+
+
+def equilibrium_kernel_residuals(engine: str = "sympy") -> dict:
     r"""Exact certificate that at every equilibrium the six integrals are dependent on $Z$.
 
     Let $w = \partial_GN$ (the $G$-derivative of the field's numerators). For each row $\phi$ of the Jacobian of
@@ -314,40 +324,61 @@ def equilibrium_kernel_residuals() -> dict:
     $Q\,DX(P) - P\,DX(Q) = q_1R_1 + q_2R_2$ (:func:`integral_memberships`; $DX(R_1) = C_{11}R_1$, $DX(R_2) = C_{21}R_1 + C_{22}R_2$ for
     the relations): ``residuals`` (name -> $\phi\cdot w$ minus that combination) must all be 0. ``columns``: the $G$ and $S_{uq}$
     columns of every row, and $\partial_GR_1$, $\partial_GR_2$, at $G = S_{uq} = 0$ (must be 0). ``wx``: $\partial_GN_x - 2\Delta$ (must be 0).
+    ``engine``: ``sympy`` (SymPy's sparse ring over QQ) or ``flint`` (the inputs $N$, $P$, $Q$, $q_i$, $R_i$, $C$ converted to
+    FLINT ``fmpq_mpoly`` and every derivative, product and substitution done there).
 
     Consequence: at an equilibrium $p$ ($N(p) = 0$, $p \in Z$, with $G = S_{uq} = 0$ there) the $8\times10$ Jacobian has in its kernel
     $e_G$, $e_{S_{uq}}$ (zero columns) and $w(p)$, whose $x$-component is $2\Delta(p) \ne 0$: rank $\le 7 < 8$."""
     N, _ = field()
-    c = coordinates()
     R1, R2 = relations()
     C = relation_cofactors()
-    R = ri5.INV_RING
-    G = c["G"]
+    mem = integral_memberships()
+    fr = integral_fractions()
+    inputs = {("N", n): N[n] for n in r5.COORDS} | {"R1": R1, "R2": R2, "Delta": _Delta()} | \
+        {("C", k): v for k, v in C.items()} | {("P", k): P for k, (P, _) in fr.items()} | \
+        {("Q", k): Q for k, (_, Q) in fr.items()} | \
+        {("q", k, i): mem[k][f"q{i}"] for k in fr for i in (1, 2)}
     names = r5.COORDS
-    w = {n: N[n].diff(G) for n in names}
-    dGR = (R1.diff(G), R2.diff(G))
-    eq = equilibrium_equations()
-    at0 = eq["at0"]
+    if engine == "flint":
+        v = _to_flint(inputs)
+
+        def d(p, n):
+            return p.derivative(n)
+
+        def at0(p):
+            return p.subs({"G": 0, "Suq": 0})
+    else:
+        v = inputs
+        c = coordinates()
+
+        def d(p, n):
+            return p.diff(c[n])
+        at0 = equilibrium_equations()["at0"]
+    zero = v["R1"] * 0
+    Nv = {n: v[("N", n)] for n in names}
+    R1, R2 = v["R1"], v["R2"]
+    w = {n: d(Nv[n], "G") for n in names}
+    dGR = (d(R1, "G"), d(R2, "G"))
 
     def dot(grad):
-        return sum((grad[n] * w[n] for n in names), R(0))
+        return sum((grad[n] * w[n] for n in names), zero)
 
     def along_N(f):
-        return sum((f.diff(c[n]) * N[n] for n in names), R(0))
+        return sum((d(f, n) * Nv[n] for n in names), zero)
     residuals, columns = {}, []
-    mem = integral_memberships()
-    for name, (P, Q) in integral_fractions().items():
-        q1, q2 = mem[name]["q1"], mem[name]["q2"]
-        row = {n: Q * P.diff(c[n]) - P * Q.diff(c[n]) for n in names}
-        combo = (q1.diff(G) * R1 + q1 * dGR[0] + q2.diff(G) * R2 + q2 * dGR[1]
-                 - (Q.diff(G) * along_N(P) + Q * along_N(P.diff(G)) - P.diff(G) * along_N(Q) - P * along_N(Q.diff(G))))
+    for name in fr:
+        P, Q, q1, q2 = v[("P", name)], v[("Q", name)], v[("q", name, 1)], v[("q", name, 2)]
+        row = {n: Q * d(P, n) - P * d(Q, n) for n in names}
+        combo = (d(q1, "G") * R1 + q1 * dGR[0] + d(q2, "G") * R2 + q2 * dGR[1]
+                 - (d(Q, "G") * along_N(P) + Q * along_N(d(P, "G")) - d(P, "G") * along_N(Q) - P * along_N(d(Q, "G"))))
         residuals[name] = dot(row) - combo
         columns += [at0(row["G"]), at0(row["Suq"])]
-    dcof = {"R1": C["C11"].diff(G) * R1 + C["C11"] * dGR[0],                     # d/dG of C11 R1
-            "R2": C["C21"].diff(G) * R1 + C["C21"] * dGR[0] + C["C22"].diff(G) * R2 + C["C22"] * dGR[1]}
+    C11, C21, C22 = v[("C", "C11")], v[("C", "C21")], v[("C", "C22")]
+    dcof = {"R1": d(C11, "G") * R1 + C11 * dGR[0],                     # d/dG of C11 R1
+            "R2": d(C21, "G") * R1 + C21 * dGR[0] + d(C22, "G") * R2 + C22 * dGR[1]}
     for name, Rr in (("R1", R1), ("R2", R2)):
-        row = {n: Rr.diff(c[n]) for n in names}
-        residuals[name] = dot(row) - (dcof[name] - along_N(Rr.diff(G)))
+        row = {n: d(Rr, n) for n in names}
+        residuals[name] = dot(row) - (dcof[name] - along_N(d(Rr, "G")))
         columns += [at0(row["G"]), at0(row["Suq"])]
-    columns += [at0(d) for d in dGR]
-    return {"residuals": residuals, "columns": columns, "wx": w["x"] - 2 * _Delta(), "w": w}
+    columns += [at0(p) for p in dGR]
+    return {"residuals": residuals, "columns": columns, "wx": w["x"] - 2 * v["Delta"], "w": w}
