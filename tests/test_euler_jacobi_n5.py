@@ -111,3 +111,69 @@ def test_points_fixed_by_eta_have_dependent_invariants_but_generic_points_do_not
     assert DomainMatrix.from_Matrix(G).convert_to(sp.QQ.frac_field(*syms)).rank() == 3
     rng = points.generator(4, "generic c rank")
     assert ia.c_rank(points.skew_matrix(rng, 5), points.sphere_point(rng, 5), "sympy") == 4
+
+
+def test_the_box_bounds_every_generator_and_needs_its_degree():
+    """|g| <= C_g ||M||^d_g at points of P (both engines give the same C_g, d_g); with d_g - 1 the bound fails
+    for some generator once M is scaled up, so the degrees are not slack."""
+    bounds = ej.generator_bounds("sympy")
+    assert bounds == ej.generator_bounds("flint")
+    assert set(bounds) == set(ej.r5.COORDS) - {"x"}
+    rng = points.generator(5, "EJ5 box test")
+    M, g = points.skew_matrix(rng, 5), points.sphere_point(rng, 5)
+    for scale, expect_sharp in ((1, False), (10**4, True)):
+        vals = ej.quotient_point(M * scale, g)
+        norm2 = sum((M[i, j] * scale) ** 2 for i in range(5) for j in range(i + 1, 5))
+        assert all(vals[n] ** 2 <= sp.Rational(C) ** 2 * norm2**d for n, (d, C) in bounds.items())
+        if expect_sharp:
+            assert any(vals[n] ** 2 > sp.Rational(C) ** 2 * norm2 ** (d - 1) for n, (d, C) in bounds.items())
+
+
+def test_z_has_real_points_outside_the_image_of_p():
+    """A_+ = -1 with every other coordinate 0 satisfies R_1 = R_2 = 0, but A_+ = |k_+|^2 >= 0 on the image of P:
+    the level sets are bounded in the image of P, not in all of Z."""
+    R1, R2 = ej.relations()
+    c = ej.coordinates()
+    at = {str(v): 0 for v in c.values()} | {"Ap": -1, "x": sp.Rational(1, 2)}
+    names = [str(s) for s in R1.ring.symbols]
+    vals = [at.get(n, 0) for n in names]
+    assert R1(*vals) == 0 and R2(*vals) == 0
+
+
+def test_liouville_needs_the_s_polynomial_in_a_chart_solving_for_x():
+    """In the chart solving for (x, B) a plain division by (R_1, R_2) leaves a remainder; with their reduced
+    S-polynomial g_3 = u R_1 + v R_2 it leaves none, and the cofactors make an identity."""
+    from chaplygin_nd.symbolic.family import quotient_measure_n5 as qm
+
+    R1, R2 = ej.relations()
+    g3, (u, v) = qm.relation_s_polynomial()
+    assert g3 != 0 and g3 - u * R1 - v * R2 == 0
+    T, (q1, q2), rem = qm.chart_divergence(("x", "B"))
+    assert rem == 0 and T - q1 * R1 - q2 * R2 == 0
+    assert T.div([R1, R2])[1] != 0
+    assert len(qm.charts()) == 44 and ("Ap", "Am") not in qm.charts()
+
+
+def test_the_equilibrium_set_on_z_is_cut_out_by_four_polynomials_free_of_a():
+    eq = ej.equilibrium_equations()
+    assert set(eq["vanishing"]) == set(ej.r5.COORDS) - {"G", "Suq"}
+    assert eq["a_free"]
+    PG, Puq = eq["P"]
+    assert PG != 0 and Puq != 0
+
+
+def test_every_equilibrium_is_critical_by_an_explicit_kernel_vector():
+    """J d_G N lies in the ideal of (N, R1, R2, d_G R1, d_G R2) with explicit cofactors; the G and S_uq columns
+    vanish at G = S_uq = 0 and (d_G N)_x = 2 Delta. Controls: the G column does not vanish off G = S_uq = 0, and
+    dH . d_G N is not the zero polynomial (the membership has content: it vanishes only on the ideal's zeros)."""
+    k = ej.equilibrium_kernel_residuals()
+    assert all(r == 0 for r in k["residuals"].values())
+    assert all(col == 0 for col in k["columns"]) and k["wx"] == 0
+    kf = ej.equilibrium_kernel_residuals("flint")
+    assert all(r == 0 for r in kf["residuals"].values()) and kf["wx"] == 0
+    P, Q = ej.integral_fractions()["H"]
+    G = ej.coordinates()["G"]
+    assert Q * P.diff(G) - P * Q.diff(G) != 0
+    c = ej.coordinates()
+    row = sum(((Q * P.diff(c[n]) - P * Q.diff(c[n])) * k["w"][n] for n in ej.r5.COORDS), 0 * P)
+    assert row != 0

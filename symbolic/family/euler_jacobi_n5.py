@@ -38,7 +38,8 @@ from chaplygin_nd.symbolic.reduction import reduced_n5 as r5
 __all__ = ["coordinates", "field", "relations", "relation_cofactors", "measure_polynomials",
            "measure_exponent", "integral_fractions", "integral_memberships", "charpoly_residual",
            "quotient_point", "jacobian_at", "POSITIVITY_FORMS", "positivity_cells",
-           "quadratic_reflection_residual"]
+           "quadratic_reflection_residual", "generator_bounds", "equilibrium_equations",
+           "equilibrium_kernel_residuals"]
 
 
 def coordinates() -> dict:
@@ -237,3 +238,147 @@ def quadratic_reflection_residual():
     def qf(t):
         return t**2 - Lam * t + Dl
     return sp.expand(qf(Lam - lam) - qf(lam))
+
+
+def generator_bounds(engine: str = "sympy") -> dict:
+    r"""For each reduced coordinate $g \ne x$ (the generators of :mod:`symbolic.reduction.invariants_n5` as polynomials in
+    the entries $M_{ij}$, $i < j$, and $q = (\gamma_1..\gamma_4)$): its degree $d$ in $M$ (it must be homogeneous in $M$) and
+    $C = \sum\lvert\text{coefficients}\rvert$. Since $\lvert M_{ij}\rvert \le \lVert M\rVert$ ($\lVert M\rVert^2 = \sum_{i<j}M_{ij}^2$, the norm of
+    :func:`quadratic_reflection_residual`) and $\lvert q_k\rvert \le 1$ on $S^4$, every monomial is at most $\lVert M\rVert^d$ in absolute
+    value, so $\lvert g\rvert \le C\lVert M\rVert^d$ on $P$; with $\lVert M\rVert^2 \le 2(4+a+b)h$ on $\{H \le h\}$ the image of
+    $\{H \le h\}$ lies in the box $\lvert g\rvert \le C(2(4+a+b)h)^{d/2}$, $\lvert x\rvert \le 1$ of $\mathbb{R}^{10}$. ``engine``: ``sympy``
+    (the generators in SymPy's sparse ring over QQ) or ``flint`` (rebuilt from the same formulas, :func:`generators_from`,
+    over FLINT's ``fmpq_mpoly``). Returns name -> (d, C) with C a ``str`` of the exact rational; raises
+    ``ArithmeticError`` if a generator is not homogeneous in $M$."""
+    from chaplygin_nd.symbolic.reduction import invariants_n5 as inv
+
+    n_m = 10                                      # the M entries come first, then q1..q4
+    if engine == "flint":
+        import flint
+        ctx = flint.fmpq_mpoly_ctx.get(tuple(f"v{i}" for i in range(n_m + 4)), "lex")
+        v = ctx.gens()
+        Mm = [[ctx.from_dict({}) for _ in range(5)] for _ in range(5)]
+        k = 0
+        for i in range(5):
+            for j in range(i + 1, 5):
+                Mm[i][j], Mm[j][i] = v[k], -v[k]
+                k += 1
+        polys = inv.generators_from(Mm, list(v[n_m:]))
+        terms = {name: [(m[:n_m], c) for m, c in zip(p.monoms(), p.coeffs(), strict=True)]
+                 for name, p in polys.items()}
+    else:
+        polys = inv.generator_polys()
+        first = 3                                 # RING's gens: a, b, x, M_ij, q
+        terms = {name: [(m[first:first + n_m], c) for m, c in p.terms()] for name, p in polys.items()}
+    out = {}
+    for name in r5.COORDS[1:]:
+        degs = {sum(m) for m, _ in terms[name]}
+        if len(degs) != 1:
+            raise ArithmeticError(f"{name} is not homogeneous in M: degrees {sorted(degs)}")
+        total = sum((abs(c) for _, c in terms[name]), 0 * terms[name][0][1])
+        out[name] = (degs.pop(), str(total))
+    return out
+
+
+def equilibrium_equations() -> dict:
+    r"""The reduced field at $G = S_{uq} = 0$ (where every equilibrium lies for $b > -2$, :mod:`proofs.s6_euler_jacobi_n5`):
+    ``vanishing``, the names of the components $N_i$ that are zero there as polynomials, and ``P`` $= (P_G, P_{uq})$ with
+    $N_G = (2+a+b)P_G$, $N_{S_{uq}} = (2+a+b)P_{uq}$ at $G = S_{uq} = 0$ (exact division; raises if $2 + a + b$ does not divide).
+    So for $a + b \ne -2$ the equilibria on $Z$ are $\{G = S_{uq} = P_G = P_{uq} = R_1 = R_2 = 0\}$; ``a_free`` says
+    whether $P_G, P_{uq}, R_1, R_2$ at $G = S_{uq} = 0$ are free of $a$ (then so is that set)."""
+    N, _ = field()
+    c = coordinates()
+    R = ri5.INV_RING
+    a, b = R.gens[:2]
+
+    def at0(p):
+        return p.compose([(c["G"], R(0)), (c["Suq"], R(0))])
+    vanishing = [n for n in r5.COORDS if at0(N[n]) == 0]
+    P = []
+    for n in ("G", "Suq"):
+        q_, rem = at0(N[n]).div([2 + a + b])
+        if rem != 0:
+            raise ArithmeticError(f"2 + a + b does not divide N_{n} at G = Suq = 0")
+        P.append(q_[0])
+    rels = [at0(r) for r in relations()]
+    a_free = all(p.degree(a) <= 0 for p in P + rels)
+    return {"vanishing": vanishing, "P": tuple(P), "a_free": a_free, "at0": at0}
+
+
+def _to_flint(polys: dict) -> dict:
+    """Elements of :data:`INV_RING` as FLINT ``fmpq_mpoly`` in the same variables (same names, same order)."""
+    import flint
+
+    names = tuple(str(v) for v in ri5.INV_RING.symbols)
+    ctx = flint.fmpq_mpoly_ctx.get(names, "lex")
+    return {k: ctx.from_dict({m: flint.fmpq(int(c.numerator), int(c.denominator)) for m, c in p.terms()})
+            for k, p in polys.items()}
+
+
+def equilibrium_kernel_residuals(engine: str = "sympy") -> dict:
+    r"""Exact certificate that at every equilibrium the six integrals are dependent on $Z$.
+
+    Let $w = \partial_GN$ (the $G$-derivative of the field's numerators). For each row $\phi$ of the Jacobian of
+    $(f_1..f_6, R_1, R_2)$ — for $f = P/Q$ the row $Q\,dP - P\,dQ$ — the polynomial $\phi\cdot w$ is written in the ideal of
+    $(N_1, \dots, N_{10}, R_1, R_2, \partial_GR_1, \partial_GR_2)$ with explicit cofactors, obtained by differentiating in $G$ the identity
+    $Q\,DX(P) - P\,DX(Q) = q_1R_1 + q_2R_2$ (:func:`integral_memberships`; $DX(R_1) = C_{11}R_1$, $DX(R_2) = C_{21}R_1 + C_{22}R_2$ for
+    the relations): ``residuals`` (name -> $\phi\cdot w$ minus that combination) must all be 0. ``columns``: the $G$ and $S_{uq}$
+    columns of every row, and $\partial_GR_1$, $\partial_GR_2$, at $G = S_{uq} = 0$ (must be 0). ``wx``: $\partial_GN_x - 2\Delta$ (must be 0).
+    ``engine``: ``sympy`` (SymPy's sparse ring over QQ) or ``flint`` (the inputs $N$, $P$, $Q$, $q_i$, $R_i$, $C$ converted to
+    FLINT ``fmpq_mpoly`` and every derivative, product and substitution done there).
+
+    Consequence: at an equilibrium $p$ ($N(p) = 0$, $p \in Z$, with $G = S_{uq} = 0$ there) the $8\times10$ Jacobian has in its kernel
+    $e_G$, $e_{S_{uq}}$ (zero columns) and $w(p)$, whose $x$-component is $2\Delta(p) \ne 0$: rank $\le 7 < 8$."""
+    N, _ = field()
+    R1, R2 = relations()
+    C = relation_cofactors()
+    mem = integral_memberships()
+    fr = integral_fractions()
+    inputs = {("N", n): N[n] for n in r5.COORDS} | {"R1": R1, "R2": R2, "Delta": _Delta()} | \
+        {("C", k): v for k, v in C.items()} | {("P", k): P for k, (P, _) in fr.items()} | \
+        {("Q", k): Q for k, (_, Q) in fr.items()} | \
+        {("q", k, i): mem[k][f"q{i}"] for k in fr for i in (1, 2)}
+    names = r5.COORDS
+    if engine == "flint":
+        v = _to_flint(inputs)
+
+        def d(p, n):
+            return p.derivative(n)
+
+        def at0(p):
+            return p.subs({"G": 0, "Suq": 0})
+    else:
+        v = inputs
+        c = coordinates()
+
+        def d(p, n):
+            return p.diff(c[n])
+        at0 = equilibrium_equations()["at0"]
+    zero = v["R1"] * 0
+    Nv = {n: v[("N", n)] for n in names}
+    R1, R2 = v["R1"], v["R2"]
+    w = {n: d(Nv[n], "G") for n in names}
+    dGR = (d(R1, "G"), d(R2, "G"))
+
+    def dot(grad):
+        return sum((grad[n] * w[n] for n in names), zero)
+
+    def along_N(f):
+        return sum((d(f, n) * Nv[n] for n in names), zero)
+    residuals, columns = {}, []
+    for name in fr:
+        P, Q, q1, q2 = v[("P", name)], v[("Q", name)], v[("q", name, 1)], v[("q", name, 2)]
+        row = {n: Q * d(P, n) - P * d(Q, n) for n in names}
+        combo = (d(q1, "G") * R1 + q1 * dGR[0] + d(q2, "G") * R2 + q2 * dGR[1]
+                 - (d(Q, "G") * along_N(P) + Q * along_N(d(P, "G")) - d(P, "G") * along_N(Q) - P * along_N(d(Q, "G"))))
+        residuals[name] = dot(row) - combo
+        columns += [at0(row["G"]), at0(row["Suq"])]
+    C11, C21, C22 = v[("C", "C11")], v[("C", "C21")], v[("C", "C22")]
+    dcof = {"R1": d(C11, "G") * R1 + C11 * dGR[0],                     # d/dG of C11 R1
+            "R2": d(C21, "G") * R1 + C21 * dGR[0] + d(C22, "G") * R2 + C22 * dGR[1]}
+    for name, Rr in (("R1", R1), ("R2", R2)):
+        row = {n: d(Rr, n) for n in names}
+        residuals[name] = dot(row) - (dcof[name] - along_N(d(Rr, "G")))
+        columns += [at0(row["G"]), at0(row["Suq"])]
+    columns += [at0(p) for p in dGR]
+    return {"residuals": residuals, "columns": columns, "wx": w["x"] - 2 * v["Delta"], "w": w}

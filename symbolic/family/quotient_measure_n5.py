@@ -11,7 +11,9 @@ is invariant iff $\sum_{i\in z}\frac{d}{dz_i}(\tilde\rho X_i) = 0$ on $Z$, where
 \,J_{yy'}^{-1}(\partial_iR_1, \partial_iR_2)^T$ is the derivative along $Z$ (implicit functions). Writing
 $\frac{d}{dz_i}(\Delta^{-3/2}g) = \Delta^{-3/2}(\frac{d}{dz_i}g - \tfrac32 g\,\partial_i\Delta/\Delta)$ and clearing denominators,
 this is the polynomial identity :func:`chart_divergence` $= q_1R_1 + q_2R_2$, checked exactly
-(symbolic $a, b$) by the row.
+(symbolic $a, b$) by the row — in this chart and in every other pair $(y, y')$ with $J_{yy'} \ne 0$
+(:func:`charts`, 44 pairs), which together cover the regular part of $Z$; the densities $\Delta^{-3/2}/\lvert J_{yy'}\rvert$ are the
+chart expressions of the Leray residue $\Delta^{-3/2}dr/(dR_1\wedge dR_2)$.
 
 **Push-forward.** The measure of $P$ is $\Delta^{-3/2}\,dM\,d\gamma$ (P:Measure, $n = 5$), the volume of the
 Euclidean metric in $((M_{ij})_{i<j}, \gamma)$ restricted to $P$, times $\Delta^{-3/2}$. By the coarea formula its
@@ -30,7 +32,7 @@ from functools import cache
 
 from chaplygin_nd.symbolic.family import euler_jacobi_n5 as ej
 
-__all__ = ["CHART_OUT", "chart_jacobian", "chart_divergence", "pushforward_ratio"]
+__all__ = ["CHART_OUT", "chart_jacobian", "chart_divergence", "relation_s_polynomial", "charts", "pushforward_ratio"]
 
 #: The two coordinates solved for on $Z$: $(y, y') = (S_{qq}, A_+)$.
 CHART_OUT = ("Sqq", "Ap")
@@ -41,24 +43,26 @@ def _d(h, name):
 
 
 @cache
-def chart_jacobian():
-    r"""$J = \det\partial(R_1, R_2)/\partial(y, y')$ and the $2\times2$ matrix (ring elements)."""
+def chart_jacobian(out: tuple[str, str] = CHART_OUT):
+    r"""$J = \det\partial(R_1, R_2)/\partial(y, y')$ for the pair ``out`` $= (y, y')$ of reduced coordinates, and the
+    $2\times2$ matrix (ring elements)."""
     R1, R2 = ej.relations()
-    y, yp = CHART_OUT
+    y, yp = out
     mat = [[_d(R1, y), _d(R1, yp)], [_d(R2, y), _d(R2, yp)]]
     return mat[0][0] * mat[1][1] - mat[0][1] * mat[1][0], mat
 
 
 @cache
-def chart_divergence():
+def chart_divergence(out: tuple[str, str] = CHART_OUT):
     r"""$T = 2J^3D^2\Delta^{5/2}\sum_{i\in z}\frac{d}{dz_i}(\Delta^{-3/2}X_i/J)$ as a polynomial of
     :data:`symbolic.reduction.invariants_n5.INV_RING` (module docstring): zero on $Z$ iff the chart
     density $\Delta^{-3/2}/J$ is invariant. Returns ``(T, (q1, q2), remainder)`` with $T = q_1R_1 + q_2R_2 +$
-    remainder (multivariate division)."""
+    remainder (multivariate division by $R_1, R_2$ and :func:`relation_s_polynomial`, its quotient on $g_3$ carried back
+    to $R_1, R_2$)."""
     N, D = ej.field()
     R1, R2 = ej.relations()
-    J, (r1, r2) = chart_jacobian()
-    y, yp = CHART_OUT
+    J, (r1, r2) = chart_jacobian(out)
+    y, yp = out
     adj = [[r2[1], -r1[1]], [-r2[0], r1[0]]]   # adjugate of [[dR1/dy, dR1/dy'], [dR2/dy, dR2/dy']]
     Dl = ej._Delta()
     DJ = D * J
@@ -73,11 +77,40 @@ def chart_divergence():
 
     T = R1 * 0
     for i in ej.r5.COORDS:
-        if i in CHART_OUT:
+        if i in out:
             continue
         T += (Jd(N[i], i) * DJ - N[i] * Jd(DJ, i)) * Dl * 2 - 3 * N[i] * DJ * Jd(Dl, i)
-    (q1, q2), rem = T.div([R1, R2])
-    return T, (q1, q2), rem
+    if T == 0:
+        return T, (R1 * 0, R1 * 0), T
+    g3, (u, v) = relation_s_polynomial()
+    (h1, h2, h3), rem = T.div([R1, R2, g3])
+    return T, (h1 + h3 * u, h2 + h3 * v), rem
+
+
+@cache
+def relation_s_polynomial():
+    r"""$(g_3, (u, v))$ with $g_3 = uR_1 + vR_2$: the S-polynomial of $R_1, R_2$ in the lex order of
+    :data:`symbolic.reduction.invariants_n5.INV_RING`, reduced by them (the quotients tracked). Dividing by
+    $(R_1, R_2, g_3)$ instead of $(R_1, R_2)$ alone leaves remainder 0 for the divergence in every chart (a plain division
+    by $R_1, R_2$ does not for the charts that solve for $x$); the cofactors it gives are checked as an identity by the row."""
+    R1, R2 = ej.relations()
+    (m1, c1), (m2, c2) = R1.LT, R2.LT
+    lcm = tuple(max(i, j) for i, j in zip(m1, m2, strict=True))
+    ring = R1.ring
+    t1 = ring({tuple(l - i for l, i in zip(lcm, m1, strict=True)): 1 / c1})
+    t2 = ring({tuple(l - i for l, i in zip(lcm, m2, strict=True)): 1 / c2})
+    (h1, h2), g3 = (t1 * R1 - t2 * R2).div([R1, R2])
+    return g3, (t1 - h1, -t2 - h2)
+
+
+@cache
+def charts() -> tuple:
+    r"""Every pair $(y, y')$ of reduced coordinates with $J_{yy'} = \det\partial(R_1, R_2)/\partial(y, y') \ne 0$ as a polynomial
+    (44 of the 45: $\partial(R_1, R_2)/\partial(A_+, A_-)$ vanishes identically). Where $dR_1 \wedge dR_2 \ne 0$ some $J_{yy'}$ is
+    non-zero (they are its coefficients), so these charts cover the regular part of $Z$ (implicit functions)."""
+    import itertools
+
+    return tuple(out for out in itertools.combinations(ej.r5.COORDS, 2) if chart_jacobian(out)[0] != 0)
 
 
 def _det(rows, engine):
