@@ -22,9 +22,11 @@ whose denominator is a product of the eigenvalue factors $2 + \lambda_1$, $2 + \
 $b = 0$ is a non-zero rational function, which has finitely many zeros: off them the rank at $p$ is
 $2n - 2 - \lfloor n/2\rfloor$, and a minor of the Jacobian on $P$ (real-analytic on the connected $P$ where $L_\gamma$ is
 invertible) that is non-zero at one point is non-zero on an open dense set. $\square$
-Check (6) computes that finite set for the seeded $a$ at a seeded point: the greatest common divisor $G(b)$ of the
-numerators of all $K\times K$ minors (the bound fails at $p$ exactly at the roots of $G$), its degree, and the number
-of its roots with $b > 0$ (Sturm sequences, exact).
+Check (6) computes that finite set for the seeded $a$ at seeded points $p$ of the family: the greatest common divisor
+$G(b)$ of the numerators of all $K\times K$ minors (no minor has a pole in $b > 0$, checked, so the bound fails at $p$
+exactly at the roots of $G$), its degree, and the number of its roots with $b > 0$ (Sturm sequences, exact). One
+point may have such a root; points are added until the gcd of their $G$ has none, and then, for that $a$, every
+$b > 0$ has a point of full rank: independence for every $b > 0$ (given steps (i)-(ii)).
 
 **Checked here** (exact, SymPy's ``QQ`` and FLINT ``fmpq``, which must agree):
 (4) at a seeded point with $\gamma \in \operatorname{span}\{E_{n-1}, E_n\}$ and $b > 0$ (every point of $P$ is such a point after a
@@ -35,9 +37,11 @@ differential) and on the generators of $SO(n-1)$, $n = 5..12$;
 (5) the finite identities of the all-$n$ argument at a seeded point $M = \sum_j\theta_jf_{2j-1}\wedge f_{2j}$, $b = 0$: the closed
 form of $\varphi_k$ for every $k \le K$, the rank $K$ of $d\varphi$ and the rank $n - 1$ of $dc$, $n = 5..10$, with a control (equal
 $\theta_j$: the rank falls);
-(6) the exceptional $b$ of the bound at a seeded point of that family for the seeded $a$, $n = 5..8$ (the rank at
-$b = 0$ from this route equals that of the closed form, a cross-check of (5)).
-``make verify-deep`` (``CHAPLYGIN_ND_DEEP=1``) adds $n = 13, 14$ to (4) and $n = 11..16$ to (5) (both engines to 12, FLINT above).
+(6) the exceptional $b$ of the bound at seeded points of that family for the seeded $a$, $n = 5..8$ (the rank at
+$b = 0$ from this route equals that of the closed form, a cross-check of (5); at a rational root $b_0 > 0$ the rank
+of the whole Jacobian at that point is reported).
+``make verify-deep`` (``CHAPLYGIN_ND_DEEP=1``) adds $n = 13, 14$ to (4), $n = 11..16$ to (5) (both engines to 12, FLINT
+above) and $n = 9, 10$ to (6).
 
 **Argued** (one part): that steps (i)-(v) hold in every dimension (the exterior-algebra facts of
 :mod:`symbolic.family.independence_all_n`, none depending on $n$); checks (5) confirm each exactly for
@@ -45,8 +49,8 @@ $n \le 10$ (16 deep).
 
 **Not proved.** What the count gives for $n \ge 6$: Euler–Jacobi yields 2-tori from $m - 2$ integrals, but here the
 expected tori have dimension $\lfloor n/2\rfloor \ge 3$ (Bogoyavlenskij's broad integrability would need
-$\lfloor n/2\rfloor$ commuting symmetry fields as well).
-
+$\lfloor n/2\rfloor$ commuting symmetry fields as well). Nor the exceptional $b$ for every $a$: (6) computes them for
+one seeded $a$ per $n$.
 
 **Uses** S6:wedge-integrals (the $H_k$ are first integrals), eq:pol-first-integrals, eq:action, eq:M-O-axi-symm.
 """
@@ -73,6 +77,7 @@ ALL_N_ARG = tuple(range(5, 11))
 ALL_N_ARG_DEEP = (11, 12, 13, 14, 15, 16)
 #: the exceptional b of the bound at one point (b symbolic; gamma adapted, so 2 + D_B has blocks <= 2)
 EXCEPTIONAL_N = (5, 6, 7, 8)
+EXCEPTIONAL_DEEP_N = (9, 10)
 
 
 def _a(rng):
@@ -213,7 +218,7 @@ def s6_wedge_independence() -> Verdict:
         parts.append(part)
         table.append(rec)
     parts += [all_n_independence(n) for n in ALL_N_ARG + (ALL_N_ARG_DEEP if deep else ())]
-    for n in EXCEPTIONAL_N:
+    for n in EXCEPTIONAL_N + (EXCEPTIONAL_DEEP_N if deep else ()):
         part, rec = exceptional(n)
         parts.append(part)
         exc.append(rec)
@@ -222,7 +227,7 @@ def s6_wedge_independence() -> Verdict:
     notes = ("independent invariant integrals: " + ", ".join(f"n = {r['n']}: {r['rank']}" for r in table)
              + " (= 2n - 2 - floor(n/2)); for every n by the argument of symbolic.family.independence_all_n "
              "(every a not in {0, -2}, all but finitely many b given a), its identities checked for n = 5..10 "
-             "(11..16 in verify-deep); exceptional b at a seeded point: "
+             "(11..16 in verify-deep); exceptional b at seeded points: "
              + ", ".join(f"n = {r['n']}, a = {r['a']}: {r['points']} point(s), "
                          f"{r['common_positive_roots']} common root(s) with b > 0" for r in exc))
     v = Verdict.of_parts(parts, n_values=tuple(sorted(set(rank_n) | set(ALL_N_ARG))), notes=notes, method=(
