@@ -79,3 +79,14 @@ def test_a_root_of_G_is_a_real_drop_and_both_engines_agree():
     assert _orbit_rows(M, g, a, b0, n).rank() < 3
     assert ind.rank_record(M, g, a, b0, "flint")["rank"] < 2 * n - 2 - n // 2
     assert ind.rank_record(M, g, a, b0 + 1, "flint")["rank"] == 2 * n - 2 - n // 2
+
+
+def test_the_rows_exceptional_b_record_is_plain_json():
+    """The row's data goes into verification.json: plain ints and strings, not SymPy numbers."""
+    import json
+
+    from chaplygin_nd.proofs import s6_wedge_independence as row
+
+    part, rec = row.exceptional(5)
+    assert part.verdict == "holds"
+    assert json.loads(json.dumps(rec)) == rec and type(rec["common_positive_roots"]) is int

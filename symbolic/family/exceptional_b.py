@@ -223,7 +223,7 @@ def _positive_roots(G, engine: str) -> int:
     SymPy by ``count_roots`` on $[0, \\infty)$ less the root $0$."""
     if engine == "flint":
         return positive_roots_sturm(G)
-    return G.count_roots(0, None) - (1 if G.eval(0) == 0 else 0)
+    return int(G.count_roots(0, None)) - (1 if G.eval(0) == 0 else 0)
 
 
 def _as_text(G, engine: str) -> str:
@@ -281,7 +281,7 @@ def exceptional_record(M, gamma, a, engine: str = "sympy") -> dict:
         rank0 = flint.fmpq_mat(len(Phi0), n - 1, [v for r in Phi0 for v in r]).rank()
     else:
         rank0 = DomainMatrix([list(r) for r in Phi0], (len(Phi0), n - 1), sp.QQ).rank()
-    return {"poly": G, "gcd": _as_text(G, engine), "degree": G.degree(), "positive_roots": _positive_roots(G, engine),
+    return {"poly": G, "gcd": _as_text(G, engine), "degree": int(G.degree()), "positive_roots": _positive_roots(G, engine),
             "rational_positive_roots": _rational_roots(G, engine), "minors": len(minors), "rank_at_0": rank0,
             "pole_positive_roots": _positive_roots(L, engine)}
 
@@ -290,4 +290,4 @@ def common(polys: list, engine: str) -> tuple[str, int, int]:
     r"""The gcd of the $G(b)$ of several points (the $b$ at which the bound fails at every one of them), in the
     engine: (text, degree, distinct roots in $b > 0$)."""
     G = _gcd(polys, engine)
-    return _as_text(G, engine), G.degree(), _positive_roots(G, engine)
+    return _as_text(G, engine), int(G.degree()), _positive_roots(G, engine)
