@@ -137,7 +137,7 @@ def all_n_independence(n: int) -> Part:
         ok = ok and ia.phi_rank(f, [theta[0]] * len(theta), "flint") < K
         control = "; control: with equal theta_j the rank of dphi falls below K"
     who = "SymPy QQ and FLINT" if len(engines) == 2 else "FLINT fmpq"
-    return Part(f"independent for every n: identities at n = {n}", "holds" if ok else "fails",
+    return Part(f"independent for every n: its identities, n = {n}", "holds" if ok else "fails",
                 f"at b = 0, a = {a}, M = sum theta_j f_(2j-1) ^ f_(2j) (theta = {[str(t) for t in theta]}): H_k equals "
                 f"its closed form (k = 1..{K}), rank d(phi) = {K} on T S^(n-1), rank dc = {n - 1} ({who}){control}",
                 counterexample=None if ok else str(out))
