@@ -186,7 +186,8 @@ def exceptional(n: int) -> tuple[Part, dict]:
             break
     text, degree, positive = commons["sympy"]
     ok = ok and positive == 0
-    verdict_text = (f"for a = {a} every b > 0 has a point of full rank (the gcd over the {i} point(s) is {text})"
+    verdict_text = (f"for a = {a} every b > 0 has a point where rank dc + rank d(phi) = 2n - 2 - floor(n/2) "
+                    f"(the bound of steps (i)-(ii); the gcd over the {i} point(s) is {text})"
                     if positive == 0 else f"{positive} b > 0 fail the bound at all {i} points (gcd {text})")
     text_all = (f"a = {a}, {K}x{K} minors of d(phi) as rational functions of b, none with a pole in b > 0 "
                 f"(SymPy QQ(b) and FLINT fmpq_poly, Sturm sequences): " + "; ".join(per_point) + f"; {verdict_text}")
