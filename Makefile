@@ -23,13 +23,13 @@ SEED ?=
 verify: setup
 	$(CLI) verify --check-generated $(if $(SEED),--seed $(SEED))
 
-## verify-deep: the heavy parts of eight rows, tens of minutes: the first-integral search
+## verify-deep: the heavy parts of nine rows, tens of minutes: the first-integral search
 ## (S6:first-integrals: weight-zero boxes of n = 5 to M-degree 6 and of n = 6, 7; the invariant
 ## ring of n = 5 to M-degree 8 and of n = 6, 7 to M-degree 6; the symbolic n = 5 proof of the new
-## integral), the H_k identities at n = 13, 14 (S6:wedge-integrals), the torus rows
+## integral), the H_k identities at n = 13, 14 (S6:wedge-integrals) and their ranks (S6:wedge-independence), the torus rows
 ## (S6:open-reduced-n6, -n7, -n8) on their large drawn ensembles, and the heavy boxes of the
 ## Hamiltonisation and symmetry-field searches (S7:poisson-n4, -n5, S7:symmetry-fields).
-DEEP_ROWS := S6:first-integrals S6:wedge-integrals S6:open-reduced-n6 S6:open-reduced-n7 \
+DEEP_ROWS := S6:first-integrals S6:wedge-integrals S6:wedge-independence S6:open-reduced-n6 S6:open-reduced-n7 \
 	S6:open-reduced-n8 S7:poisson-n4 S7:poisson-n5 S7:symmetry-fields
 verify-deep: setup
 	CHAPLYGIN_ND_DEEP=1 $(CLI) prove $(DEEP_ROWS) $(if $(SEED),--seed $(SEED))

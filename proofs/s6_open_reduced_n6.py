@@ -1,7 +1,7 @@
 r"""Beyond the paper: its second open problem, measured for $n = 6$ (row S6:open-reduced-n6).
 
 The torus dimension of the reduced motion on $P/SO(5)$ ($\dim = 10$, 7 independent invariant
-integrals with $H_2, H_3$ of S6:wedge-integrals: level sets of dimension 3), read by GALI on the
+integrals with $H_2, H_3$ of S6:wedge-integrals, independent by S6:wedge-independence: level sets of dimension 3), read by GALI on the
 quotient and the NAFF count on the $SO(5)$-invariant signals, with the rule and the control of
 :func:`proofs.s6_torus_dimension.torus_verdict` (one mechanism for $n = 6, 7, 8$; its docstring says
 why the rule of S6:open-reduced-n5 left this row ``open``: its control did not separate on the

@@ -3,7 +3,7 @@ read by two independent indicators on the same drawn orbits (rows S6:open-reduce
 
 **What integrability would predict.** $\dim P/SO(n-1) = 2n - 2$; the $n$ invariant integrals of the
 paper (H and the non-constant coefficients of $p(\lambda, \sigma)$) and the family $H_k$ give
-$2n - 2 - \lfloor n/2\rfloor$ independent invariant integrals (S6:wedge-integrals; 7, 9, 10 for
+$2n - 2 - \lfloor n/2\rfloor$ independent invariant integrals (S6:wedge-independence; 7, 9, 10 for
 $n = 6, 7, 8$), so the regular reduced level sets have dimension $\lfloor n/2\rfloor$:
 if the reduced flow is integrable in the sense of quasi-periodic motion on the level sets, its
 orbits lie on tori of dimension $s = \lfloor n/2\rfloor$ (3, 3, 4 for $n = 6, 7, 8$). Chaos, or tori of
@@ -53,7 +53,7 @@ GALI_EXCESS_MAX = 0.10
 GALI_PREDICTED_MIN = 0.50
 NAFF_PREDICTED_MIN = 0.50
 
-USES = ("S6:wedge-integrals", "eq:action", "P:Measure", "S6:open-reduced-n5")
+USES = ("S6:wedge-integrals", "S6:wedge-independence", "eq:action", "P:Measure", "S6:open-reduced-n5")
 
 
 def _tally(values) -> str:
@@ -79,7 +79,7 @@ def torus_verdict(n: int) -> Verdict:
     s = tr.predicted(n)
     K = s + 1
     prediction = (f"dim P/SO({n - 1}) = {2 * n - 2}, {2 * n - 2 - s} independent invariant integrals "
-                  f"(S6:wedge-integrals): regular reduced level sets of dimension {s}; integrable "
+                  f"(S6:wedge-independence): regular reduced level sets of dimension {s}; integrable "
                   f"(quasi-periodic) reduced motion lies on tori of dimension {s}")
     if reason := dc.without_heyoka():
         return Verdict.open(f"{reason}. Predicted: {prediction}")

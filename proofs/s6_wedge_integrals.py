@@ -1,4 +1,4 @@
-r"""Beyond the paper: a family of first integrals for every $n$, and their independence (row S6:wedge-integrals).
+r"""Beyond the paper: a family of first integrals for every $n$ (row S6:wedge-integrals).
 
 **Claim.** For the axisymmetric sphere in dimension $n \ge 4$ with $B = aE_nE_n^T + b\gamma\gamma^T$ (so
 $L_\gamma = 2 + D_B$ on $\Lambda^2 = \mathfrak{so}(n)$, eq:M-O-axi-symm) and $D_B$ the derivation extension of $B$ to
@@ -8,10 +8,8 @@ $\Lambda^{2k}$, every
     H_k = \langle M^{\wedge k}, (2 + D_B)^{-1} M^{\wedge k}\rangle, \qquad 1 \le k \le \lfloor n/2\rfloor,
 
 is a first integral of eq:motion-general, for every $a, b$ with $L_\gamma$ invertible ($H_1 = 2H$;
-$H_{n/2} = \operatorname{Pf}(M)^2/(2+a+b)$ for even $n$). With the $n$ known integrals (the $n - 1$
-non-constant coefficients of $p(\lambda, \sigma)$ and $H$), $H_2, \dots, H_{\lceil n/2\rceil - 1}$ give
-$2n - 2 - \lfloor n/2\rfloor$ functionally independent $SO(n-1)$-invariant integrals (checked for
-$n = 5, \dots, 12$).
+$H_{n/2} = \operatorname{Pf}(M)^2/(2+a+b)$ for even $n$). Their independence (with the $n$ known integrals: $2n - 2 - \lfloor n/2\rfloor$ of them) is the
+row S6:wedge-independence, which uses this one.
 
 **Proof of conservation (every $n$, every $k$).** Write $W = M^{\wedge k}$, $Y = (2 + D_B)^{-1}W$, $D_E = D_{EE^T}$.
 *(i) Collapse.* $D$ is a Lie-algebra map ($D_{[X, S]} = [D_X, D_S]$), $D_\Omega$ is skew and $D_S$ symmetric for
@@ -42,12 +40,8 @@ $k$, $n = 4..12$ (with the control that $\dot H_k \ne 0$ there for some $k$: the
 expansion into $T_1 + T_2 + T_3$, and each $T_i$ before and after moving $\iota$ across — with $B$ a
 *random symmetric* matrix supported on $V$ (which contains every $aEE^T + b\gamma\gamma^T$, $\gamma \in V$, so every
 $a, b$), every $k$, $n = 4..12$; (3) independently of the proof, $\dot H_k = 0$ at seeded generic points
-($\gamma$ in general position, $\Omega$ an exact solve of eq:M-O), $n = 4..9$; (4) at a seeded point
-with $\gamma \in \operatorname{span}\{E_{n-1}, E_n\}$ (every point of $P$ is such a point after a rotation in $SO(n-1)$,
-eq:action; full rank at one point proves independence), the $2n - 2 - \lfloor n/2\rfloor$ differentials
-restricted to $TP$ have exactly that rank over $\mathbb{Q}$, each vanishes on the field at that point
-(the rank is that of the conserved functions themselves) and on the generators of $SO(n-1)$,
-$n = 5..12$. ``make verify-deep`` (``CHAPLYGIN_ND_DEEP=1``) adds $n = 13, 14$ to (1), (2), (4).
+($\gamma$ in general position, $\Omega$ an exact solve of eq:M-O), $n = 4..9$.
+``make verify-deep`` (``CHAPLYGIN_ND_DEEP=1``) adds $n = 13, 14$ to (1), (2).
 $n = 5$: symbolic proof in S6:sixth-integral-n5; $n = 6$, $k = 2$: a symbolic identity in
 tests/test_wedge_n6.py (slow).
 
@@ -56,22 +50,7 @@ statement about the exterior algebra ($D$ a Lie-algebra map into derivations, $\
 $x\wedge$, $x\wedge x = 0$, the block form of $2 + D_B$ for $B$ supported on $V$) proved above for every
 $\dim U$; the checks (1)-(2) confirm them exactly in each $n \le 12$.
 
-**Independence for every $n$** (:mod:`symbolic.family.independence_all_n`): the $SO(n)$-invariant coefficients
-$c$ of $p$ have rank $n - 1$; on the $SO(n)$-orbit of a point, where they are constant, $H_1, \dots, H_K$
-($K = \lceil n/2\rceil - 1$) become functions $\varphi_k$ of $e = g^{-1}E_n \in S^{n-1}$; at $b = 0$ and $M$ in normal form
-$\varphi_k(e) = \tfrac12e_k(t) - \tfrac{a}{2(2+a)}\sum_jt_je_{k-1}(t_{\ne j})r_j(e)^2$, whose rank $K$ comes from
-$\det[e_{k-1}(t_{\ne j})] \ne 0$; so the rank is $(n - 1) + K = 2n - 2 - \lfloor n/2\rfloor$ for every $a \notin \{0, -2\}$ and
-all but finitely many $b$ (given $a$). Checked: (5) the closed form for every $k \le K$, the rank of $d\varphi$ and
-of $dc$ at a seeded point, exactly, $n = 5..10$ (both engines; in ``make verify-deep`` also $n = 11, 12$ with
-both and $n = 13..16$ with FLINT),
-with a control (equal $\theta_j$: the rank falls). **Argued** (a second part): that steps (i)-(v) of that
-argument hold in every $n$ and the passage from $b = 0$ to all but finitely many $b$.
-
-**Not proved.** What the count gives for $n \ge 6$: Euler–Jacobi yields 2-tori from $m - 2$ integrals, but here the
-expected tori have dimension $\lfloor n/2\rfloor \ge 3$ (Bogoyavlenskij's broad integrability would need
-$\lfloor n/2\rfloor$ commuting symmetry fields as well).
-
-**Uses** eq:motion-general, eq:M-O-axi-symm, eq:pol-first-integrals, eq:action, S6:sixth-integral-n5.
+**Uses** eq:motion-general, eq:M-O-axi-symm, S6:sixth-integral-n5. Used by S6:wedge-independence.
 """
 
 from __future__ import annotations
@@ -82,8 +61,6 @@ import sympy as sp
 from chaplygin_nd.ledger.registry import Part, Verdict, claim
 from chaplygin_nd.symbolic.exact import points
 from chaplygin_nd.symbolic.exact.points import ledger_seed
-from chaplygin_nd.symbolic.family import independence as ind
-from chaplygin_nd.symbolic.family import independence_all_n as ia
 from chaplygin_nd.symbolic.family import wedge_integrals as wi
 from chaplygin_nd.symbolic.family import wedge_proof as wp
 
@@ -91,11 +68,7 @@ SECTION = "Conclusions — open problems (beyond the paper)"
 ENGINES = ("sympy", "flint")
 PROOF_N = tuple(range(4, 13))
 GENERIC_RATE_N = tuple(range(4, 10))
-RANK_N = tuple(range(5, 13))
 DEEP_N = (13, 14)
-#: the finite identities of the all-n independence argument (cheap: at b = 0, 2 + D_B is diagonal)
-ALL_N_ARG = tuple(range(5, 11))
-ALL_N_ARG_DEEP = (11, 12, 13, 14, 15, 16)
 #: up to this n the collapse check uses a generic gamma; above, gamma in span{E_{n-1}, E_n} (cost)
 GENERIC_MAX = 8
 
@@ -165,98 +138,24 @@ def conservation(n: int) -> Part:
                 counterexample=None if ok else str(bad))
 
 
-def independence(n: int) -> tuple[Part, dict]:
-    """Check (4): the rank on TP of the n known integrals and H_2..H_{ceil(n/2)-1}, each conserved
-    at the point and SO(n-1)-invariant, both engines."""
-    M, g, a, b = point(n, "rank", adapted=True)
-    recs = {eng: ind.rank_record(M, g, a, b, eng) for eng in ENGINES}
-    r = recs["sympy"]
-    ok = all(x["rank"] == x["expected"] == x["functions"] and not x["not_conserved"]
-             and not x["not_invariant"] for x in recs.values())
-    text = (f"rank {r['rank']} (SymPy QQ), {recs['flint']['rank']} (FLINT) of {r['functions']} functions "
-            f"({n} known + {r['functions'] - n} new), expected 2n - 2 - floor(n/2) = {r['expected']}; "
-            f"each differential vanishes on the field and on so({n - 1}) at the point (a = {a}, b = {b})")
-    bad = {eng: (x["not_conserved"], x["not_invariant"]) for eng, x in recs.items()}
-    return (Part(f"independent, n = {n}", "holds" if ok else "fails", text,
-                 counterexample=None if ok else f"not conserved / not invariant: {bad}; ranks "
-                 f"{ {e: x['rank'] for e, x in recs.items()} }"),
-            {"n": n, "rank": r["rank"], "expected": r["expected"], "functions": r["functions"],
-             "method": "exact over QQ (SymPy and FLINT) at a seeded rational point"})
-
-
-def all_n_independence(n: int) -> Part:
-    r"""The finite identities of the independence argument for every $n$ (:mod:`symbolic.family.independence_all_n`)
-    at a seeded point $M = \sum_j\theta_jf_{2j-1}\wedge f_{2j}$ with $b = 0$: the closed form of $H_k$ ($k \le K$), the rank
-    $K$ of $d\varphi$ on $T_{E_n}S^{n-1}$ and the rank $n - 1$ of $dc$; both engines to $n = 12$, FLINT above.
-    Control (at the smallest $n$): with two equal $\theta_j$ the rank of $d\varphi$ falls (the check can fail)."""
-    rng = points.generator(ledger_seed(), "S6:wedge-integrals", "all-n", n)
-    M, g, f, theta = ia.frame_point(rng, n)
-    a = sp.Integer(0)
-    while a == 0:
-        a = points.rational(rng, -1, 1)
-    K = (n + 1) // 2 - 1
-    engines = ENGINES if n <= 12 else ("flint",)
-    out = {}
-    for eng in engines:
-        res = [ia.closed_form_residual(M, g, f, theta, a, k, eng) for k in range(1, K + 1)]
-        out[eng] = (all(r == 0 for r in res), ia.phi_rank(f, theta, eng), ia.c_rank(M, g, eng))
-    ok = all(z and pr == K and cr == n - 1 for z, pr, cr in out.values())
-    control = ""
-    if n == min(ALL_N_ARG):
-        ok = ok and ia.phi_rank(f, [theta[0]] * len(theta), "flint") < K
-        control = "; control: with equal theta_j the rank of dphi falls below K"
-    who = "SymPy QQ and FLINT" if len(engines) == 2 else "FLINT fmpq"
-    return Part(f"independent for every n: identities at n = {n}", "holds" if ok else "fails",
-                f"at b = 0, a = {a}, M = sum theta_j f_(2j-1) ^ f_(2j) (theta = {[str(t) for t in theta]}): H_k equals "
-                f"its closed form (k = 1..{K}), rank d(phi) = {K} on T S^(n-1), rank dc = {n - 1} ({who}){control}",
-                counterexample=None if ok else str(out))
-
-
-ARGUED_INDEPENDENCE = (
-    "steps (i)-(v) of symbolic.family.independence_all_n hold in every dimension: SO(n)-invariant c vanish on "
-    "the orbit, so rank(dc, dh) >= rank dc + rank(dh on the orbit); h(g p) = phi(g^-1 E_n) and g -> g^-1 E_n is "
-    "a submersion; at b = 0, D_(ee^T) = e ^ i_e is a projection, giving the closed form of phi for M in normal "
-    "form; det[e_(k-1)(t_(!=j))] != 0 for distinct t (the polynomials prod_(i!=j)(1 + t_i y) are independent: "
-    "at y = -1/t_l only the l-th is non-zero); rank dc = n - 1 (partial fractions of p); so the rank is "
-    "2n - 2 - floor(n/2) at b = 0 for every a not in {0, -2}, hence (the minors are rational in a, b) for "
-    "all but finitely many b given a; the identities are checked exactly for n = 5..10 (and 11..16 deep)")
-
-
 ARGUED = ("the identities of steps (i) and (ii) hold in every dimension: D is a Lie-algebra map into "
           "derivations, i_x is the adjoint of x^ and x^x = 0, and 2 + D_B acts blockwise on "
           "Lambda V (x) Lambda U for B supported on the 2-plane V; none depends on dim U (the proof in "
           "the module docstring); checks (1)-(2) confirm each exactly for n <= 12")
 
 
-@claim("S6:wedge-integrals", uses=("eq:motion-general", "eq:M-O-axi-symm", "eq:pol-first-integrals",
-                                    "eq:action", "S6:sixth-integral-n5"),
+@claim("S6:wedge-integrals", uses=("eq:motion-general", "eq:M-O-axi-symm", "S6:sixth-integral-n5"),
        adds=(SECTION, "first integrals H_k = <M^k, (2 + D_B)^{-1} M^k> of the axisymmetric sphere "
-                      "(B = a E_n E_n^T + b gamma gamma^T) for every n and k, proved; with the n known "
-                      "ones they give 2n - 2 - floor(n/2) independent invariant integrals (exact ranks "
-                      "n = 5..12)"))
+                      "(B = a E_n E_n^T + b gamma gamma^T) for every n and k, proved (their independence: "
+                      "S6:wedge-independence)"))
 def s6_wedge_integrals() -> Verdict:
     deep = bool(os.environ.get("CHAPLYGIN_ND_DEEP"))
     proof_n = PROOF_N + (DEEP_N if deep else ())
-    rank_n = RANK_N + (DEEP_N if deep else ())
     parts = [collapse(n) for n in proof_n] + [vanishing(n) for n in proof_n]
     parts += [conservation(n) for n in GENERIC_RATE_N]
-    table = []
-    for n in rank_n:
-        part, rec = independence(n)
-        parts.append(part)
-        table.append(rec)
-    parts += [all_n_independence(n) for n in ALL_N_ARG + (ALL_N_ARG_DEEP if deep else ())]
     parts.append(Verdict.by_argument(ARGUED).as_part("the identities hold in every dimension"))
-    parts.append(Verdict.by_argument(ARGUED_INDEPENDENCE).as_part("independence: the argument holds in every dimension"))
-    from dataclasses import replace
     notes = ("proof of conservation for every n in the module docstring (collapse + vanishing); "
-             "independent invariant integrals: " + ", ".join(f"n = {r['n']}: {r['rank']}" for r in table)
-             + " (= 2n - 2 - floor(n/2)); independence for every n: the argument of "
-             "symbolic.family.independence_all_n (every a not in {0, -2}, all but finitely many b given a), its "
-             "identities checked for n = 5..10 (11..16 in verify-deep)")
-    v = Verdict.of_parts(parts, n_values=tuple(sorted(set(proof_n) | set(rank_n))), notes=notes, method=(
+             "independence of the family: S6:wedge-independence")
+    return Verdict.of_parts(parts, n_values=tuple(sorted(set(proof_n) | set(GENERIC_RATE_N))), notes=notes, method=(
         "proof for every n (collapse + vanishing) with each of its identities checked exactly for "
-        "n = 4..12 (SymPy QQ and FLINT); conservation at generic seeded points n = 4..9; exact Jacobian "
-        "ranks over QQ n = 5..12 of functions checked conserved at the rank point; independence for every n by "
-        "an argument whose identities (closed form at b = 0, ranks) are checked exactly n = 5..10 (to 16 deep)"))
-    return replace(v, data={"rank_table": table})
+        "n = 4..12 (SymPy QQ and FLINT); conservation at generic seeded points n = 4..9"))

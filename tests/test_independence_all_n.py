@@ -1,4 +1,4 @@
-"""symbolic/family/independence_all_n.py (row S6:wedge-integrals): the finite identities of the argument
+"""symbolic/family/independence_all_n.py (row S6:wedge-independence): the finite identities of the argument
 that the invariant integrals are independent for every n, and controls that show each check can fail."""
 
 from __future__ import annotations

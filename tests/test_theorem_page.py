@@ -24,11 +24,15 @@ def _report(wedge_verdict="holds"):
     wedge = {"id": "S6:wedge-integrals", "verdict": wedge_verdict,
              "parts": [_part(f"collapse, n = {n}", wedge_verdict) for n in range(4, 13)]
              + [_part("the identities hold in every dimension", method="argued, not machine-checked: why",
+                      argued=True)], "data": None}
+    indep = {"id": "S6:wedge-independence", "verdict": "holds",
+             "parts": [_part(f"exceptional b, n = {n}") for n in range(5, 9)]
+             + [_part("steps (i)-(v) hold in every dimension", method="argued, not machine-checked: because",
                       argued=True)],
              "data": {"rank_table": [{"n": 5, "rank": 6, "expected": 6, "functions": 6, "method": "exact"}]}}
     ej = {"id": "S6:euler-jacobi-n5", "verdict": "holds", "parts": [_part("invariant measure on the quotient")],
           "data": None}
-    return [wedge, ej]
+    return [wedge, indep, ej]
 
 
 def test_every_marker_is_filled_and_the_verdicts_come_from_the_report():
@@ -36,6 +40,8 @@ def test_every_marker_is_filled_and_the_verdicts_come_from_the_report():
     assert "<!-- ledger:" not in md
     assert "- collapse: *holds* (n = 4..12)" in md
     assert "**argued**: why" in md and "| 5 | 6 | 6 | 6 | exact |" in md
+    assert "Row `S6:wedge-independence`: **holds**." in md and "- exceptional b: *holds* (n = 5..8)" in md
+    assert "**argued**: because" in md
     assert "seed 7" in md and "{download}`theorem.tex <theorem.tex>`" in md
     failed = theorem.markdown(PAGE, _report("fails"), 7)
     assert "Row `S6:wedge-integrals`: **fails**." in failed and "- collapse: *fails*" in failed
@@ -55,4 +61,6 @@ def test_the_latex_twin_says_the_same_and_is_plain_ascii():
 
 def test_a_row_the_page_names_must_be_in_the_report():
     with pytest.raises(KeyError, match="S6:euler-jacobi-n5"):
-        theorem.markdown(PAGE, _report()[:1], 7)
+        theorem.markdown(PAGE, [r for r in _report() if r["id"] != "S6:euler-jacobi-n5"], 7)
+    with pytest.raises(KeyError, match="S6:wedge-independence"):
+        theorem.markdown(PAGE, [r for r in _report() if r["id"] != "S6:wedge-independence"], 7)

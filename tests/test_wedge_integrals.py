@@ -105,12 +105,12 @@ def test_gamma_gradient_is_the_derivation_route(engine):
 
 
 def test_the_rank_part_fails_for_a_function_that_is_not_an_integral(monkeypatch):
-    """The rank part of S6:wedge-integrals evaluates the conservation of the functions it
+    """The rank part of S6:wedge-independence evaluates the conservation of the functions it
     differentiates: with (1 + D_B)^{-1} in place of (2 + D_B)^{-1} in the differential (a function
     that is not an integral, whose rank would still be full) the part fails, in both engines."""
     import functools
 
-    from chaplygin_nd.proofs import s6_wedge_integrals as row
+    from chaplygin_nd.proofs import s6_wedge_independence as row
     from chaplygin_nd.symbolic.family import independence as ind
 
     assert row.independence(6)[0].verdict == "holds"

@@ -73,7 +73,7 @@ def deep() -> bool:
 
 def predicted(n: int) -> int:
     r"""$\lfloor n/2\rfloor$: $\dim P/SO(n-1) = 2n - 2$ minus the $2n - 2 - \lfloor n/2\rfloor$
-    independent invariant integrals of S6:wedge-integrals (the $n$ of the paper and
+    independent invariant integrals of S6:wedge-independence (the $n$ of the paper and
     $\lfloor (n-1)/2\rfloor - 1$ of the family $H_k$: 1, 2, 2 for $n = 6, 7, 8$)."""
     return n // 2
 

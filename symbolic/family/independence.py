@@ -1,4 +1,4 @@
-r"""Independence of the invariant integrals of the axisymmetric sphere at an exact point (row S6:wedge-integrals).
+r"""Independence of the invariant integrals of the axisymmetric sphere at an exact point (row S6:wedge-independence).
 
 The functions: the $n - 1$ non-constant coefficients of $p(\lambda, \sigma) = \det(M + \sigma\gamma\gamma^T - \lambda)$
 (eq:pol-first-integrals: $\lambda^{n-2j}$ and $\sigma\lambda^{n-1-2j}$, $j \ge 1$; the others vanish for skew $M$ or

@@ -1,5 +1,5 @@
 r"""Independence of the $2n - 2 - \lfloor n/2\rfloor$ invariant integrals for every $n$: the finite identities of
-the argument (row S6:wedge-integrals).
+the argument (row S6:wedge-independence).
 
 **The argument.** Let $c$ be the $n - 1$ non-constant coefficients of $p(\lambda, \sigma)$ and $h = (H_1, \dots, H_K)$,
 $K = \lceil n/2\rceil - 1$. (i) The $c_i$ are invariant under all of $SO(n)$, so $dc$ vanishes on the tangent of the
@@ -21,9 +21,10 @@ $\det V \ne 0$ for distinct $t_j$ because the polynomials $\prod_{i\ne j}(1 + t_
 (at $y = -1/t_l$ only the $l$-th is non-zero). So $\operatorname{rank} d\varphi = K$ where every $r_j \ne 0$ (and $r_0 \ne 0$ for odd $n$).
 (v) $\operatorname{rank} dc = n - 1$ at such a point with $\gamma$ generic (partial fractions:
 $p = \det(M - \lambda)(1 + \sigma\gamma^T(M - \lambda)^{-1}\gamma)$ gives the $t_j$ and the weights $\lVert\gamma_j\rVert^2$, $n - 1$ independent
-functions). Hence the rank is $(n - 1) + K = 2n - 2 - \lfloor n/2\rfloor$ at $b = 0$, every $a \notin \{0, -2\}$; the minors are
-rational in $(a, b)$, so the rank is full for every such $a$ and all but finitely many $b$ (depending on $a$),
-on an open dense set of $P$.
+functions). Hence the rank is $(n - 1) + K = 2n - 2 - \lfloor n/2\rfloor$ at $b = 0$, every $a \notin \{0, -2\}$. For fixed $a$ and $p$
+the minors of $d\varphi$ are rational functions of $b$, regular where $L_\gamma$ is invertible, and one is non-zero at
+$b = 0$: it has finitely many zeros, so the rank is full for every such $a$ and all but finitely many $b$ (depending
+on $a$), on an open dense set of $P$ (:mod:`symbolic.family.exceptional_b` computes those $b$ at a point).
 
 Computed here, at exact points, every step in one engine's numbers: (iii) for every $k$, (iv)
 as the rank of $d\varphi_{E_n}$ from the closed form, (v) as the rank of $dc$; with $b = 0$ the operator $2 + D_B$
