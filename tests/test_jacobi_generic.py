@@ -1,0 +1,59 @@
+"""A Jacobi exclusion carried to generic (a, b) by a certificate over Q(a, b): the fraction-free
+solve, the controls (boxes with solutions are never excluded), and the n = 4 certificate with
+its prediction at another (a, b)."""
+
+import flint
+import pytest
+import sympy as sp
+from chaplygin_nd.symbolic.search import jacobi_generic as jg
+from chaplygin_nd.symbolic.search import poisson as ps
+
+SEED = 20261121
+
+
+def test_the_fraction_free_solve_is_cramer_over_q_a_b():
+    ctx = flint.fmpq_mpoly_ctx.get(jg.AB, "lex")
+    a, b = ctx.gens()
+    one = ctx.from_dict({(0, 0): 1})
+    rows = [[a + 1, 2 * one, b, one], [3 * one, a * b, a - 2, b], [one - b, a, 5 * one, 2 * a]]
+    E, solved, mu = jg._ff_gauss_jordan(rows, [0, 1, 2])
+    sa, sb = sp.symbols("a b")
+    to_sp = lambda p: sp.sympify(jg.poly_text(p), locals={"a": sa, "b": sb})  # noqa: E731
+    M = sp.Matrix(3, 4, lambda i, j: to_sp(rows[i][j]))
+    x = M[:, :3].LUsolve(M[:, 3])
+    assert sp.expand(to_sp(mu) - M[:, :3].det()) == 0 or sp.expand(to_sp(mu) + M[:, :3].det()) == 0
+    for i, c in enumerate(solved):
+        assert sp.cancel(to_sp(E[i][3]) / to_sp(mu) - x[c]) == 0
+        assert all(E[i][j].is_zero() for j in range(3) if j != c)
+
+
+def test_control_borisov_mamaev_box_is_not_excluded():
+    # n = 3, box (2, 1) holds Borisov-Mamaev's Hamiltonisation for every (a, b)
+    cert = jg.jacobi_certificate(3, 2, 1, sp.Rational(1, 3), sp.Rational(2, 5), seed=SEED)
+    assert not cert.proved and "not in the span" in cert.reason
+    assert cert.statement().startswith("only at")
+
+
+@pytest.mark.slow
+def test_control_homogeneous_ball_is_not_excluded():
+    # n = 4, a = 0: the box (2, 0) holds a Hamiltonisation (S7:poisson-controls); from that point
+    # the procedure must not produce an exclusion
+    cert = jg.jacobi_certificate(4, 2, 0, 0, sp.Rational(2, 5), seed=SEED)
+    assert not cert.proved and "special" in cert.reason
+
+
+@pytest.mark.slow
+def test_n4_jacobi_box_is_excluded_off_a_curve_and_the_claim_holds_elsewhere():
+    a0, b0 = sp.Rational(1, 3), sp.Rational(2, 5)
+    cert = jg.jacobi_certificate(4, 2, 1, a0, b0, seed=SEED)
+    assert cert.proved and cert.statement().startswith("generic (a, b)")
+    sa, sb = sp.symbols("a b")
+    mu = sp.sympify(cert.mu, locals={"a": sa, "b": sb})
+    nu = sp.sympify(cert.nu, locals={"a": sa, "b": sb})
+    assert mu.subs({sa: a0, sb: b0}) != 0 and nu.subs({sa: a0, sb: b0}) != 0
+    # the generic claim predicts an exclusion at another (a, b) off mu * nu = 0: the point search there
+    a1, b1 = sp.Rational(-2, 7), sp.Rational(5, 3)
+    assert (mu * nu).subs({sa: a1, sb: b1}) != 0
+    assert ps.search_box(4, 2, 1, a1, b1, seed=SEED).outcome.startswith("excluded")
+    for v in cert.text["lambda"].values():    # the certificate is text SymPy can parse
+        assert sp.sympify(v, locals={"a": sa, "b": sb}).free_symbols <= {sa, sb}
