@@ -79,6 +79,7 @@ class JacobiCertificate:
     support: int = 0            # equations used by the certificate
     mu: str = ""                # the pivot minor (factored)
     nu: str = ""                # the certificate's denominator (factored)
+    short: tuple = ("", "")     # mu and nu with long factors named by their degrees
     stages: dict = field(default_factory=dict)
     seconds: float = 0.0
     text: dict = field(default_factory=dict)
@@ -93,16 +94,24 @@ class JacobiCertificate:
         if not self.proved:
             return f"only at (a, b) = ({self.a0}, {self.b0}) ({self.reason})"
         return (f"generic (a, b): no solution off mu * nu = 0 and the (a, b) where L_gamma is singular "
-                f"at a sample point, with mu = {self.mu} (the linear stage's pivot minor) and nu = "
-                f"{self.nu} (1 = sum of {self.support} sampled Jacobi equations times polynomials "
-                f"over nu, checked over Q[a, b, t, sigma]; {self.free} unknowns t and sigma, "
-                f"{self.equations} equations)")
+                f"at a sample point, with mu = {self.short[0]} (the linear stage's pivot minor) and "
+                f"nu = {self.short[1]} (c a rational constant; every factor in full in the "
+                f"certificate): 1 = sum of {self.support} of the {self.equations} sampled Jacobi "
+                f"equations times polynomials over nu, checked over Q[a, b, t, sigma] "
+                f"({self.free} unknowns t and sigma)")
 
 
-def _factored(p) -> str:
+def _factored(p) -> tuple[str, str]:
+    """(p factored as text SymPy can parse, a short form naming each long factor by its degrees)."""
     c, fac = p.factor()
-    parts = [f"({poly_text(f)})" + (f"**{m}" if m > 1 else "") for f, m in fac]
-    return " * ".join([str(c)] * (c != 1 or not parts) + parts)
+    parts, short = [], []
+    for f, m in fac:
+        t = f"({poly_text(f)})" + (f"**{m}" if m > 1 else "")
+        parts.append(t)
+        da, db = f.degrees()
+        short.append(t if len(t) <= 60 else f"[an irreducible factor of degree {da} in a, {db} in b]"
+                     + (f"**{m}" if m > 1 else ""))
+    return " * ".join([str(c)] + parts), " * ".join(["c"] + short)
 
 
 def _linear_system(n: int, e: int, fb: list, cols: list, points: list):
@@ -391,7 +400,11 @@ def jacobi_certificate(n: int, degree: int, e: int, a0, b0, *, seed: int, den: i
         raise ArithmeticError("the certificate sum lambda_k f_k = nu fails over Q[a, b, t, sigma]")
     clock("certificate check")
     out.proved = True
-    out.mu, out.nu = _factored(mu), _factored(nu)
+    if mu(*at) == 0 or nu(*at) == 0:
+        raise ArithmeticError("the certificate's curve passes through its own point")
+    (out.mu, smu), (out.nu, snu) = _factored(mu), _factored(nu)
+    out.short = (smu, snu)
+    clock("factors")
     out.text = {"points": "(L_gamma Omega, gamma) for seeded (Omega, gamma); "
                           f"seed {seed}, labels omega-linear / omega-jacobi",
                 "columns": [int(u) for u in cols],
