@@ -57,3 +57,18 @@ def test_n4_jacobi_box_is_excluded_off_a_curve_and_the_claim_holds_elsewhere():
     assert ps.search_box(4, 2, 1, a1, b1, seed=SEED).outcome.startswith("excluded")
     for v in cert.text["lambda"].values():    # the certificate is text SymPy can parse
         assert sp.sympify(v, locals={"a": sa, "b": sb}).free_symbols <= {sa, sb}
+
+
+@pytest.mark.slow
+def test_command_carries_a_jacobi_box_with_its_certificate(capsys, tmp_path):
+    import json
+
+    from chaplygin_nd.symbolic.search.poisson_command import main
+
+    out = tmp_path / "box.json"
+    assert main(["4", "2", "--from", "2", "--e", "1", "--jacobi-generic", "--seed", str(SEED),
+                 "--json", str(out)]) == 0
+    line = capsys.readouterr().out.strip().splitlines()
+    assert len(line) == 1 and "excluded (Jacobi) for generic (a, b)" in line[0]
+    box = json.loads(out.read_text())[0]
+    assert box["certificate"]["proved"] and box["generic"].startswith("generic (a, b)")
