@@ -26,10 +26,11 @@ open in $P$: a bivector on $H$ is not in the ansatz).
 data). A box whose linear stage is inconsistent is empty for every $(a, b)$ off a proper algebraic
 subset (symbolic/search/generic_extension.py: a minor nonzero at the point, and the rank of the
 linear conditions bounded over $\mathbb{Q}(a, b)$ by exact ranks on a grid); a box excluded by
-Jacobi is empty off an explicit curve $\mu\nu = 0$ through none of the searched points
+Jacobi is empty off an explicit curve $g = 0$ and finitely many points
 (symbolic/search/jacobi_generic.py: the linear stage solved over $\mathbb{Q}(a, b)$ and checked,
 then $\sum_k\lambda_k f_k = \nu$ over $\mathbb{Q}[a, b, t, \sigma]$ for sampled Jacobi equations
-$f_k$, checked; ``make verify-deep``), at the stated $(a, b)$ in ``make verify``. The rows stay
+$f_k$, checked; twice from independent points, $g$ the common factors of the two exceptional
+curves; ``make verify-deep``), at the stated $(a, b)$ in ``make verify``. The rows stay
 ``open``: the problem is open outside the boxes.
 """
 
@@ -180,10 +181,12 @@ def _search_row(n: int) -> Verdict:
                   "box with an inconsistent linear stage, by lower semicontinuity (a minor of [A | h] "
                   "nonzero at the point, exact) and rank A <= r over Q(a, b) (A affine in (a, b) when "
                   "sampled at (L_gamma Omega, gamma); exact ranks on a grid of the minors' degrees); "
-                  "every box excluded by Jacobi, under make verify-deep, off the curve mu * nu = 0 of "
-                  "its certificate (the linear stage solved over Q(a, b) and checked on every sampled "
-                  "row, mu its pivot minor; 1 = sum lambda_k f_k / nu for sampled Jacobi equations "
-                  f"f_k, checked over Q[a, b, t, sigma]; each in the box's 'certificate'). {where}",
+                  "every box excluded by Jacobi, under make verify-deep, off a curve g = 0 and finitely "
+                  "many points (two certificates from independent sample points, each: the linear stage "
+                  "solved over Q(a, b) and checked on every sampled row, mu its pivot minor; 1 = sum "
+                  "lambda_k f_k / nu for sampled Jacobi equations f_k, checked over Q[a, b, t, sigma]; "
+                  "g the common factors of their curves mu * nu * prod det L_gamma; each in the box's "
+                  f"'certificate'). {where}",
                   notes="make verify computes the Jacobi boxes' certificates only under make "
                         "verify-deep (tens of seconds per box): there they hold at the stated (a, b)"),
              Part(f"n = {n}: a Hamiltonisation outside these boxes", "open", "not searched",

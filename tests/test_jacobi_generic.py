@@ -71,4 +71,16 @@ def test_command_carries_a_jacobi_box_with_its_certificate(capsys, tmp_path):
     line = capsys.readouterr().out.strip().splitlines()
     assert len(line) == 1 and "excluded (Jacobi) for generic (a, b)" in line[0]
     box = json.loads(out.read_text())[0]
-    assert box["certificate"]["proved"] and box["generic"].startswith("generic (a, b)")
+    assert all(c["proved"] for c in box["certificate"]["certificates"])
+    assert box["generic"].startswith("generic (a, b): off the curve")
+
+
+def test_a_factor_is_called_zero_free_on_the_domain_only_when_it_is():
+    ctx = flint.fmpq_mpoly_ctx.get(jg.AB, "lex")
+    a, b = ctx.gens()
+    delta = 4 + 2 * a + 2 * b + a * b * (1 - flint.fmpq(2, 7) ** 2)   # Delta(x), |x| < 1
+    for f in (a + 2, b + 2, a + b + 2, delta):
+        assert jg.no_zero_in_domain(f)
+    # a = 0, b = 0, a curve through (1, 27/...) and a = -1 all meet a >= -1, b >= 0
+    for f in (a, b, 25 * a * b + 54 * a - 4 * b, a + 1, a - b):
+        assert not jg.no_zero_in_domain(f)

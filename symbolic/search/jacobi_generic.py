@@ -45,7 +45,8 @@ from dataclasses import dataclass, field
 import flint
 import sympy as sp
 
-__all__ = ["JacobiCertificate", "generic_kernel", "jacobi_polys", "jacobi_certificate", "poly_text"]
+__all__ = ["JacobiCertificate", "generic_kernel", "jacobi_polys", "jacobi_certificate", "poly_text",
+           "generic_exclusion"]
 
 AB = ("a", "b")
 #: where the certificate is computed (the ledger rows compute it under make verify-deep)
@@ -80,6 +81,7 @@ class JacobiCertificate:
     mu: str = ""                # the pivot minor (factored)
     nu: str = ""                # the certificate's denominator (factored)
     short: tuple = ("", "")     # mu and nu with long factors named by their degrees
+    factors: list = field(default_factory=list)  # of mu, nu and det L_gamma at the points
     stages: dict = field(default_factory=dict)
     seconds: float = 0.0
     text: dict = field(default_factory=dict)
@@ -310,7 +312,30 @@ def small_points(n: int, count: int, seed: int, label: str, den: int) -> list:
     return [(skew_matrix(rng, n, -3, 3, den), sphere_point(rng, n, den)) for _ in range(count)]
 
 
-def jacobi_certificate(n: int, degree: int, e: int, a0, b0, *, seed: int, den: int = 1) -> JacobiCertificate:
+def _det_L(n: int, g) -> object:
+    r"""$\det L_\gamma$ (eq:M-O) at the point ``g`` as a polynomial in $(a, b)$ (fraction-free)."""
+    from chaplygin_nd.symbolic.mass_operator import L_entries
+
+    ctx = _ab_ctx()
+    a, b = ctx.gens()
+    zero, one = ctx.from_dict({}), ctx.from_dict({(0, 0): 1})
+    gq = [one * flint.fmpq(int(sp.Rational(v).p), int(sp.Rational(v).q)) for v in g]
+    L = L_entries(gq, [one] * (n - 1) + [one + a], b, zero, one)
+    return _ff_gauss_jordan(L, list(range(len(L))))[2]
+
+
+def _factor_set(polys: list) -> list:
+    """The distinct irreducible factors (up to sign) of the product of ``polys``."""
+    out: list = []
+    for p in polys:
+        for f, _ in p.factor()[1]:
+            if not any(f == g or f == -g for g in out):
+                out.append(f)
+    return out
+
+
+def jacobi_certificate(n: int, degree: int, e: int, a0, b0, *, seed: int, den: int = 1,
+                       label: str = "") -> JacobiCertificate:
     """Steps 1-3 of the module docstring for the box (n, degree, e) from the point (a0, b0)."""
     from chaplygin_nd.symbolic.search import bivector_ansatz as ba
     from chaplygin_nd.symbolic.search import poisson as ps
@@ -325,7 +350,7 @@ def jacobi_certificate(n: int, degree: int, e: int, a0, b0, *, seed: int, den: i
     fb = ps.flint_bivectors(ans)
     cols, _ = ps._independent_columns(ans, fb, seed)
     N = len(ans.coords)
-    lin_pts = small_points(n, 2 * (len(cols) // N) + 6, seed, "omega-linear", den)
+    lin_pts = small_points(n, 2 * (len(cols) // N) + 6, seed, "omega-linear" + label, den)
     A, h = _linear_system(n, e, fb, cols, lin_pts)
     clock("linear conditions")
     gk = generic_kernel(A, h, at)
@@ -337,7 +362,7 @@ def jacobi_certificate(n: int, degree: int, e: int, a0, b0, *, seed: int, den: i
     mu, n0, kern, free = gk
     out.free, out.rank = len(kern), len(cols) - len(kern)
     P0, Ks = _primitive(n0), [_primitive(v) for v in kern]
-    jac_pts = small_points(n, 3 + len(Ks) // 4, seed, "omega-jacobi", den)
+    jac_pts = small_points(n, 3 + len(Ks) // 4, seed, "omega-jacobi" + label, den)
     eqs, ctx = jacobi_polys(n, fb, cols, P0, Ks, jac_pts)
     out.equations = len(eqs)
     clock("jacobi equations over Q[a, b]")
@@ -404,12 +429,47 @@ def jacobi_certificate(n: int, degree: int, e: int, a0, b0, *, seed: int, den: i
         raise ArithmeticError("the certificate's curve passes through its own point")
     (out.mu, smu), (out.nu, snu) = _factored(mu), _factored(nu)
     out.short = (smu, snu)
+    out.factors = _factor_set([mu, nu] + [_det_L(n, g) for _, g in lin_pts + jac_pts])
     clock("factors")
-    out.text = {"points": "(L_gamma Omega, gamma) for seeded (Omega, gamma); "
-                          f"seed {seed}, labels omega-linear / omega-jacobi",
+    out.text = {"points": "(M, gamma) = (L_gamma Omega, gamma) at these (Omega, gamma): linear stage "
+                          + str([[str(list(O)), str(list(g))] for O, g in lin_pts]) + "; Jacobi "
+                          + str([[str(list(O)), str(list(g))] for O, g in jac_pts]),
                 "columns": [int(u) for u in cols],
                 "P0": [poly_text(p) for p in P0], "K": [[poly_text(p) for p in v] for v in Ks],
                 "mu": out.mu, "nu": out.nu,
                 "lambda": {str(eqs[k][0]): poly_text(lv) for lv, k in zip(lam_num, S, strict=True)}}
     out.seconds = time.perf_counter() - t0
     return out
+
+
+def generic_exclusion(n: int, degree: int, e: int, a0, b0, *, seed: int) -> tuple[bool, str, dict]:
+    r"""Two certificates (:func:`jacobi_certificate`) from independent sample points: the box is
+    empty off the zero set of each one's $\mu\nu\prod\det L_\gamma$, hence off their common
+    factors $g$ and the finitely many points where the two coprime remainders meet. Returns
+    (proved, statement, both certificates and $g$ as text)."""
+    certs = [jacobi_certificate(n, degree, e, a0, b0, seed=seed, label=lab) for lab in ("", "-2")]
+    data = {"certificates": [c.as_dict() for c in certs]}
+    if not all(c.proved for c in certs):
+        return False, certs[0].statement() if not certs[0].proved else certs[1].statement(), data
+    common = [f for f in certs[0].factors if any(f == g or f == -g for g in certs[1].factors)]
+    g = " * ".join(f"({poly_text(f)})" for f in common) or "1"
+    inside = [f for f in common if not no_zero_in_domain(f)]
+    dom = " * ".join(f"({poly_text(f)})" for f in inside) or "1"
+    data["common_factors"], data["in_domain"] = g, dom
+    cpu = sum(sum(c.stages.values()) for c in certs)
+    return True, (f"generic (a, b): off the curve {g} = 0 and finitely many points; in the domain "
+                  f"a >= -1, b >= 0 off {dom} = 0 and finitely many points (the other factors have "
+                  f"coefficients of one sign and a nonzero constant in (a + 1, b)). Two certificates "
+                  f"over Q(a, b) from independent sample points, each excluding the box off its curve "
+                  f"mu * nu * prod det L_gamma = 0; g = their common factors; {cpu:.0f} s CPU. "
+                  f"First: {certs[0].statement()[len('generic (a, b): '):]}"), data
+
+
+def no_zero_in_domain(f) -> bool:
+    """True when f(a, b) has no zero on a >= -1, b >= 0: f(u - 1, v) has coefficients of one sign
+    and a nonzero constant term (then |f| >= |constant| > 0 for u, v >= 0)."""
+    ctx = _ab_ctx()
+    u, v = ctx.gens()
+    h = f.compose(u - 1, v, ctx=ctx)
+    cs = h.coeffs()
+    return any(m == (0, 0) for m in h.monoms()) and (all(c > 0 for c in cs) or all(c < 0 for c in cs))

@@ -302,8 +302,8 @@ def _generic(res: BoxResult, fb, cols, seed: int, jacobi: bool = False) -> None:
         if not jacobi:
             res.generic = f"only at {at} (its certificate over Q(a, b), {jg.WHERE}, not computed)"
             return
-        cert = jg.jacobi_certificate(res.n, res.degree, res.e, res.a, res.b, seed=seed)
-        res.generic, res.certificate = cert.statement(), cert.as_dict()
+        _, res.generic, res.certificate = jg.generic_exclusion(res.n, res.degree, res.e, res.a,
+                                                               res.b, seed=seed)
         return
     N = res.n * (res.n - 1) // 2 + res.n
     pts = _points(res.n, 2 * (len(cols) // N) + 6, seed, "omega-linear")
