@@ -16,7 +16,7 @@ def test_the_fraction_free_solve_is_cramer_over_q_a_b():
     a, b = ctx.gens()
     one = ctx.from_dict({(0, 0): 1})
     rows = [[a + 1, 2 * one, b, one], [3 * one, a * b, a - 2, b], [one - b, a, 5 * one, 2 * a]]
-    E, solved, mu = jg._ff_gauss_jordan(rows, [0, 1, 2])
+    E, solved, mu = jg.ff_gauss_jordan(rows, [0, 1, 2])
     sa, sb = sp.symbols("a b")
     to_sp = lambda p: sp.sympify(jg.poly_text(p), locals={"a": sa, "b": sb})  # noqa: E731
     M = sp.Matrix(3, 4, lambda i, j: to_sp(rows[i][j]))

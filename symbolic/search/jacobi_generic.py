@@ -44,22 +44,24 @@ from dataclasses import dataclass, field
 
 import flint
 import sympy as sp
+from chaplygin_nd.symbolic.search.polys_ab import (
+    AB,
+    ab_ctx,
+    det_L,
+    factor_set,
+    factored,
+    ff_gauss_jordan,
+    no_zero_in_domain,
+    point_rank_profile,
+    poly_text,
+    primitive,
+)
 
-__all__ = ["JacobiCertificate", "generic_kernel", "jacobi_polys", "jacobi_certificate", "poly_text",
-           "generic_exclusion"]
+__all__ = ["JacobiCertificate", "generic_kernel", "jacobi_polys", "jacobi_certificate",
+           "generic_exclusion", "AB", "ff_gauss_jordan", "no_zero_in_domain", "poly_text"]
 
-AB = ("a", "b")
 #: where the certificate is computed (the ledger rows compute it under make verify-deep)
 WHERE = "symbolic/search/jacobi_generic.py, make verify-deep"
-
-
-def _ab_ctx():
-    return flint.fmpq_mpoly_ctx.get(AB, "lex")
-
-
-def poly_text(p) -> str:
-    """An ``fmpq_mpoly`` as text SymPy can parse (``**`` for powers)."""
-    return str(p).replace("^", "**")
 
 
 @dataclass
@@ -103,26 +105,13 @@ class JacobiCertificate:
                 f"({self.free} unknowns t and sigma)")
 
 
-def _factored(p) -> tuple[str, str]:
-    """(p factored as text SymPy can parse, a short form naming each long factor by its degrees)."""
-    c, fac = p.factor()
-    parts, short = [], []
-    for f, m in fac:
-        t = f"({poly_text(f)})" + (f"**{m}" if m > 1 else "")
-        parts.append(t)
-        da, db = f.degrees()
-        short.append(t if len(t) <= 60 else f"[an irreducible factor of degree {da} in a, {db} in b]"
-                     + (f"**{m}" if m > 1 else ""))
-    return " * ".join([str(c)] + parts), " * ".join(["c"] + short)
-
-
 def _linear_system(n: int, e: int, fb: list, cols: list, points: list):
     """A (rows of fmpq_mpoly in a, b) and h = Delta^e X of the linear stage at the points
     (L_gamma Omega, gamma): generic_extension.omega_rows at three (a, b), affinity checked at a
     fourth."""
     from chaplygin_nd.symbolic.search import generic_extension as ge
 
-    ctx = _ab_ctx()
+    ctx = ab_ctx()
     a, b = ctx.gens()
     (A0, X0), (A1, X1), (A2, X2), (A3, X3) = (ge.omega_rows(n, x, y, 0, fb, cols, points)
                                               for x, y in ((0, 0), (1, 0), (0, 1), (2, 3)))
@@ -144,59 +133,17 @@ def _linear_system(n: int, e: int, fb: list, cols: list, points: list):
     return A, h
 
 
-def _point_rank_profile(rows: list, at: tuple) -> tuple[list, list]:
-    """Pivot columns and rows of a nonzero maximal minor of ``rows`` (fmpq_mpoly) at ``at``."""
-    from chaplygin_nd.symbolic.search.generic_extension import _pivots
-
-    m, k = len(rows), len(rows[0])
-    vals = [[p(*at) for p in r] for r in rows]
-    R, r = flint.fmpq_mat(m, k, [v for row in vals for v in row]).rref()
-    C = _pivots(R, r, k)
-    Rt, _ = flint.fmpq_mat(r, m, [vals[i][j] for j in C for i in range(m)]).rref()
-    return C, _pivots(Rt, r, m)
-
-
-def _ff_gauss_jordan(Mx: list, pivots: list) -> tuple[list, list, object]:
-    """Fraction-free Gauss-Jordan elimination of the rows ``Mx`` (fmpq_mpoly) on the columns
-    ``pivots`` (as many as rows, their minor nonzero): each step takes the nonzero entry of least
-    degree left (the constant rows first, so the degrees grow late). Returns the rows, the column
-    each row is solved for, and the final pivot mu, the minor: row i then reads
-    mu * x_{cols[i]} + (the columns not in ``pivots``) (exact divisions, checked by FLINT)."""
-    Mx = [list(r) for r in Mx]
-    prev = None
-    left_rows, left_cols = set(range(len(Mx))), set(pivots)
-    solved: dict = {}
-    for _ in pivots:
-        k, c = min(((i, j) for i in left_rows for j in left_cols if not Mx[i][j].is_zero()),
-                   key=lambda ij: (Mx[ij[0]][ij[1]].total_degree(), len(Mx[ij[0]][ij[1]]), ij))
-        left_rows.discard(k)
-        left_cols.discard(c)
-        solved[k] = c
-        piv = Mx[k][c]
-        for i in range(len(Mx)):
-            if i == k:
-                continue
-            f = Mx[i][c]
-            row = []
-            for j, v in enumerate(Mx[i]):
-                w = piv * v - f * Mx[k][j] if not f.is_zero() else piv * v
-                row.append(w / prev if prev is not None else w)
-            Mx[i] = row
-        prev = piv
-    return Mx, [solved[i] for i in range(len(Mx))], prev
-
-
 def generic_kernel(A: list, h: list, at: tuple):
     r"""Step 1 of the module docstring: (mu, n0, [n_f], free columns), with $\mu c = n_0 +
     \sum_f t_f n_f$ checked on every row of $Ac = h$; otherwise a string saying why not ($Ac = h$
     inconsistent at ``at``, or the point is special: the check fails)."""
     aug = [r + [v] for r, v in zip(A, h, strict=True)]
-    C, R = _point_rank_profile(A, at)
-    Caug, _ = _point_rank_profile(aug, at)
+    C, R = point_rank_profile(A, at)
+    Caug, _ = point_rank_profile(aug, at)
     if len(A[0]) in Caug:
         return "the linear stage is inconsistent at the point: not a Jacobi box"
     k = len(A[0])
-    E, solved, mu = _ff_gauss_jordan([aug[i] for i in R], C)
+    E, solved, mu = ff_gauss_jordan([aug[i] for i in R], C)
     free = [j for j in range(k) if j not in set(C)]
     zero = mu - mu
     n0 = [zero] * k
@@ -215,14 +162,6 @@ def generic_kernel(A: list, h: list, at: tuple):
             return ("the solution over Q(a, b) from the point's pivots fails a sampled row: the point "
                     "is special (a rank there is below its generic value)")
     return mu, n0, kern, free
-
-
-def _primitive(v: list) -> list:
-    g = None
-    for p in v:
-        if not p.is_zero():
-            g = p if g is None else g.gcd(p)
-    return v if g is None else [p / g for p in v]
 
 
 def jacobi_polys(n: int, fb: list, cols: list, P0: list, Ks: list, points: list):
@@ -290,7 +229,7 @@ def jacobi_polys(n: int, fb: list, cols: list, P0: list, Ks: list, points: list)
 def _coefficients(eqs: list, nab: int = 2) -> tuple[list, list]:
     """The sampled equations as rows of coefficients (fmpq_mpoly in a, b) over the monomials in
     (t, sigma), the constant monomial first."""
-    actx = _ab_ctx()
+    actx = ab_ctx()
     rows, monos = [], {}
     for _, f in eqs:
         row: dict = {}
@@ -310,28 +249,6 @@ def small_points(n: int, count: int, seed: int, label: str, den: int) -> list:
 
     rng = generator(seed, "jacobi-generic", label, n, den)
     return [(skew_matrix(rng, n, -3, 3, den), sphere_point(rng, n, den)) for _ in range(count)]
-
-
-def _det_L(n: int, g) -> object:
-    r"""$\det L_\gamma$ (eq:M-O) at the point ``g`` as a polynomial in $(a, b)$ (fraction-free)."""
-    from chaplygin_nd.symbolic.mass_operator import L_entries
-
-    ctx = _ab_ctx()
-    a, b = ctx.gens()
-    zero, one = ctx.from_dict({}), ctx.from_dict({(0, 0): 1})
-    gq = [one * flint.fmpq(int(sp.Rational(v).p), int(sp.Rational(v).q)) for v in g]
-    L = L_entries(gq, [one] * (n - 1) + [one + a], b, zero, one)
-    return _ff_gauss_jordan(L, list(range(len(L))))[2]
-
-
-def _factor_set(polys: list) -> list:
-    """The distinct irreducible factors (up to sign) of the product of ``polys``."""
-    out: list = []
-    for p in polys:
-        for f, _ in p.factor()[1]:
-            if not any(f == g or f == -g for g in out):
-                out.append(f)
-    return out
 
 
 def jacobi_certificate(n: int, degree: int, e: int, a0, b0, *, seed: int, den: int = 1,
@@ -361,7 +278,7 @@ def jacobi_certificate(n: int, degree: int, e: int, a0, b0, *, seed: int, den: i
         return out
     mu, n0, kern, free = gk
     out.free, out.rank = len(kern), len(cols) - len(kern)
-    P0, Ks = _primitive(n0), [_primitive(v) for v in kern]
+    P0, Ks = primitive(n0), [primitive(v) for v in kern]
     jac_pts = small_points(n, 3 + len(Ks) // 4, seed, "omega-jacobi" + label, den)
     eqs, ctx = jacobi_polys(n, fb, cols, P0, Ks, jac_pts)
     out.equations = len(eqs)
@@ -372,7 +289,7 @@ def jacobi_certificate(n: int, degree: int, e: int, a0, b0, *, seed: int, den: i
         out.reason = "no sampled Jacobi equation has a constant term"
         out.seconds = time.perf_counter() - t0
         return out
-    actx = _ab_ctx()
+    actx = ab_ctx()
     zero = actx.from_dict({})
     vals = flint.fmpq_mat(len(rows), len(monos),
                           [r.get(k, zero)(*at) for r in rows for k in monos])
@@ -405,7 +322,7 @@ def jacobi_certificate(n: int, degree: int, e: int, a0, b0, *, seed: int, den: i
     one = actx.from_dict({(0, 0): 1})
     system = [[rows[S[i]].get(monos[q], zero) for i in range(len(S))] + [one if q == 0 else zero]
               for q in Q]
-    E, solved, nu = _ff_gauss_jordan(system, list(range(len(S))))
+    E, solved, nu = ff_gauss_jordan(system, list(range(len(S))))
     lam_num = [None] * len(S)
     for i, c in enumerate(solved):
         lam_num[c] = E[i][len(S)]
@@ -427,9 +344,9 @@ def jacobi_certificate(n: int, degree: int, e: int, a0, b0, *, seed: int, den: i
     out.proved = True
     if mu(*at) == 0 or nu(*at) == 0:
         raise ArithmeticError("the certificate's curve passes through its own point")
-    (out.mu, smu), (out.nu, snu) = _factored(mu), _factored(nu)
+    (out.mu, smu), (out.nu, snu) = factored(mu), factored(nu)
     out.short = (smu, snu)
-    out.factors = _factor_set([mu, nu] + [_det_L(n, g) for _, g in lin_pts + jac_pts])
+    out.factors = factor_set([mu, nu] + [det_L(n, g) for _, g in lin_pts + jac_pts])
     clock("factors")
     out.text = {"points": "(M, gamma) = (L_gamma Omega, gamma) at these (Omega, gamma): linear stage "
                           + str([[str(list(O)), str(list(g))] for O, g in lin_pts]) + "; Jacobi "
@@ -464,12 +381,3 @@ def generic_exclusion(n: int, degree: int, e: int, a0, b0, *, seed: int) -> tupl
                   f"mu * nu * prod det L_gamma = 0; g = their common factors; {cpu:.0f} s CPU. "
                   f"First: {certs[0].statement()[len('generic (a, b): '):]}"), data
 
-
-def no_zero_in_domain(f) -> bool:
-    """True when f(a, b) has no zero on a >= -1, b >= 0: f(u - 1, v) has coefficients of one sign
-    and a nonzero constant term (then |f| >= |constant| > 0 for u, v >= 0)."""
-    ctx = _ab_ctx()
-    u, v = ctx.gens()
-    h = f.compose(u - 1, v, ctx=ctx)
-    cs = h.coeffs()
-    return any(m == (0, 0) for m in h.monoms()) and (all(c > 0 for c in cs) or all(c < 0 for c in cs))
