@@ -242,6 +242,11 @@ def _coefficients(eqs: list, nab: int = 2) -> tuple[list, list]:
     return rows, order
 
 
+def _fmpq(v) -> flint.fmpq:
+    v = sp.Rational(v)
+    return flint.fmpq(int(v.p), int(v.q))
+
+
 def small_points(n: int, count: int, seed: int, label: str, den: int) -> list:
     """Seeded (Omega, gamma) with small heights (denominators <= ``den``; gamma by inverse
     stereographic projection, symbolic/exact/points.py): the certificate's size grows with them."""
@@ -346,7 +351,10 @@ def jacobi_certificate(n: int, degree: int, e: int, a0, b0, *, seed: int, den: i
         raise ArithmeticError("the certificate's curve passes through its own point")
     (out.mu, smu), (out.nu, snu) = factored(mu), factored(nu)
     out.short = (smu, snu)
-    out.factors = factor_set([mu, nu] + [det_L(n, g) for _, g in lin_pts + jac_pts])
+    actx_a, actx_b = actx.gens()
+    deltas = [4 + 2 * actx_a + 2 * actx_b + actx_a * actx_b * (1 - _fmpq(g[n - 1]) ** 2)
+              for _, g in lin_pts + jac_pts]
+    out.factors = factor_set([mu, nu] + [det_L(n, g) for _, g in lin_pts + jac_pts] + deltas)
     clock("factors")
     out.text = {"points": "(M, gamma) = (L_gamma Omega, gamma) at these (Omega, gamma): linear stage "
                           + str([[str(list(O)), str(list(g))] for O, g in lin_pts]) + "; Jacobi "
@@ -378,6 +386,6 @@ def generic_exclusion(n: int, degree: int, e: int, a0, b0, *, seed: int) -> tupl
                   f"a >= -1, b >= 0 off {dom} = 0 and finitely many points (the other factors have "
                   f"coefficients of one sign and a nonzero constant in (a + 1, b)). Two certificates "
                   f"over Q(a, b) from independent sample points, each excluding the box off its curve "
-                  f"mu * nu * prod det L_gamma = 0; g = their common factors; {cpu:.0f} s CPU. "
+                  f"mu * nu * prod (det L_gamma * Delta) = 0; g = their common factors; {cpu:.0f} s CPU. "
                   f"First: {certs[0].statement()[len('generic (a, b): '):]}"), data
 
