@@ -299,8 +299,9 @@ def _generic(res: BoxResult, fb, cols, seed: int, jacobi: bool = False) -> None:
 
     at = f"(a, b) = ({res.a}, {res.b})"
     if res.outcome == "excluded (Jacobi)":
-        if not jacobi:
-            res.generic = f"only at {at} (its certificate over Q(a, b), {jg.WHERE}, not computed)"
+        if not jacobi or res.free > jg.MAX_FREE:
+            why = "not computed" if not jacobi else f"not attempted: {res.free} unknowns > {jg.MAX_FREE}"
+            res.generic = f"only at {at} (its certificate over Q(a, b), {jg.WHERE}, {why})"
             return
         _, res.generic, res.certificate = jg.generic_exclusion(res.n, res.degree, res.e, res.a,
                                                                res.b, seed=seed)
