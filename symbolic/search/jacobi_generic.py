@@ -234,7 +234,8 @@ def _coefficients(eqs: list, nab: int = 2) -> tuple[list, list]:
     """The sampled equations as rows of coefficients (fmpq_mpoly in a, b) over the monomials in
     (t, sigma), the constant monomial first."""
     actx = ab_ctx()
-    rows, monos = [], {}
+    rows: list = []
+    monos: dict = {}
     for _, f in eqs:
         row: dict = {}
         for exps, c in zip(f.monoms(), f.coeffs(), strict=True):
@@ -332,7 +333,7 @@ def jacobi_certificate(n: int, degree: int, e: int, a0, b0, *, seed: int, den: i
     system = [[rows[S[i]].get(monos[q], zero) for i in range(len(S))] + [one if q == 0 else zero]
               for q in Q]
     E, solved, nu = ff_gauss_jordan(system, list(range(len(S))))
-    lam_num = [None] * len(S)
+    lam_num: list = [None] * len(S)
     for i, c in enumerate(solved):
         lam_num[c] = E[i][len(S)]
     g = nu
@@ -377,7 +378,7 @@ def generic_exclusion(n: int, degree: int, e: int, a0, b0, *, seed: int) -> tupl
     factors $g$ and the finitely many points where the two coprime remainders meet. Returns
     (proved, statement, both certificates and $g$ as text)."""
     certs = [jacobi_certificate(n, degree, e, a0, b0, seed=seed, label=lab) for lab in ("", "-2")]
-    data = {"certificates": [c.as_dict() for c in certs]}
+    data: dict = {"certificates": [c.as_dict() for c in certs]}
     if not all(c.proved for c in certs):
         return False, certs[0].statement() if not certs[0].proved else certs[1].statement(), data
     common = [f for f in certs[0].factors if any(f == g or f == -g for g in certs[1].factors)]

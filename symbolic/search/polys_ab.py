@@ -5,6 +5,8 @@ $a \ge -1$, $b \ge 0$. Polynomials are FLINT ``fmpq_mpoly`` in ``AB``."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import flint
 import sympy as sp
 
@@ -49,7 +51,7 @@ def point_rank_profile(rows: list, at: tuple) -> tuple[list, list]:
     return C, _pivots(Rt, r, m)
 
 
-def ff_gauss_jordan(Mx: list, pivots: list) -> tuple[list, list, object]:
+def ff_gauss_jordan(Mx: list, pivots: list) -> tuple[list, list, Any]:
     """Fraction-free Gauss-Jordan elimination of the rows ``Mx`` (fmpq_mpoly) on the columns
     ``pivots`` (as many as rows, their minor nonzero): each step takes the nonzero entry of least
     degree left (the constant rows first, so the degrees grow late). Returns the rows, the column
@@ -88,7 +90,7 @@ def primitive(v: list) -> list:
     return v if g is None else [p / g for p in v]
 
 
-def det_L(n: int, g) -> object:
+def det_L(n: int, g) -> Any:
     r"""$\det L_\gamma$ (eq:M-O) at the point ``g`` as a polynomial in $(a, b)$ (fraction-free)."""
     from chaplygin_nd.symbolic.mass_operator import L_entries
 
