@@ -62,10 +62,10 @@ __all__ = ["JacobiCertificate", "generic_kernel", "jacobi_polys", "jacobi_certif
 
 #: where the certificate is computed (the ledger rows compute it under make verify-deep)
 WHERE = "symbolic/search/jacobi_generic.py, make verify-deep"
-#: the largest number of unknowns t after the linear stage for which the certificate is attempted
-#: (measured: n = 4, 8 and 12 unknowns, 27 and ~95 CPU s for both certificates; larger boxes are
-#: not measured, and the fraction-free elimination grows fast with them)
-MAX_FREE = 12
+#: per n, the largest number of unknowns t after the linear stage for which the certificate is
+#: attempted by the rows (measured at n = 4: 8 and 12 unknowns, 27 and 89 CPU s for both
+#: certificates; n = 5 with 9 unknowns took over 200 CPU s for one and is not attempted)
+MAX_FREE = {3: 12, 4: 12}
 
 
 @dataclass

@@ -299,8 +299,9 @@ def _generic(res: BoxResult, fb, cols, seed: int, jacobi: bool = False) -> None:
 
     at = f"(a, b) = ({res.a}, {res.b})"
     if res.outcome == "excluded (Jacobi)":
-        if not jacobi or res.free > jg.MAX_FREE:
-            why = "not computed" if not jacobi else f"not attempted: {res.free} unknowns > {jg.MAX_FREE}"
+        top = jg.MAX_FREE.get(res.n, 0)
+        if not jacobi or res.free > top:
+            why = "not computed" if not jacobi else f"not attempted at n = {res.n}: {res.free} unknowns > {top}"
             res.generic = f"only at {at} (its certificate over Q(a, b), {jg.WHERE}, {why})"
             return
         _, res.generic, res.certificate = jg.generic_exclusion(res.n, res.degree, res.e, res.a,

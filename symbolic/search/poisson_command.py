@@ -62,7 +62,8 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--jacobi-generic", action="store_true",
                         help="carry each box excluded by Jacobi to generic (a, b) by a certificate "
                              "over Q(a, b) (symbolic/search/jacobi_generic.py; not in the estimate: "
-                             "about 10-50 CPU s per box at n = 4, d <= 3)")
+                             "27-89 CPU s per box at n = 4, d <= 3; boxes above "
+                             "jacobi_generic.MAX_FREE unknowns are not attempted)")
     parser.add_argument("--max-hours", type=float, default=24.0,
                         help="refuse when a degree's estimated CPU time over all e (with the "
                              "Jacobi stage) is above this many hours (default 24)")
