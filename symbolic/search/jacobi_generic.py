@@ -64,7 +64,7 @@ __all__ = ["JacobiCertificate", "generic_kernel", "jacobi_polys", "jacobi_certif
 WHERE = "symbolic/search/jacobi_generic.py, make verify-deep"
 #: per n, the largest number of unknowns t after the linear stage for which the certificate is
 #: attempted by the rows (measured at n = 4: 8 and 12 unknowns, 27 and 89 CPU s for both
-#: certificates; n = 5 with 9 unknowns took over 200 CPU s for one and is not attempted)
+#: certificates; n = 5 with 9 unknowns had not finished one after ~240 CPU s: not attempted)
 MAX_FREE = {3: 12, 4: 12}
 
 
