@@ -15,7 +15,7 @@ $h = \Delta^e X$ is solved by fraction-free Gauss–Jordan elimination over $\ma
 $r$ rows and pivot columns whose $r \times r$ minor $\mu$ is nonzero at $(a_0, b_0)$ ($r$ the rank
 there). The result, $\mu c = n_0 + \sum_f t_f\, n_f$ ($t_f$ the free columns), is *checked* on every
 sampled row as a polynomial identity, so for every $(a, b)$ with $\mu(a, b) \ne 0$ the solutions
-of the sampled linear stage are exactly $c = n_0/\mu + \sum_f s_f\, n_f$ (the $n_f$ are independent,
+of the sampled linear stage are exactly $c = (n_0 + \sum_f t_f\, n_f)/\mu$ (the $n_f$ are independent,
 the identity block, and the rank is $r$ there). Common factors are divided out: $n_0 = g\,n_0'$,
 $n_f = g_f\,n_f'$, $g, g_f \mid \mu$.
 
@@ -24,17 +24,24 @@ symbolic/search/poisson.py is a homogeneous quadratic in $(s_0, t)$, linear in $
 with $s_0 = \mu/g \ne 0$ rescales to $s_0 = 1$. So the equations $f_k(t, \sigma) \in
 \mathbb{Q}[a, b][t, \sigma]$ are those of $P = n_0' + \sum_f t_f n_f'$.
 
-**Step 3, the certificate.** At $(a_0, b_0)$ the search found $1$ in the span of the sampled
-Jacobi equations (a Gröbner basis $\{1\}$ whose first reduction step is linear); a minimal set $S$
-of equations with $1 \in \mathrm{span}_\mathbb{Q} f_S$ there is chosen, and
+**Step 3, the certificate.** At $(a_0, b_0)$, $1$ is in the $\mathbb{Q}$-span of the sampled
+Jacobi equations (in every Jacobi box measured; otherwise no certificate, said so); $S$ is the
+support of that combination within a basis of the equations there, and
 $\sum_{k\in S}\lambda_k f_k = \nu$ is solved by fraction-free elimination over $\mathbb{Q}[a, b]$
 ($\lambda_k, \nu \in \mathbb{Q}[a, b]$, $\nu(a_0, b_0) \ne 0$) and *checked* as a polynomial
 identity in $\mathbb{Q}[a, b, t, \sigma]$. Where $\mu\nu \ne 0$ no $(t, \sigma)$ solves the sampled
 Jacobi equations: the box holds no Hamiltonisation for every $(a, b)$ off
-$\{\mu\nu = 0\}$ and the $(a, b)$ where $L_\gamma$ is singular at a sample point.
+$\{\mu\nu = 0\}$ and the $(a, b)$ where $L_\gamma$ is singular or $\Delta$ vanishes at a sample
+point ($\mu\nu \ne 0$ at $(a_0, b_0)$, checked).
+
+**Step 4, two certificates** (:func:`generic_exclusion`) from independent sample points: the box
+is empty off the common factors $g$ of the two curves $\mu\nu\prod(\det L_\gamma\,\Delta) = 0$
+and the finitely many points where their coprime rests meet; a factor of $g$ with coefficients of
+one sign and a nonzero constant in $(a + 1, b)$ has no zero on the domain $a \ge -1$, $b \ge 0$.
 
 A box that has solutions at $(a_0, b_0)$ (the controls: Borisov–Mamaev at $n = 3$, the homogeneous
-ball $a = 0$ at $n = 4$) has no such $S$, and :func:`jacobi_certificate` says so.
+ball $a = 0$ at $n = 4$) gets no certificate: Step 3 finds no combination, or Step 1's check
+fails (a special point), and :func:`jacobi_certificate` says so.
 """
 
 from __future__ import annotations
