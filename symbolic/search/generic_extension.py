@@ -24,8 +24,8 @@ rational function of $(a, b)$, regular at $(a_0, b_0)$.
   $\{1\}$) is *not* carried: emptiness of a fibre is not an open condition, and the obvious
   properness argument (homogenise and close in $\mathbb{P}^{\kappa-1}\times\mathbb{P}^1$) fails
   here, because the kernel of $A$ holds bivectors $K$ with $\Delta^\sigma K$ Jacobi at the sample
-  points (measured: the charts at infinity are not empty). Those boxes hold at the stated
-  $(a_0, b_0)$; a Gröbner basis over $\mathbb{Q}(a, b)$ would carry them.
+  points (measured: the charts at infinity are not empty). Those boxes are carried by a
+  certificate computed over $\mathbb{Q}(a, b)$ itself (symbolic/search/jacobi_generic.py).
 """
 
 from __future__ import annotations

@@ -28,7 +28,9 @@ identities (symbolic/exact, SymPy and FLINT) in :func:`prove_structure`.
 
 **Over which $(a, b)$.** A box whose linear stage is inconsistent is carried to every $(a, b)$ off
 a proper algebraic subset by symbolic/search/generic_extension.py (``BoxResult.generic`` states
-the argument and its minor); a box excluded by Jacobi holds at its $(a, b)$.
+the argument and its minor); a box excluded by Jacobi, with ``jacobi_generic``, off an explicit
+curve $\mu\nu = 0$ by the certificate of symbolic/search/jacobi_generic.py (in
+``BoxResult.certificate``), otherwise at its $(a, b)$.
 """
 
 from __future__ import annotations
@@ -48,8 +50,7 @@ from chaplygin_nd.symbolic.search.point_values import bivector_values as _values
 from chaplygin_nd.symbolic.search.point_values import dH_gamma
 from chaplygin_nd.symbolic.search.point_values import fq as _fq
 
-__all__ = ["BoxResult", "field_data", "flint_bivectors", "search_box", "estimate",
-           "jacobi_residual", "sigma"]
+__all__ = ["BoxResult", "field_data", "flint_bivectors", "search_box", "estimate", "sigma"]
 
 #: the exponent of the conformal factor $\Delta^\sigma$, an unknown of the Jacobi stage
 sigma = sp.Symbol("sigma")
@@ -128,6 +129,7 @@ class BoxResult:
     stages: dict = field(default_factory=dict)  # CPU seconds per stage (cost.StageClock)
     outcome: str = ""           # "excluded (linear)", "excluded (Jacobi)", "solutions"
     generic: str = ""           # over which (a, b) an exclusion holds (generic_extension.py)
+    certificate: dict = field(default_factory=dict)  # a Jacobi exclusion's (jacobi_generic.py)
     seconds: float = 0.0
     solution: dict | None = None
 
@@ -137,7 +139,7 @@ class BoxResult:
                 "syzygies": self.syzygies, "linear": self.linear, "free": self.free,
                 "jacobi_equations": self.jacobi_equations,
                 "groebner": [str(g) for g in self.groebner][:8], "outcome": self.outcome,
-                "generic": self.generic,
+                "generic": self.generic, **({"certificate": self.certificate} if self.certificate else {}),
                 "seconds": round(self.seconds, 2)}
 
 
@@ -211,11 +213,12 @@ def _sphere_reduce(expr: sp.Expr, gamma: list) -> sp.Expr:
 
 
 def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None,
-               generic: bool = True) -> BoxResult:
+               generic: bool = True, jacobi_generic: bool = False) -> BoxResult:
     """Decide one box exactly (module docstring): the linear stage over QQ, then the Jacobi
     stage by a Gröbner basis over QQ in the remaining unknowns and sigma; with ``generic``, an
     exclusion is carried to generic (a, b) when the check of symbolic/search/generic_extension.py
-    passes (``generic`` says over which (a, b) it holds)."""
+    passes, a Jacobi one (``jacobi_generic``) when symbolic/search/jacobi_generic.py finds its
+    certificate (``generic`` says over which (a, b) it holds)."""
     t0 = time.perf_counter()
     a, b = sp.Rational(a), sp.Rational(b)
     res = BoxResult(n, degree, e, a, b)
@@ -278,7 +281,7 @@ def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None,
     clock("groebner")
     res.outcome = "excluded (Jacobi)" if gb == [1] else "solutions"
     if res.outcome == "excluded (Jacobi)" and generic:
-        _generic(res, fb, cols, seed)
+        _generic(res, fb, cols, seed, jacobi_generic)
     if res.outcome == "solutions":
         res.solution = {"groebner": gb, "gens": ring_gens, "cols": cols, "part": part,
                         "kernel": kernel, "ansatz": ans}
@@ -287,15 +290,22 @@ def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None,
     return res
 
 
-def _generic(res: BoxResult, fb, cols, seed: int) -> None:
-    """Over which (a, b) an exclusion holds (symbolic/search/generic_extension.py): a linear one
-    for generic (a, b) when its check passes; one decided by Jacobi at the stated (a, b) only."""
+def _generic(res: BoxResult, fb, cols, seed: int, jacobi: bool = False) -> None:
+    """Over which (a, b) an exclusion holds: a linear one for generic (a, b) when the check of
+    symbolic/search/generic_extension.py passes; one decided by Jacobi off the curve of the
+    certificate of symbolic/search/jacobi_generic.py (with ``jacobi``), else at its (a, b) only."""
     from chaplygin_nd.symbolic.search import generic_extension as ge
+    from chaplygin_nd.symbolic.search import jacobi_generic as jg
 
     at = f"(a, b) = ({res.a}, {res.b})"
     if res.outcome == "excluded (Jacobi)":
-        res.generic = (f"only at {at} (the Jacobi stage is a Groebner basis over Q there; over "
-                       f"Q(a, b) it is not computed)")
+        top = jg.MAX_FREE.get(res.n, 0)
+        if not jacobi or res.free > top:
+            why = "not computed" if not jacobi else f"not attempted at n = {res.n}: {res.free} unknowns > {top}"
+            res.generic = f"only at {at} (its certificate over Q(a, b), {jg.WHERE}, {why})"
+            return
+        _, res.generic, res.certificate = jg.generic_exclusion(res.n, res.degree, res.e, res.a,
+                                                               res.b, seed=seed)
         return
     N = res.n * (res.n - 1) // 2 + res.n
     pts = _points(res.n, 2 * (len(cols) // N) + 6, seed, "omega-linear")
@@ -382,26 +392,4 @@ def _span_basis(eqs: list, R) -> list[sp.Expr]:
         poly = R({monos[j]: R.domain.from_sympy(sp.Rational(int(Rr[i, j].p), int(Rr[i, j].q)))
                   for j in range(len(monos)) if Rr[i, j] != 0})
         out.append(poly.as_expr())
-    return out
-
-
-def jacobi_residual(Pmat: sp.Matrix, coords, n: int, a, b, sig) -> list[sp.Expr]:
-    r"""The Jacobi condition of the module docstring for a symbolic bivector $P$ (entries
-    polynomial in the coordinates): $\Delta[P,P]_{ijk} + \sigma\sum_{\mathrm{cyc}}P_{jk}(P\,d\Delta)_i$,
-    one polynomial per triple $i<j<k$ (an identity modulo the sphere when $\Pi$ is Poisson)."""
-    N = len(coords)
-    x = coords[-1]
-    D = Delta(x, a, b)
-    dD = sp.diff(D, x)
-    dP = [[[sp.diff(Pmat[j, k], coords[l]) for k in range(N)] for j in range(N)] for l in range(N)]
-    out = []
-    for i in range(N):
-        for j in range(i + 1, N):
-            for k in range(j + 1, N):
-                jac = 0
-                for (p, q, r) in ((i, j, k), (j, k, i), (k, i, j)):
-                    jac += sum(Pmat[p, l] * dP[l][q][r] for l in range(N))
-                extra = (Pmat[j, k] * Pmat[i, N - 1] + Pmat[k, i] * Pmat[j, N - 1]
-                         + Pmat[i, j] * Pmat[k, N - 1]) * dD
-                out.append(sp.expand(D * jac + sig * extra))
     return out

@@ -3,13 +3,15 @@ S7:poisson-controls, S7:poisson-n4, S7:poisson-n5; symbolic/search/poisson.py).
 
     chaplygin poisson 3 2 --a 1/3 --b 2/5            # n = 3, degrees 0..2, e in -1..3
     chaplygin poisson 4 6 --from 4 --e 1,2 --a 1/3 --b 2/5 --json out.json
+    chaplygin poisson 4 2 --e 1 --jacobi-generic     # a Jacobi box carried to generic (a, b)
 
 Before each box: one line with its size and a CPU-time estimate by stage (stderr;
 symbolic/search/poisson_cost.py); boxes estimated above ``--max-hours`` are refused before any runs. Then one line per box:
 the linear stage (inconsistent, or the dimension of the sampled affine space), the Gröbner basis
 of the Jacobi stage, the outcome (``excluded (linear)``, ``excluded (Jacobi)`` — both exact —
 or ``solutions``) and over which (a, b) an exclusion holds (``for generic (a, b)`` or ``at this
-(a, b) only``; the argument is in the JSON's ``generic``), seconds. Bad input: one line ``error: ...`` and exit status 2.
+(a, b) only``; the argument is in the JSON's ``generic``, a Jacobi box's certificate over
+$\mathbb{Q}(a, b)$ in its ``certificate`` with ``--jacobi-generic``), seconds. Bad input: one line ``error: ...`` and exit status 2.
 """
 
 from __future__ import annotations
@@ -57,6 +59,11 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--b", default="2/5", help="b >= 0 (default 2/5; b = 0 is the free body)")
     parser.add_argument("--seed", type=int, default=None, help="the seed of the sampled points")
     parser.add_argument("--json", type=path_argument, help="write the table to this file")
+    parser.add_argument("--jacobi-generic", action="store_true",
+                        help="carry each box excluded by Jacobi to generic (a, b) by a certificate "
+                             "over Q(a, b) (symbolic/search/jacobi_generic.py; not in the estimate: "
+                             "27-89 CPU s per box at n = 4, d <= 3; boxes above "
+                             "jacobi_generic.MAX_FREE unknowns are not attempted)")
     parser.add_argument("--max-hours", type=float, default=24.0,
                         help="refuse when a degree's estimated CPU time over all e (with the "
                              "Jacobi stage) is above this many hours (default 24)")
@@ -90,7 +97,7 @@ def main(argv: list[str]) -> int:
     for d in range(args.start, args.degree + 1):
         print(f"box: {ps.estimate(args.n, d)} per e", file=sys.stderr, flush=True)
         for e in es:
-            r = ps.search_box(args.n, d, e, a, b, seed=seed,
+            r = ps.search_box(args.n, d, e, a, b, seed=seed, jacobi_generic=args.jacobi_generic,
                               progress=lambda s: print(s, file=sys.stderr, flush=True))
             rows.append(r.as_dict())
             gb = [str(g) for g in r.groebner][:6]

@@ -26,10 +26,10 @@ from chaplygin_nd.symbolic.axisymmetric import Delta
 from chaplygin_nd.symbolic.exact.identity import rational_identity
 from chaplygin_nd.symbolic.model import L_matrix_derivative
 from chaplygin_nd.symbolic.search import bivector_ansatz as ba
-from chaplygin_nd.symbolic.search.poisson import BoxResult, jacobi_residual, sigma
+from chaplygin_nd.symbolic.search.poisson import BoxResult, sigma
 
 __all__ = ["solution_values", "structure_matrix", "lift_symbolic", "prove_structure", "borisov_mamaev",
-           "structure_text", "symbolic_field"]
+           "structure_text", "symbolic_field", "jacobi_residual"]
 
 
 def solution_values(res: BoxResult) -> dict | None:
@@ -190,3 +190,25 @@ def borisov_mamaev(a, b) -> sp.Matrix:
     P = sum((c * B[j] for j, c in enumerate(mm) if c != 0), sp.zeros(6, 6))
     P += Delta(x, a, b) * B[len(ba.MM_NAMES)]
     return P.applyfunc(sp.expand)
+
+
+def jacobi_residual(Pmat: sp.Matrix, coords, n: int, a, b, sig) -> list[sp.Expr]:
+    r"""The Jacobi condition of the module docstring for a symbolic bivector $P$ (entries
+    polynomial in the coordinates): $\Delta[P,P]_{ijk} + \sigma\sum_{\mathrm{cyc}}P_{jk}(P\,d\Delta)_i$,
+    one polynomial per triple $i<j<k$ (an identity modulo the sphere when $\Pi$ is Poisson)."""
+    N = len(coords)
+    x = coords[-1]
+    D = Delta(x, a, b)
+    dD = sp.diff(D, x)
+    dP = [[[sp.diff(Pmat[j, k], coords[l]) for k in range(N)] for j in range(N)] for l in range(N)]
+    out = []
+    for i in range(N):
+        for j in range(i + 1, N):
+            for k in range(j + 1, N):
+                jac = 0
+                for (p, q, r) in ((i, j, k), (j, k, i), (k, i, j)):
+                    jac += sum(Pmat[p, l] * dP[l][q][r] for l in range(N))
+                extra = (Pmat[j, k] * Pmat[i, N - 1] + Pmat[k, i] * Pmat[j, N - 1]
+                         + Pmat[i, j] * Pmat[k, N - 1]) * dD
+                out.append(sp.expand(D * jac + sig * extra))
+    return out
