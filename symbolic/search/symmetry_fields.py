@@ -36,11 +36,12 @@ import flint
 import sympy as sp
 from chaplygin_nd.symbolic.algebra import so_basis, vec, wedge
 from chaplygin_nd.symbolic.axisym_inverse import ansatz_terms, inverse_numerator
-from chaplygin_nd.symbolic.axisymmetric import Delta, mass_tensor
-from chaplygin_nd.symbolic.model import L_matrix, L_matrix_derivative
+from chaplygin_nd.symbolic.axisymmetric import Delta
 from chaplygin_nd.symbolic.search import bivector_ansatz as ba
 from chaplygin_nd.symbolic.search.cost import StageClock
-from chaplygin_nd.symbolic.search.poisson import _ctx, _fq, _points, _q, _rref_solve, _sphere_reduce
+from chaplygin_nd.symbolic.search.field_point import field_and_jacobian
+from chaplygin_nd.symbolic.search.orbit_fields import invariants, orbit_fields, vanishes_on_sphere
+from chaplygin_nd.symbolic.search.poisson import _ctx, _fq, _points, _rref_solve
 
 __all__ = ["field_blocks", "FieldBox", "search_fields", "estimate", "invariants"]
 
@@ -161,66 +162,6 @@ def _columns(n: int, degree: int, a, b):
     return z, cols, labels, triv
 
 
-def _dX(n, a, b, M, gamma):
-    """X and its exact Jacobian at a rational point (columns: d/dz_l)."""
-    J = mass_tensor(n, a)
-    L = flint.fmpq_mat([[_fq(v) for v in row] for row in L_matrix(gamma, J, b).tolist()])
-    Li = L.inv()
-    mv = flint.fmpq_mat([[_fq(v)] for v in vec(M)])
-    w = Li * mv
-    m = len(so_basis(n))
-    Om = _unvec([w[i, 0] for i in range(m)], n)
-    Mq = _unvec([_fq(v) for v in vec(M)], n)
-    gq = [_fq(v) for v in gamma]
-    X = _field(Mq, Om, gq, n)
-    cols = []
-    for l in range(m + n):
-        if l < m:
-            dM = [flint.fmpq(0)] * m
-            dM[l] = flint.fmpq(1)
-            dw = Li * flint.fmpq_mat([[v] for v in dM])
-            dg = [flint.fmpq(0)] * n
-        else:
-            k = l - m
-            dL = flint.fmpq_mat([[_fq(v) for v in row] for row in L_matrix_derivative(gamma, b, k).tolist()])
-            dw = -(Li * (dL * w))
-            dM = [flint.fmpq(0)] * m
-            dg = [flint.fmpq(0)] * n
-            dg[k] = flint.fmpq(1)
-        dOm = _unvec([dw[i, 0] for i in range(m)], n)
-        dMm = _unvec(dM, n)
-        top = _vecq(_mm(dMm, Om, n), n, sub=_mm(Om, dMm, n))
-        top2 = _vecq(_mm(Mq, dOm, n), n, sub=_mm(dOm, Mq, n))
-        bot = [-(sum((dOm[i][j] * gq[j] for j in range(n)), flint.fmpq(0))
-                 + sum((Om[i][j] * dg[j] for j in range(n)), flint.fmpq(0))) for i in range(n)]
-        cols.append([u + v for u, v in zip(top, top2, strict=True)] + bot)
-    return X, cols
-
-
-def _unvec(c, n):
-    A = [[flint.fmpq(0)] * n for _ in range(n)]
-    idx = 0
-    for i in range(n):
-        for j in range(i + 1, n):
-            A[i][j], A[j][i] = c[idx], -c[idx]
-            idx += 1
-    return A
-
-
-def _mm(A, B, n):
-    return [[sum((A[i][k] * B[k][j] for k in range(n)), flint.fmpq(0)) for j in range(n)] for i in range(n)]
-
-
-def _vecq(A, n, sub):
-    return [A[i][j] - sub[i][j] for i in range(n) for j in range(i + 1, n)]
-
-
-def _field(Mq, Om, gq, n):
-    top = _vecq(_mm(Mq, Om, n), n, sub=_mm(Om, Mq, n))
-    bot = [-sum((Om[i][j] * gq[j] for j in range(n)), flint.fmpq(0)) for i in range(n)]
-    return top + bot
-
-
 def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
     """Decide one box exactly (module docstring)."""
     from chaplygin_nd.symbolic.search import sampled_field
@@ -247,7 +188,7 @@ def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
     basis = [A for A in so_basis(n) if all(A[i, n - 1] == 0 for i in range(n))]
     for M, g in _points(n, 2 * len(cols) // (N - 1) + 4, seed, "fields"):
         pt = [_fq(v) for v in list(vec(M)) + list(g)]
-        X, dX = _dX(n, a, b, M, g)
+        X, dX = field_and_jacobian(n, a, b, M, g)
         D, dD = _fq(Dx.subs(xs, g[n - 1])), _fq(dDx.subs(xs, g[n - 1]))
         XD = dD * X[N - 1] / D
         grads = gradients_at(model, M, g)
@@ -283,7 +224,7 @@ def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
         raise ArithmeticError("a trivial field fails a sampled condition: the conditions are wrong")
     exact_trivial = len(counted)
     others = [v for v in kernel if not _is_trivial_unit(v, triv)]
-    proved = _orbit_fields(n, z, cols, others, seed) if others else []
+    proved = orbit_fields(n, z, cols, others, seed) if others else []
     clock("orbit proofs")
     res.orbit_proved = len(proved)
     res.trivial = exact_trivial + res.orbit_proved
@@ -317,13 +258,12 @@ def _independent(z, cols, seed, n, labels=None, clock=None) -> tuple[list[int], 
     _, kernel = _rref_solve(rows, [flint.fmpq(0)] * len(rows))
     if clock:
         clock("column rank")
-    gam = list(z[N - n:])
+    zero = _ctx(z).from_dict({})
     dropped = set()
     for v in kernel:
         for i in range(N):
-            e = sum((_q(c) * _expr(cols[u][i], z) for u, c in enumerate(v)
-                     if c != 0 and cols[u][i] is not None), sp.Integer(0))
-            if e != 0 and _sphere_reduce(sp.expand(e), gam) != 0:
+            e = sum((c * cols[u][i] for u, c in enumerate(v) if c != 0 and cols[u][i] is not None), zero)
+            if not vanishes_on_sphere(e, n):
                 raise ArithmeticError("a sampled syzygy of the field box is not an identity")
         dropped.add(max(u for u, c in enumerate(v) if c != 0))
     dx = bool(labels) and any(c != 0 and labels[u][0] == "D X" for v in kernel for u, c in enumerate(v))
@@ -332,80 +272,6 @@ def _independent(z, cols, seed, n, labels=None, clock=None) -> tuple[list[int], 
     return [u for u in range(len(cols)) if u not in dropped], dx
 
 
-def _expr(poly, z):
-    return sum((_q(c) * sp.prod([v**int(e) for v, e in zip(z, mono, strict=True)])
-                for mono, c in poly.to_dict().items()), sp.Integer(0))
-
-
 def _is_trivial_unit(v, triv) -> bool:
     nz = [u for u, c in enumerate(v) if c != 0]
     return len(nz) == 1 and triv[nz[0]]
-
-
-def invariants(n: int, M, gamma) -> list:
-    r"""$O(n-1)$-invariant polynomials: $x = \gamma_n$, $\langle M^i u, M^j v\rangle$ ($u, v \in
-    \{\gamma, E_n\}$, $i + j \le 4$), $\operatorname{tr} M^2$, $\operatorname{tr} M^4$. Where their
-    differentials and $d\|\gamma\|^2$ have rank $\dim P + 1 - \dim(\text{orbit})$ they span the
-    annihilator of the orbit (checked at a point in :func:`_orbit_fields`)."""
-    E = _E(n)
-    pw = [sp.eye(n)]
-    for _ in range(4):
-        pw.append(pw[-1] * M)
-    out = [gamma[n - 1], (pw[2]).trace(), (pw[4]).trace()]
-    for i in range(5):
-        for j in range(i, 5 - i):
-            for u, v in ((gamma, gamma), (E, E), (gamma, E)):
-                if u is v and (i + j) % 2 == 1:
-                    continue
-                if (i, j) == (0, 0):
-                    continue
-                out.append(sp.expand(((pw[i] * u).T * (pw[j] * v))[0, 0]))
-    return [e for e in out if e != 0]
-
-
-def _orbit_fields(n, z, cols, others, seed) -> list:
-    """The combinations of ``others`` (kernel vectors) that are orbit-direction fields, each
-    proved exactly (returned as (field, its coefficients on the columns)): Q(I) = 0 modulo the sphere for every invariant I of :func:`invariants`, whose
-    differentials span the annihilator of the orbits at a seeded point (exact rank)."""
-    M, gamma, _ = ba.coordinates(n)
-    inv = invariants(n, M, gamma)
-    ctx = _ctx(z)
-    N = len(z)
-    fl = [ctx.from_dict({mm: _fq(c) for mm, c in sp.Poly(e, *z).as_dict().items()}) for e in inv]
-    grads = [[f.derivative(l) for l in range(N)] for f in fl]
-    # spanning check at a point
-    (Mp, gp), = _points(n, 1, seed, "orbit-span")
-    pt = [_fq(v) for v in list(vec(Mp)) + list(gp)]
-    rowsd = [[g(*pt) for g in gr] for gr in grads] + [[flint.fmpq(0)] * (N - n) + [2 * v for v in pt[N - n:]]]
-    basis = [A for A in so_basis(n) if all(A[i, n - 1] == 0 for i in range(n))]
-    zetas = [[_fq(v) for v in list(vec(A * Mp - Mp * A)) + list(A * gp)] for A in basis]
-    rk = lambda r: flint.fmpq_mat(len(r), N, [v for row in r for v in row]).rref()[1]  # noqa: E731
-    if rk(rowsd) != N - rk(zetas):
-        return []
-    def field(v):
-        return [sum((c * cols[u][i] for u, c in enumerate(v) if c != 0 and cols[u][i] is not None),
-                    ctx.from_dict({})) for i in range(N)]
-    fields = [field(v) for v in others]
-    rows = []
-    for Mv, gv in _points(n, 6, seed, "orbit-fields"):
-        ptv = [_fq(x) for x in list(vec(Mv)) + list(gv)]
-        gvals = [[g(*ptv) for g in gr] for gr in grads]
-        Qs = [[q(*ptv) for q in Q] for Q in fields]
-        for gk in gvals:
-            rows.append([sum((gk[i] * Q[i] for i in range(N)), flint.fmpq(0)) for Q in Qs])
-    _, comb = _rref_solve(rows, [flint.fmpq(0)] * len(rows))
-    gam = list(z[N - n:])
-    proved = []
-    for c in comb:
-        Q = [sum((ci * F[i] for ci, F in zip(c, fields, strict=True) if ci != 0), ctx.from_dict({}))
-             for i in range(N)]
-        ok = True
-        for gr in grads:
-            e = sum((Q[i] * gr[i] for i in range(N)), ctx.from_dict({}))
-            if e != 0 and _sphere_reduce(sp.expand(_expr(e, z)), gam) != 0:
-                ok = False
-                break
-        if ok:
-            proved.append((Q, [sum((ci * v[u] for ci, v in zip(c, others, strict=True)), flint.fmpq(0))
-                               for u in range(len(cols))]))
-    return proved
