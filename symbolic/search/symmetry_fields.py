@@ -143,20 +143,19 @@ class FieldBox:
 def _columns(n: int, degree: int, a, b):
     M, gamma, z = ba.coordinates(n)
     fields, names, trivial = field_blocks(n, M, gamma, a, b)
-    x = gamma[n - 1]
     ctx = _ctx(z)
+    xf = ctx.gens()[len(z) - 1]
     cols, labels, triv = [], [], []
     for f_i, (YM, Yg) in enumerate(fields):
+        base = []   # the field's components in FLINT, expanded once; x^k times them below
+        for c in list(vec(YM)) + list(Yg):
+            e = sp.expand(c)
+            base.append(ctx.from_dict({m: _fq(v) for m, v in sp.Poly(e, *z).as_dict().items()})
+                        if e != 0 else None)
         for k in range(degree + 1):
             if f_i == trivial - 1 and k > 0:
                 continue  # D X itself only
-            comps = list(vec(YM)) + list(Yg)
-            polys = []
-            for c in comps:
-                e = sp.expand(x**k * c)
-                P = sp.Poly(e, *z) if e != 0 else None
-                polys.append(ctx.from_dict({m: _fq(v) for m, v in P.as_dict().items()}) if P else None)
-            cols.append(polys)
+            cols.append([p * xf**k if p is not None else None for p in base])
             labels.append((names[f_i], k))
             triv.append(f_i < trivial)
     return z, cols, labels, triv
