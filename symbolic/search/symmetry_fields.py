@@ -23,8 +23,12 @@ $DX$ does when $s = \tau - 1$ (it is then $\Delta^\tau X$ up to a constant). The
 **Exactness.** The conditions are evaluated at seeded rational points (exact $DX$ at a point:
 $\partial\Omega = L_\gamma^{-1}(\partial M - \partial L_\gamma\,\Omega)$). The sampled solution space
 contains the true one; trivial solutions lie in the true one. When the two dimensions agree, the
-box holds exactly no field beyond the trivial ones; otherwise the excess is an upper bound and the
-candidates are reported (a candidate still needs an exact proof before it is claimed).
+box holds exactly no field beyond the trivial ones; otherwise the seeded points are extended
+(doubled, up to :data:`_MAX_DOUBLINGS` times) and the count redone, and what excess remains is an
+upper bound, reported as candidates (a candidate still needs an exact proof before it is claimed).
+Column syzygies suggested by the points are each proved (vanishing modulo the sphere,
+symbolic/search/orbit_fields.py) before a column is dropped; the column sample is extended the
+same way when one is not an identity.
 """
 
 from __future__ import annotations
@@ -44,6 +48,10 @@ from chaplygin_nd.symbolic.search.orbit_fields import invariants, orbit_fields, 
 from chaplygin_nd.symbolic.search.poisson import _ctx, _fq, _points, _rref_solve
 
 __all__ = ["field_blocks", "FieldBox", "search_fields", "estimate", "invariants"]
+
+
+#: how often the column sample is doubled before a syzygy that is not an identity is an error
+_MAX_DOUBLINGS = 4
 
 
 def _E(n):
@@ -125,6 +133,7 @@ class FieldBox:
     solutions: int = 0
     excess: int = 0
     orbit_proved: int = 0
+    points: int = 0             # sample points of the conditions (extended while candidates remain)
     outcome: str = ""
     generic: str = ""           # over which (a, b) the count holds (generic_extension.py)
     kernel: list | None = None
@@ -135,7 +144,7 @@ class FieldBox:
     def as_dict(self) -> dict:
         return {"n": self.n, "degree": self.degree, "s": str(self.s), "tau": str(self.tau),
                 "independent": self.independent, "trivial": self.trivial,
-                "solutions": self.solutions, "orbit_proved": self.orbit_proved,
+                "solutions": self.solutions, "orbit_proved": self.orbit_proved, "points": self.points,
                 "excess": self.excess, "outcome": self.outcome, "generic": self.generic,
                 "seconds": round(self.seconds, 2)}
 
@@ -164,7 +173,6 @@ def _columns(n: int, degree: int, a, b):
 def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
     """Decide one box exactly (module docstring)."""
     from chaplygin_nd.symbolic.search import sampled_field
-    from chaplygin_nd.symbolic.search.known_integrals import gradients_at
 
     t0 = time.perf_counter()
     a, b, s, tau = sp.Rational(a), sp.Rational(b), sp.Rational(s), sp.Rational(tau)
@@ -172,7 +180,6 @@ def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
     clock = StageClock(res.stages)
     z, cols, labels, triv = _columns(n, degree, a, b)
     N = len(z)
-    m = N - n
     model = sampled_field.axisymmetric(n, a, b)
     clock("columns")
     # independent columns (syzygies proved exactly, trivial columns kept first as pivots)
@@ -180,53 +187,29 @@ def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
     cols = [cols[u] for u in keep]
     triv = [triv[u] for u in keep]
     res.independent = len(cols)
-    xs = sp.Symbol("x")
-    Dx = Delta(xs, a, b)
-    dDx = sp.diff(Dx, xs)
-    rows = []
-    basis = [A for A in so_basis(n) if all(A[i, n - 1] == 0 for i in range(n))]
-    for M, g in _points(n, 2 * len(cols) // (N - 1) + 4, seed, "fields"):
-        pt = [_fq(v) for v in list(vec(M)) + list(g)]
-        X, dX = field_and_jacobian(n, a, b, M, g)
-        D, dD = _fq(Dx.subs(xs, g[n - 1])), _fq(dDx.subs(xs, g[n - 1]))
-        XD = dD * X[N - 1] / D
-        grads = gradients_at(model, M, g)
-        zetas = [list(vec(A * M - M * A)) + list(A * g) for A in basis]
-        _, ann = _rref_solve([[_fq(v) for v in zt] for zt in zetas], [flint.fmpq(0)] * len(zetas))
-        vals, ders = [], []
-        for polys in cols:
-            vals.append([p(*pt) if p is not None else flint.fmpq(0) for p in polys])
-            ders.append([[p.derivative(l)(*pt) if p is not None else flint.fmpq(0) for l in range(N)]
-                         for p in polys])
-        Cs = []
-        for Q, DQ in zip(vals, ders, strict=True):
-            QD = dD * Q[N - 1] / D
-            C = []
-            for i in range(N):
-                v = sum((DQ[i][l] * X[l] for l in range(N)), flint.fmpq(0))
-                v -= sum((dX[l][i] * Q[l] for l in range(N)), flint.fmpq(0))
-                C.append(v + _fq(s) * XD * Q[i] - _fq(tau) * QD * X[i])
-            Cs.append(C)
-        for w in ann:
-            rows.append([sum((w[i] * C[i] for i in range(N)), flint.fmpq(0)) for C in Cs])
-        rows.append([sum((Q[m + k] * _fq(g[k]) for k in range(n)), flint.fmpq(0)) for Q in vals])
-        for r in range(grads.rows):
-            gr = [_fq(v) for v in grads.row(r)]
-            rows.append([sum((gr[i] * Q[i] for i in range(N)), flint.fmpq(0)) for Q in vals])
-    clock("conditions")
-    _, kernel = _rref_solve(rows, [flint.fmpq(0)] * len(rows))
-    clock("kernel")
+    count, done, rows = 2 * len(cols) // (N - 1) + 4, 0, []
+    for attempt in range(_MAX_DOUBLINGS + 1):
+        # the sampled conditions: the same seeded points, extended while candidates remain
+        for M, g in _points(n, count, seed, "fields")[done:]:
+            rows += _condition_rows(n, a, b, s, tau, cols, model, M, g)
+        done = count
+        clock("conditions")
+        _, kernel = _rref_solve(rows, [flint.fmpq(0)] * len(rows))
+        clock("kernel")
+        counted = [u for u, t in enumerate(triv) if t and (labels[keep[u]][0] != "D X" or s == tau - 1)]
+        if any(row[u] != 0 for row in rows for u in counted):
+            raise ArithmeticError("a trivial field fails a sampled condition: the conditions are wrong")
+        others = [v for v in kernel if not _is_trivial_unit(v, triv)]
+        proved = orbit_fields(n, z, cols, others, seed) if others else []
+        clock("orbit proofs")
+        if len(kernel) == len(counted) + len(proved) or attempt == _MAX_DOUBLINGS:
+            break
+        count *= 2
+    res.points = done
     res.solutions = len(kernel)
     res.kernel, res.columns = kernel, [(labels[u], cols[i]) for i, u in enumerate(keep)]
-    counted = [u for u, t in enumerate(triv) if t and (labels[keep[u]][0] != "D X" or s == tau - 1)]
-    if any(row[u] != 0 for row in rows for u in counted):
-        raise ArithmeticError("a trivial field fails a sampled condition: the conditions are wrong")
-    exact_trivial = len(counted)
-    others = [v for v in kernel if not _is_trivial_unit(v, triv)]
-    proved = orbit_fields(n, z, cols, others, seed) if others else []
-    clock("orbit proofs")
     res.orbit_proved = len(proved)
-    res.trivial = exact_trivial + res.orbit_proved
+    res.trivial = len(counted) + res.orbit_proved
     res.excess = res.solutions - res.trivial
     res.outcome = ("no field beyond the trivial ones" if res.excess == 0
                    else f"{res.excess} candidate(s) beyond the trivial ones (upper bound)")
@@ -243,31 +226,76 @@ def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
     return res
 
 
+def _condition_rows(n, a, b, s, tau, cols, model, M, g) -> list[list]:
+    r"""The sampled conditions of the module docstring at the rational point $(M, \gamma)$, one row
+    per condition, one entry per column: $C(Q)$ paired with a basis of the annihilator of the
+    orbit directions, $\langle Q^\gamma, \gamma\rangle$, and $Q(F_j)$, $Q(H)$."""
+    from chaplygin_nd.symbolic.search.known_integrals import gradients_at
+
+    N = n * (n - 1) // 2 + n
+    m = N - n
+    xs = sp.Symbol("x")
+    Dx = Delta(xs, a, b)
+    basis = [A for A in so_basis(n) if all(A[i, n - 1] == 0 for i in range(n))]
+    pt = [_fq(v) for v in list(vec(M)) + list(g)]
+    X, dX = field_and_jacobian(n, a, b, M, g)
+    D, dD = _fq(Dx.subs(xs, g[n - 1])), _fq(sp.diff(Dx, xs).subs(xs, g[n - 1]))
+    XD = dD * X[N - 1] / D
+    grads = gradients_at(model, M, g)
+    zetas = [list(vec(A * M - M * A)) + list(A * g) for A in basis]
+    _, ann = _rref_solve([[_fq(v) for v in zt] for zt in zetas], [flint.fmpq(0)] * len(zetas))
+    vals, ders = [], []
+    for polys in cols:
+        vals.append([p(*pt) if p is not None else flint.fmpq(0) for p in polys])
+        ders.append([[p.derivative(l)(*pt) if p is not None else flint.fmpq(0) for l in range(N)]
+                     for p in polys])
+    Cs = []
+    for Q, DQ in zip(vals, ders, strict=True):
+        QD = dD * Q[N - 1] / D
+        C = []
+        for i in range(N):
+            v = sum((DQ[i][l] * X[l] for l in range(N)), flint.fmpq(0))
+            v -= sum((dX[l][i] * Q[l] for l in range(N)), flint.fmpq(0))
+            C.append(v + _fq(s) * XD * Q[i] - _fq(tau) * QD * X[i])
+        Cs.append(C)
+    rows = [[sum((w[i] * C[i] for i in range(N)), flint.fmpq(0)) for C in Cs] for w in ann]
+    rows.append([sum((Q[m + k] * _fq(g[k]) for k in range(n)), flint.fmpq(0)) for Q in vals])
+    for r in range(grads.rows):
+        gr = [_fq(v) for v in grads.row(r)]
+        rows.append([sum((gr[i] * Q[i] for i in range(N)), flint.fmpq(0)) for Q in vals])
+    return rows
+
+
 def _independent(z, cols, seed, n, labels=None, clock=None) -> tuple[list[int], bool]:
     """Indices of columns independent as functions on P (syzygies proved modulo the sphere), and
-    whether a proved syzygy involves the column D X (which depends on a, b)."""
+    whether a proved syzygy involves the column D X (which depends on a, b). The sampled syzygies
+    contain the true ones; when one of them is not an identity the sample was too small, and the
+    same seeded points are extended (doubled) until every sampled syzygy is proved."""
     N = len(z)
-    pts = _points(n, 2 * (len(cols) // N) + 6, seed, "field-columns")
-    rows = []
-    for M, g in pts:
-        pt = [_fq(v) for v in list(vec(M)) + list(g)]
-        vals = [[p(*pt) if p is not None else flint.fmpq(0) for p in polys] for polys in cols]
-        for i in range(N):
-            rows.append([v[i] for v in vals])
-    _, kernel = _rref_solve(rows, [flint.fmpq(0)] * len(rows))
-    if clock:
-        clock("column rank")
+    count = 2 * (len(cols) // N) + 6
     zero = _ctx(z).from_dict({})
-    dropped = set()
-    for v in kernel:
-        for i in range(N):
-            e = sum((c * cols[u][i] for u, c in enumerate(v) if c != 0 and cols[u][i] is not None), zero)
-            if not vanishes_on_sphere(e, n):
-                raise ArithmeticError("a sampled syzygy of the field box is not an identity")
-        dropped.add(max(u for u, c in enumerate(v) if c != 0))
+    for _ in range(_MAX_DOUBLINGS + 1):
+        rows = []
+        for M, g in _points(n, count, seed, "field-columns"):
+            pt = [_fq(v) for v in list(vec(M)) + list(g)]
+            vals = [[p(*pt) if p is not None else flint.fmpq(0) for p in polys] for polys in cols]
+            for i in range(N):
+                rows.append([v[i] for v in vals])
+        _, kernel = _rref_solve(rows, [flint.fmpq(0)] * len(rows))
+        if clock:
+            clock("column rank")
+        proved = all(vanishes_on_sphere(sum((c * cols[u][i] for u, c in enumerate(v)
+                                             if c != 0 and cols[u][i] is not None), zero), n)
+                     for v in kernel for i in range(N))
+        if clock:
+            clock("syzygy proofs")
+        if proved:
+            break
+        count *= 2
+    else:
+        raise ArithmeticError(f"a sampled syzygy of the field box is not an identity at {count // 2} points")
+    dropped = {max(u for u, c in enumerate(v) if c != 0) for v in kernel}
     dx = bool(labels) and any(c != 0 and labels[u][0] == "D X" for v in kernel for u, c in enumerate(v))
-    if clock:
-        clock("syzygy proofs")
     return [u for u in range(len(cols)) if u not in dropped], dx
 
 
