@@ -4,6 +4,7 @@ the n = 3 Hamiltonian field of Borisov-Mamaev's structure is exactly trivial; ba
 
 from __future__ import annotations
 
+import pytest
 import sympy as sp
 from chaplygin_nd.symbolic.search import symmetry_fields as sf
 from chaplygin_nd.symbolic.search.fields_command import main
@@ -105,3 +106,13 @@ def test_vanishing_on_the_sphere_agrees_between_flint_division_and_the_sympy_nor
     mult = ctx.from_dict({m: fq(c) for m, c in sp.Poly(sp.expand(sphere * z[0] * z[-1]), *z).as_dict().items()})
     assert of.vanishes_on_sphere(mult * xq, n) and of.sphere_normal_form(of.to_sympy(mult * xq, z), list(g)) == 0
     assert sp.expand(of.to_sympy(xq, z) - sp.Poly(of.to_sympy(xq, z), *z).as_expr()) == 0
+
+
+@pytest.mark.slow
+def test_n6_degree2_needs_a_larger_column_sample_and_recovers_the_trivial_fields():
+    """At n = 6, d = 2 the first column sample suggests a syzygy that is not an identity; the
+    extended sample proves every one, and the box holds the trivial fields (the orbit fields, Delta^tau
+    X, one orbit-direction field proved exactly) and nothing else (several CPU seconds: slow)."""
+    r = sf.search_fields(6, 2, 1, 2, A, B, seed=2)
+    assert r.column_points > 2 * (100 // 21) + 6  # the first sample (C = 100 columns, N = 21) was extended
+    assert r.excess == 0 and r.orbit_proved == 1 and r.solutions == r.trivial > 1

@@ -21,7 +21,7 @@ from chaplygin_nd.symbolic.search import bivector_ansatz as ba
 from chaplygin_nd.symbolic.search.point_values import fq as _fq
 from chaplygin_nd.symbolic.search.poisson import _ctx, _points, _rref_solve
 
-__all__ = ["vanishes_on_sphere", "sphere_normal_form", "to_sympy", "invariants", "orbit_fields"]
+__all__ = ["vanishes_on_sphere", "sphere_normal_form", "to_sympy", "invariants", "orbit_fields", "rho_x_combination"]
 
 
 def _sphere(ctx, n: int):
@@ -64,16 +64,18 @@ def _E(n):
 
 def invariants(n: int, M, gamma) -> list:
     r"""$O(n-1)$-invariant polynomials: $x = \gamma_n$, $\langle M^i u, M^j v\rangle$ ($u, v \in
-    \{\gamma, E_n\}$, $i + j \le 4$), $\operatorname{tr} M^2$, $\operatorname{tr} M^4$. Where their
+    \{\gamma, E_n\}$, $i + j \le T$), $\operatorname{tr} M^{2k}$ ($2 \le 2k \le T$), with
+    $T = 4$ for $n \le 6$ (where it spans) and $T = n - 1$ above ($n = 7$ needs degree 6). Where their
     differentials and $d\|\gamma\|^2$ have rank $\dim P + 1 - \dim(\text{orbit})$ they span the
     annihilator of the orbit (checked at a point in :func:`orbit_fields`)."""
     E = _E(n)
+    top = 4 if n <= 6 else n - 1
     pw = [sp.eye(n)]
-    for _ in range(4):
+    for _ in range(top):
         pw.append(pw[-1] * M)
-    out = [gamma[n - 1], (pw[2]).trace(), (pw[4]).trace()]
-    for i in range(5):
-        for j in range(i, 5 - i):
+    out = [gamma[n - 1]] + [pw[k].trace() for k in range(2, top + 1, 2)]
+    for i in range(top + 1):
+        for j in range(i, top + 1 - i):
             for u, v in ((gamma, gamma), (E, E), (gamma, E)):
                 if u is v and (i + j) % 2 == 1:
                     continue
@@ -124,3 +126,37 @@ def orbit_fields(n, z, cols, others, seed) -> list:
             proved.append((Q, [sum((ci * v[u] for ci, v in zip(c, others, strict=True)), flint.fmpq(0))
                                for u in range(len(cols))]))
     return proved
+
+
+def rho_x_combination(n, z, cols, dx: int, k: int, a, b, seed) -> list | None:
+    r"""The field $\Delta^\tau X$ written in the box when $s = \tau - 1 - k$ ($k \ge 1$): $Y =
+    \Delta^s Q$ with $Q = \Delta^k\,DX$ ($DX$ = column ``dx``), if $Q$ is a combination of the
+    columns ``cols``. The coefficients are solved at seeded points and the identity
+    $\sum_u c_u\,\mathrm{col}_u = \Delta(x)^k\,DX$ proved exactly modulo the sphere
+    (:func:`vanishes_on_sphere`); returns them, or None when $Q$ is not in the span. Such a $Y$ is
+    $\rho X$ itself (up to the constant $2(2+a+b)$): a trivial solution."""
+    from chaplygin_nd.symbolic.axisymmetric import Delta
+
+    ctx = _ctx(z)
+    N = len(z)
+    xs = sp.Symbol("x")
+    Dp = sp.Poly(Delta(xs, sp.Rational(a), sp.Rational(b)), xs)
+    xf = ctx.gens()[N - 1]
+    Dk = sum((_fq(c) * xf**int(e) for (e,), c in Dp.as_dict().items()), ctx.from_dict({})) ** k
+    target = [Dk * p if p is not None else None for p in cols[dx]]
+    count = 2 * (len(cols) // N) + 6
+    rows, rhs = [], []
+    for M, g in _points(n, count, seed, "rho-x"):
+        pt = [_fq(v) for v in list(vec(M)) + list(g)]
+        for i in range(N):
+            rows.append([c[i](*pt) if c[i] is not None else flint.fmpq(0) for c in cols])
+            rhs.append(target[i](*pt) if target[i] is not None else flint.fmpq(0))
+    part, _ = _rref_solve(rows, rhs)
+    if part is None:
+        return None
+    zero = ctx.from_dict({})
+    for i in range(N):
+        e = sum((c * cols[u][i] for u, c in enumerate(part) if c != 0 and cols[u][i] is not None), zero)
+        if not vanishes_on_sphere(e - (target[i] if target[i] is not None else zero), n):
+            return None
+    return part

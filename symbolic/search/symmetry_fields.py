@@ -44,14 +44,19 @@ from chaplygin_nd.symbolic.axisymmetric import Delta
 from chaplygin_nd.symbolic.search import bivector_ansatz as ba
 from chaplygin_nd.symbolic.search.cost import StageClock
 from chaplygin_nd.symbolic.search.field_point import field_and_jacobian
-from chaplygin_nd.symbolic.search.orbit_fields import invariants, orbit_fields, vanishes_on_sphere
+from chaplygin_nd.symbolic.search.orbit_fields import (
+    invariants,
+    orbit_fields,
+    rho_x_combination,
+    vanishes_on_sphere,
+)
 from chaplygin_nd.symbolic.search.poisson import _ctx, _fq, _points, _rref_solve
 
 __all__ = ["field_blocks", "FieldBox", "search_fields", "estimate", "invariants"]
 
 
 #: how often the column sample is doubled before a syzygy that is not an identity is an error
-_MAX_DOUBLINGS = 4
+_MAX_DOUBLINGS = 2
 
 
 def _E(n):
@@ -134,6 +139,8 @@ class FieldBox:
     excess: int = 0
     orbit_proved: int = 0
     points: int = 0             # sample points of the conditions (extended while candidates remain)
+    column_points: int = 0      # sample points of the column rank (extended while a syzygy fails)
+    rho_x: bool = False         # Delta^tau X written in the box (s = tau - 1 - k, k >= 1) and counted
     outcome: str = ""
     generic: str = ""           # over which (a, b) the count holds (generic_extension.py)
     kernel: list | None = None
@@ -145,6 +152,7 @@ class FieldBox:
         return {"n": self.n, "degree": self.degree, "s": str(self.s), "tau": str(self.tau),
                 "independent": self.independent, "trivial": self.trivial,
                 "solutions": self.solutions, "orbit_proved": self.orbit_proved, "points": self.points,
+                "column_points": self.column_points, "rho_x": self.rho_x,
                 "excess": self.excess, "outcome": self.outcome, "generic": self.generic,
                 "seconds": round(self.seconds, 2)}
 
@@ -183,10 +191,16 @@ def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
     model = sampled_field.axisymmetric(n, a, b)
     clock("columns")
     # independent columns (syzygies proved exactly, trivial columns kept first as pivots)
-    keep, dx_syzygy = _independent(z, cols, seed, n, labels, clock)
+    keep, dx_syzygy, res.column_points = _independent(z, cols, seed, n, labels, clock)
     cols = [cols[u] for u in keep]
     triv = [triv[u] for u in keep]
     res.independent = len(cols)
+    rho = None  # Delta^tau X written in the box, when s = tau - 1 - k for an integer k >= 1
+    k = tau - 1 - s
+    if k.is_integer and k >= 1:
+        dx = next(u for u in range(len(cols)) if labels[keep[u]][0] == "D X")
+        rho = rho_x_combination(n, z, cols, dx, int(k), a, b, seed)
+    res.rho_x = rho is not None
     count, done, rows = 2 * len(cols) // (N - 1) + 4, 0, []
     for attempt in range(_MAX_DOUBLINGS + 1):
         # the sampled conditions: the same seeded points, extended while candidates remain
@@ -202,20 +216,24 @@ def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
         others = [v for v in kernel if not _is_trivial_unit(v, triv)]
         proved = orbit_fields(n, z, cols, others, seed) if others else []
         clock("orbit proofs")
-        if len(kernel) == len(counted) + len(proved) or attempt == _MAX_DOUBLINGS:
+        exact = _rank_of_trivial(len(cols), counted, [coef for _, coef in proved], rho, rows)
+        if len(kernel) == exact or attempt == _MAX_DOUBLINGS:
             break
         count *= 2
     res.points = done
     res.solutions = len(kernel)
     res.kernel, res.columns = kernel, [(labels[u], cols[i]) for i, u in enumerate(keep)]
     res.orbit_proved = len(proved)
-    res.trivial = len(counted) + res.orbit_proved
+    res.trivial = exact
     res.excess = res.solutions - res.trivial
     res.outcome = ("no field beyond the trivial ones" if res.excess == 0
                    else f"{res.excess} candidate(s) beyond the trivial ones (upper bound)")
     if res.excess < 0:
         raise ArithmeticError("fewer sampled solutions than exact ones: a bug")
-    if res.excess == 0:
+    if res.excess == 0 and res.rho_x:
+        res.generic = (f"only at (a, b) = ({a}, {b}) (Delta^tau X is written in the box there with "
+                       "coefficients that depend on a, b)")
+    elif res.excess == 0:
         from chaplygin_nd.symbolic.search.generic_extension import fields_generic
 
         res.generic = fields_generic(rows, res.solutions, res.trivial, f"(a, b) = ({a}, {b})", dx_syzygy,
@@ -266,9 +284,9 @@ def _condition_rows(n, a, b, s, tau, cols, model, M, g) -> list[list]:
     return rows
 
 
-def _independent(z, cols, seed, n, labels=None, clock=None) -> tuple[list[int], bool]:
-    """Indices of columns independent as functions on P (syzygies proved modulo the sphere), and
-    whether a proved syzygy involves the column D X (which depends on a, b). The sampled syzygies
+def _independent(z, cols, seed, n, labels=None, clock=None) -> tuple[list[int], bool, int]:
+    """Indices of columns independent as functions on P (syzygies proved modulo the sphere),
+    whether a proved syzygy involves the column D X (which depends on a, b), and the points used. The sampled syzygies
     contain the true ones; when one of them is not an identity the sample was too small, and the
     same seeded points are extended (doubled) until every sampled syzygy is proved."""
     N = len(z)
@@ -296,7 +314,21 @@ def _independent(z, cols, seed, n, labels=None, clock=None) -> tuple[list[int], 
         raise ArithmeticError(f"a sampled syzygy of the field box is not an identity at {count // 2} points")
     dropped = {max(u for u, c in enumerate(v) if c != 0) for v in kernel}
     dx = bool(labels) and any(c != 0 and labels[u][0] == "D X" for v in kernel for u, c in enumerate(v))
-    return [u for u in range(len(cols)) if u not in dropped], dx
+    return [u for u in range(len(cols)) if u not in dropped], dx, count
+
+
+def _rank_of_trivial(C: int, counted: list, proved: list, rho, rows) -> int:
+    """How many independent exact solutions are known: the counted trivial columns, the proved
+    orbit-direction fields and Delta^tau X written in the box (each checked against the sampled
+    conditions, which every true solution satisfies)."""
+    vecs = [[flint.fmpq(1) if w == u else flint.fmpq(0) for w in range(C)] for u in counted] + list(proved)
+    if rho is not None:
+        if any(sum((r[u] * rho[u] for u in range(C)), flint.fmpq(0)) != 0 for r in rows):
+            raise ArithmeticError("Delta^tau X fails a sampled condition: the conditions are wrong")
+        vecs.append(rho)
+    if not vecs:
+        return 0
+    return flint.fmpq_mat(len(vecs), C, [v for row in vecs for v in row]).rref()[1]
 
 
 def _is_trivial_unit(v, triv) -> bool:
