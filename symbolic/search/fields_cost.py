@@ -6,8 +6,9 @@ before anything is built: $N = n(n-1)/2 + n$ coordinates, $C = 34(d+1) - d$ colu
 of :func:`~chaplygin_nd.symbolic.search.symmetry_fields.field_blocks` times $x^k$, $k \le d$, $DX$
 once; the independent ones are at most $C$, so $C$ bounds them), $P = \lfloor 2C/(N-1)\rfloor + 4$
 sample points and at most $R = P(N + n)$ condition rows. The growth laws, with constants and
-exponents fitted by least squares on $\log$ CPU time over the boxes $n = 3..7$, $d \le 4$ (one
-process, boxes in order of $n$ then $d$; the largest ratio of measured to fitted time in brackets):
+exponents fitted by least squares on $\log$ CPU time over the boxes $n = 3..6$, $d \le 3$ and
+$n = 5$, $d = 4$ (one process, boxes in order of $n$ then $d$, $s = \tau - 1$; the largest ratio
+of measured to fitted time in brackets):
 
 * building the columns (the 34 fields expanded in SymPy once, converted to FLINT, their $x^k$
   multiples FLINT products): $c_0 + c_1 N^{2.2}$, fitted on each $n$'s first box (the later boxes
@@ -20,8 +21,9 @@ process, boxes in order of $n$ then $d$; the largest ratio of measured to fitted
 * the kernel over $\mathbb{Q}$ (FLINT ``fmpq_mat.rref``): $c_5 C^2 N$ (hundredths of a second);
 * the exact orbit-direction proofs, one per kernel vector that is not a trivial column: $Q(I)$
   for the 21 :func:`~chaplygin_nd.symbolic.search.orbit_fields.invariants`, each divided by
-  $\|\gamma\|^2 - 1$ in FLINT, so one candidate costs $c_6 (N/10)^{p}$ with $p$ fitted on
-  $n = 4..7$ ($d = 1$, one candidate each; the candidate does not grow with $d$). Their number is
+  $\|\gamma\|^2 - 1$ in FLINT, so one candidate costs $c_6 (N/10)^{p}$, $p = 3$ fitted on
+  $n = 4, 5, 6$ ($d = 1$, one candidate each, each $n$'s first; later ones reuse SymPy's
+  conversion of the invariants and cost a fifth; the candidate does not grow with $d$). Their number is
   known only after the kernel (one in every box with a candidate measured), so the estimate gives
   the cost of one beside the sure part. The same proof through SymPy (the terms converted by
   repeated addition, quadratic in their number, then reduced modulo the sphere) costs about

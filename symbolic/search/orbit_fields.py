@@ -150,7 +150,8 @@ def rho_x_combination(n, z, cols, dx: int, k: int, a, b, seed) -> list | None:
         pt = [_fq(v) for v in list(vec(M)) + list(g)]
         for i in range(N):
             rows.append([c[i](*pt) if c[i] is not None else flint.fmpq(0) for c in cols])
-            rhs.append(target[i](*pt) if target[i] is not None else flint.fmpq(0))
+            t = target[i]
+            rhs.append(t(*pt) if t is not None else flint.fmpq(0))
     part, _ = _rref_solve(rows, rhs)
     if part is None:
         return None
