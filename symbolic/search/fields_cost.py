@@ -23,7 +23,10 @@ of measured to fitted time in brackets):
   for the 21 :func:`~chaplygin_nd.symbolic.search.orbit_fields.invariants`, each divided by
   $\|\gamma\|^2 - 1$ in FLINT, so one candidate costs $c_6 (N/10)^{p}$, $p = 3$ fitted on
   $n = 4, 5, 6$ ($d = 1$, one candidate each, each $n$'s first; later ones reuse SymPy's
-  conversion of the invariants and cost a fifth; the candidate does not grow with $d$). Their number is
+  conversion of the invariants and cost a fifth; the candidate does not grow with $d$). From
+  $n = 7$ on the invariants reach degree $n - 1$ in $M$ and one candidate cost about 250 s at
+  $n = 7$, $d = 1$ (load 10–17); beyond it the growth $(N/28)^8$ is a guess from that one point,
+  chosen steep so that a box is refused rather than started. Their number is
   known only after the kernel (one in every box with a candidate measured), so the estimate gives
   the cost of one beside the sure part. The same proof through SymPy (the terms converted by
   repeated addition, quadratic in their number, then reduced modulo the sphere) costs about
@@ -62,6 +65,9 @@ C_COND = 6.7e-4
 C_KERNEL = 3.9e-8
 C_CANDIDATE = 0.35
 CANDIDATE_POWER = 3.0
+#: from n = 7 on the invariants reach degree n - 1 (orbit_fields.invariants): one candidate measured
+#: at n = 7 (N = 28), and a growth exponent that is a guess, not a fit (one point), chosen steep
+C_CANDIDATE_7, CANDIDATE_POWER_7 = 250.0, 8.0
 
 
 @dataclass(frozen=True)
@@ -123,6 +129,7 @@ def field_cost(n: int, degree: int) -> FieldCost:
         "kernel": C_KERNEL * C * C * N,
         "generic": 0.0,
     }
-    candidate = C_CANDIDATE * (N / 10) ** CANDIDATE_POWER
+    candidate = (C_CANDIDATE * (N / 10) ** CANDIDATE_POWER if n <= 6
+                 else C_CANDIDATE_7 * (N / 28) ** CANDIDATE_POWER_7)
     stages["orbit proofs"] = candidate
     return FieldCost(n, degree, N, C, P, R, stages, candidate)
