@@ -4,6 +4,7 @@ the n = 3 Hamiltonian field of Borisov-Mamaev's structure is exactly trivial; ba
 
 from __future__ import annotations
 
+import pytest
 import sympy as sp
 from chaplygin_nd.symbolic.search import symmetry_fields as sf
 from chaplygin_nd.symbolic.search.fields_command import main
@@ -62,3 +63,56 @@ def test_a_count_is_carried_to_generic_parameters_unless_delta_x_enters_a_syzygy
     assert r0.excess == 0 and r0.generic.startswith("generic (a, b)") and "!= 0" in r0.generic
     r1 = sf.search_fields(3, 1, -half, half, A, B, seed=2)
     assert r1.excess == 0 and r1.generic.startswith("only at") and "D X" in r1.generic
+
+
+def test_vanishing_on_the_sphere_agrees_between_flint_division_and_the_sympy_normal_form():
+    """Both engines on the identities the search proves (the n = 4, d = 1 orbit-direction field
+    against every invariant) and on polynomials that do not vanish (the field D X against x and
+    |M|^2 ... one more term than the sphere allows)."""
+    from chaplygin_nd.symbolic.search import bivector_ansatz as ba
+    from chaplygin_nd.symbolic.search import orbit_fields as of
+    from chaplygin_nd.symbolic.search.point_values import fq
+    from chaplygin_nd.symbolic.search.poisson import _ctx
+
+    n = 4
+    r = sf.search_fields(n, 1, 0, 1, A, B, seed=2)
+    assert r.orbit_proved == 1
+    M, g, z = ba.coordinates(n)
+    ctx = _ctx(z)
+    zero = ctx.from_dict({})
+    N = len(z)
+    polys = [p for _, p in r.columns]
+    labels = [lab for lab, _ in r.columns]
+    others = [v for v in r.kernel if sum(1 for c in v if c != 0) > 1]
+    assert others
+    inv = [ctx.from_dict({m: fq(c) for m, c in sp.Poly(e, *z).as_dict().items()}) for e in of.invariants(n, M, g)]
+    sphere = sum(v**2 for v in g) - 1
+    checked = 0
+    for v in others:
+        Q = [sum((c * polys[u][i] for u, c in enumerate(v) if c != 0 and polys[u][i] is not None), zero)
+             for i in range(N)]
+        for f in inv:
+            e = sum((Q[i] * f.derivative(i) for i in range(N)), zero)
+            flint_says = of.vanishes_on_sphere(e, n)
+            sympy_says = of.sphere_normal_form(of.to_sympy(e, z), list(g)) == 0
+            assert flint_says == sympy_says
+            checked += flint_says
+    assert checked > 0
+    dx = next(i for i, lab in enumerate(labels) if lab == ("D X", 0))
+    xq = polys[dx][N - 1]  # (D X)(gamma_n): not zero on the sphere
+    for e in (xq, xq * inv[1], xq + ctx.from_dict({m: fq(c) for m, c in sp.Poly(sp.expand(sphere), *z).as_dict().items()})):
+        assert not of.vanishes_on_sphere(e, n)
+        assert of.sphere_normal_form(of.to_sympy(e, z), list(g)) != 0
+    mult = ctx.from_dict({m: fq(c) for m, c in sp.Poly(sp.expand(sphere * z[0] * z[-1]), *z).as_dict().items()})
+    assert of.vanishes_on_sphere(mult * xq, n) and of.sphere_normal_form(of.to_sympy(mult * xq, z), list(g)) == 0
+    assert sp.expand(of.to_sympy(xq, z) - sp.Poly(of.to_sympy(xq, z), *z).as_expr()) == 0
+
+
+@pytest.mark.slow
+def test_n6_degree2_needs_a_larger_column_sample_and_recovers_the_trivial_fields():
+    """At n = 6, d = 2 the first column sample suggests a syzygy that is not an identity; the
+    extended sample proves every one, and the box holds the trivial fields (the orbit fields, Delta^tau
+    X, one orbit-direction field proved exactly) and nothing else (several CPU seconds: slow)."""
+    r = sf.search_fields(6, 2, 1, 2, A, B, seed=2)
+    assert r.column_points > 2 * (100 // 21) + 6  # the first sample (C = 100 columns, N = 21) was extended
+    assert r.excess == 0 and r.orbit_proved == 1 and r.solutions == r.trivial > 1

@@ -23,8 +23,12 @@ $DX$ does when $s = \tau - 1$ (it is then $\Delta^\tau X$ up to a constant). The
 **Exactness.** The conditions are evaluated at seeded rational points (exact $DX$ at a point:
 $\partial\Omega = L_\gamma^{-1}(\partial M - \partial L_\gamma\,\Omega)$). The sampled solution space
 contains the true one; trivial solutions lie in the true one. When the two dimensions agree, the
-box holds exactly no field beyond the trivial ones; otherwise the excess is an upper bound and the
-candidates are reported (a candidate still needs an exact proof before it is claimed).
+box holds exactly no field beyond the trivial ones; otherwise the seeded points are extended
+(doubled, up to :data:`_MAX_DOUBLINGS` times) and the count redone, and what excess remains is an
+upper bound, reported as candidates (a candidate still needs an exact proof before it is claimed).
+Column syzygies suggested by the points are each proved (vanishing modulo the sphere,
+symbolic/search/orbit_fields.py) before a column is dropped; the column sample is extended the
+same way when one is not an identity.
 """
 
 from __future__ import annotations
@@ -36,13 +40,23 @@ import flint
 import sympy as sp
 from chaplygin_nd.symbolic.algebra import so_basis, vec, wedge
 from chaplygin_nd.symbolic.axisym_inverse import ansatz_terms, inverse_numerator
-from chaplygin_nd.symbolic.axisymmetric import Delta, mass_tensor
-from chaplygin_nd.symbolic.model import L_matrix, L_matrix_derivative
+from chaplygin_nd.symbolic.axisymmetric import Delta
 from chaplygin_nd.symbolic.search import bivector_ansatz as ba
 from chaplygin_nd.symbolic.search.cost import StageClock
-from chaplygin_nd.symbolic.search.poisson import _ctx, _fq, _points, _q, _rref_solve, _sphere_reduce
+from chaplygin_nd.symbolic.search.field_point import field_and_jacobian
+from chaplygin_nd.symbolic.search.orbit_fields import (
+    invariants,
+    orbit_fields,
+    rho_x_combination,
+    vanishes_on_sphere,
+)
+from chaplygin_nd.symbolic.search.poisson import _ctx, _fq, _points, _rref_solve
 
 __all__ = ["field_blocks", "FieldBox", "search_fields", "estimate", "invariants"]
+
+
+#: how often the column sample is doubled before a syzygy that is not an identity is an error
+_MAX_DOUBLINGS = 2
 
 
 def _E(n):
@@ -124,6 +138,9 @@ class FieldBox:
     solutions: int = 0
     excess: int = 0
     orbit_proved: int = 0
+    points: int = 0             # sample points of the conditions (extended while candidates remain)
+    column_points: int = 0      # sample points of the column rank (extended while a syzygy fails)
+    rho_x: bool = False         # Delta^tau X written in the box (s = tau - 1 - k, k >= 1) and counted
     outcome: str = ""
     generic: str = ""           # over which (a, b) the count holds (generic_extension.py)
     kernel: list | None = None
@@ -134,7 +151,8 @@ class FieldBox:
     def as_dict(self) -> dict:
         return {"n": self.n, "degree": self.degree, "s": str(self.s), "tau": str(self.tau),
                 "independent": self.independent, "trivial": self.trivial,
-                "solutions": self.solutions, "orbit_proved": self.orbit_proved,
+                "solutions": self.solutions, "orbit_proved": self.orbit_proved, "points": self.points,
+                "column_points": self.column_points, "rho_x": self.rho_x,
                 "excess": self.excess, "outcome": self.outcome, "generic": self.generic,
                 "seconds": round(self.seconds, 2)}
 
@@ -142,89 +160,27 @@ class FieldBox:
 def _columns(n: int, degree: int, a, b):
     M, gamma, z = ba.coordinates(n)
     fields, names, trivial = field_blocks(n, M, gamma, a, b)
-    x = gamma[n - 1]
     ctx = _ctx(z)
+    xf = ctx.gens()[len(z) - 1]
     cols, labels, triv = [], [], []
     for f_i, (YM, Yg) in enumerate(fields):
+        base = []   # the field's components in FLINT, expanded once; x^k times them below
+        for c in list(vec(YM)) + list(Yg):
+            e = sp.expand(c)
+            base.append(ctx.from_dict({m: _fq(v) for m, v in sp.Poly(e, *z).as_dict().items()})
+                        if e != 0 else None)
         for k in range(degree + 1):
             if f_i == trivial - 1 and k > 0:
                 continue  # D X itself only
-            comps = list(vec(YM)) + list(Yg)
-            polys = []
-            for c in comps:
-                e = sp.expand(x**k * c)
-                P = sp.Poly(e, *z) if e != 0 else None
-                polys.append(ctx.from_dict({m: _fq(v) for m, v in P.as_dict().items()}) if P else None)
-            cols.append(polys)
+            cols.append([p * xf**k if p is not None else None for p in base])
             labels.append((names[f_i], k))
             triv.append(f_i < trivial)
     return z, cols, labels, triv
 
 
-def _dX(n, a, b, M, gamma):
-    """X and its exact Jacobian at a rational point (columns: d/dz_l)."""
-    J = mass_tensor(n, a)
-    L = flint.fmpq_mat([[_fq(v) for v in row] for row in L_matrix(gamma, J, b).tolist()])
-    Li = L.inv()
-    mv = flint.fmpq_mat([[_fq(v)] for v in vec(M)])
-    w = Li * mv
-    m = len(so_basis(n))
-    Om = _unvec([w[i, 0] for i in range(m)], n)
-    Mq = _unvec([_fq(v) for v in vec(M)], n)
-    gq = [_fq(v) for v in gamma]
-    X = _field(Mq, Om, gq, n)
-    cols = []
-    for l in range(m + n):
-        if l < m:
-            dM = [flint.fmpq(0)] * m
-            dM[l] = flint.fmpq(1)
-            dw = Li * flint.fmpq_mat([[v] for v in dM])
-            dg = [flint.fmpq(0)] * n
-        else:
-            k = l - m
-            dL = flint.fmpq_mat([[_fq(v) for v in row] for row in L_matrix_derivative(gamma, b, k).tolist()])
-            dw = -(Li * (dL * w))
-            dM = [flint.fmpq(0)] * m
-            dg = [flint.fmpq(0)] * n
-            dg[k] = flint.fmpq(1)
-        dOm = _unvec([dw[i, 0] for i in range(m)], n)
-        dMm = _unvec(dM, n)
-        top = _vecq(_mm(dMm, Om, n), n, sub=_mm(Om, dMm, n))
-        top2 = _vecq(_mm(Mq, dOm, n), n, sub=_mm(dOm, Mq, n))
-        bot = [-(sum((dOm[i][j] * gq[j] for j in range(n)), flint.fmpq(0))
-                 + sum((Om[i][j] * dg[j] for j in range(n)), flint.fmpq(0))) for i in range(n)]
-        cols.append([u + v for u, v in zip(top, top2, strict=True)] + bot)
-    return X, cols
-
-
-def _unvec(c, n):
-    A = [[flint.fmpq(0)] * n for _ in range(n)]
-    idx = 0
-    for i in range(n):
-        for j in range(i + 1, n):
-            A[i][j], A[j][i] = c[idx], -c[idx]
-            idx += 1
-    return A
-
-
-def _mm(A, B, n):
-    return [[sum((A[i][k] * B[k][j] for k in range(n)), flint.fmpq(0)) for j in range(n)] for i in range(n)]
-
-
-def _vecq(A, n, sub):
-    return [A[i][j] - sub[i][j] for i in range(n) for j in range(i + 1, n)]
-
-
-def _field(Mq, Om, gq, n):
-    top = _vecq(_mm(Mq, Om, n), n, sub=_mm(Om, Mq, n))
-    bot = [-sum((Om[i][j] * gq[j] for j in range(n)), flint.fmpq(0)) for i in range(n)]
-    return top + bot
-
-
 def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
     """Decide one box exactly (module docstring)."""
     from chaplygin_nd.symbolic.search import sampled_field
-    from chaplygin_nd.symbolic.search.known_integrals import gradients_at
 
     t0 = time.perf_counter()
     a, b, s, tau = sp.Rational(a), sp.Rational(b), sp.Rational(s), sp.Rational(tau)
@@ -232,67 +188,52 @@ def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
     clock = StageClock(res.stages)
     z, cols, labels, triv = _columns(n, degree, a, b)
     N = len(z)
-    m = N - n
     model = sampled_field.axisymmetric(n, a, b)
     clock("columns")
     # independent columns (syzygies proved exactly, trivial columns kept first as pivots)
-    keep, dx_syzygy = _independent(z, cols, seed, n, labels, clock)
+    keep, dx_syzygy, res.column_points = _independent(z, cols, seed, n, labels, clock)
     cols = [cols[u] for u in keep]
     triv = [triv[u] for u in keep]
     res.independent = len(cols)
-    xs = sp.Symbol("x")
-    Dx = Delta(xs, a, b)
-    dDx = sp.diff(Dx, xs)
-    rows = []
-    basis = [A for A in so_basis(n) if all(A[i, n - 1] == 0 for i in range(n))]
-    for M, g in _points(n, 2 * len(cols) // (N - 1) + 4, seed, "fields"):
-        pt = [_fq(v) for v in list(vec(M)) + list(g)]
-        X, dX = _dX(n, a, b, M, g)
-        D, dD = _fq(Dx.subs(xs, g[n - 1])), _fq(dDx.subs(xs, g[n - 1]))
-        XD = dD * X[N - 1] / D
-        grads = gradients_at(model, M, g)
-        zetas = [list(vec(A * M - M * A)) + list(A * g) for A in basis]
-        _, ann = _rref_solve([[_fq(v) for v in zt] for zt in zetas], [flint.fmpq(0)] * len(zetas))
-        vals, ders = [], []
-        for polys in cols:
-            vals.append([p(*pt) if p is not None else flint.fmpq(0) for p in polys])
-            ders.append([[p.derivative(l)(*pt) if p is not None else flint.fmpq(0) for l in range(N)]
-                         for p in polys])
-        Cs = []
-        for Q, DQ in zip(vals, ders, strict=True):
-            QD = dD * Q[N - 1] / D
-            C = []
-            for i in range(N):
-                v = sum((DQ[i][l] * X[l] for l in range(N)), flint.fmpq(0))
-                v -= sum((dX[l][i] * Q[l] for l in range(N)), flint.fmpq(0))
-                C.append(v + _fq(s) * XD * Q[i] - _fq(tau) * QD * X[i])
-            Cs.append(C)
-        for w in ann:
-            rows.append([sum((w[i] * C[i] for i in range(N)), flint.fmpq(0)) for C in Cs])
-        rows.append([sum((Q[m + k] * _fq(g[k]) for k in range(n)), flint.fmpq(0)) for Q in vals])
-        for r in range(grads.rows):
-            gr = [_fq(v) for v in grads.row(r)]
-            rows.append([sum((gr[i] * Q[i] for i in range(N)), flint.fmpq(0)) for Q in vals])
-    clock("conditions")
-    _, kernel = _rref_solve(rows, [flint.fmpq(0)] * len(rows))
-    clock("kernel")
+    rho = None  # Delta^tau X written in the box, when s = tau - 1 - k for an integer k >= 1
+    k = tau - 1 - s
+    if k.is_integer and k >= 1:
+        dx = next(u for u in range(len(cols)) if labels[keep[u]][0] == "D X")
+        rho = rho_x_combination(n, z, cols, dx, int(k), a, b, seed)
+    res.rho_x = rho is not None
+    count, done, rows = 2 * len(cols) // (N - 1) + 4, 0, []
+    for attempt in range(_MAX_DOUBLINGS + 1):
+        # the sampled conditions: the same seeded points, extended while candidates remain
+        for M, g in _points(n, count, seed, "fields")[done:]:
+            rows += _condition_rows(n, a, b, s, tau, cols, model, M, g)
+        done = count
+        clock("conditions")
+        _, kernel = _rref_solve(rows, [flint.fmpq(0)] * len(rows))
+        clock("kernel")
+        counted = [u for u, t in enumerate(triv) if t and (labels[keep[u]][0] != "D X" or s == tau - 1)]
+        if any(row[u] != 0 for row in rows for u in counted):
+            raise ArithmeticError("a trivial field fails a sampled condition: the conditions are wrong")
+        others = [v for v in kernel if not _is_trivial_unit(v, triv)]
+        proved = orbit_fields(n, z, cols, others, seed) if others else []
+        clock("orbit proofs")
+        exact = _rank_of_trivial(len(cols), counted, [coef for _, coef in proved], rho, rows)
+        if len(kernel) == exact or attempt == _MAX_DOUBLINGS:
+            break
+        count *= 2
+    res.points = done
     res.solutions = len(kernel)
     res.kernel, res.columns = kernel, [(labels[u], cols[i]) for i, u in enumerate(keep)]
-    counted = [u for u, t in enumerate(triv) if t and (labels[keep[u]][0] != "D X" or s == tau - 1)]
-    if any(row[u] != 0 for row in rows for u in counted):
-        raise ArithmeticError("a trivial field fails a sampled condition: the conditions are wrong")
-    exact_trivial = len(counted)
-    others = [v for v in kernel if not _is_trivial_unit(v, triv)]
-    proved = _orbit_fields(n, z, cols, others, seed) if others else []
-    clock("orbit proofs")
     res.orbit_proved = len(proved)
-    res.trivial = exact_trivial + res.orbit_proved
+    res.trivial = exact
     res.excess = res.solutions - res.trivial
     res.outcome = ("no field beyond the trivial ones" if res.excess == 0
                    else f"{res.excess} candidate(s) beyond the trivial ones (upper bound)")
     if res.excess < 0:
         raise ArithmeticError("fewer sampled solutions than exact ones: a bug")
-    if res.excess == 0:
+    if res.excess == 0 and res.rho_x:
+        res.generic = (f"only at (a, b) = ({a}, {b}) (Delta^tau X is written in the box there with "
+                       "coefficients that depend on a, b)")
+    elif res.excess == 0:
         from chaplygin_nd.symbolic.search.generic_extension import fields_generic
 
         res.generic = fields_generic(rows, res.solutions, res.trivial, f"(a, b) = ({a}, {b})", dx_syzygy,
@@ -303,109 +244,93 @@ def search_fields(n: int, degree: int, s, tau, a, b, *, seed: int) -> FieldBox:
     return res
 
 
-def _independent(z, cols, seed, n, labels=None, clock=None) -> tuple[list[int], bool]:
-    """Indices of columns independent as functions on P (syzygies proved modulo the sphere), and
-    whether a proved syzygy involves the column D X (which depends on a, b)."""
+def _condition_rows(n, a, b, s, tau, cols, model, M, g) -> list[list]:
+    r"""The sampled conditions of the module docstring at the rational point $(M, \gamma)$, one row
+    per condition, one entry per column: $C(Q)$ paired with a basis of the annihilator of the
+    orbit directions, $\langle Q^\gamma, \gamma\rangle$, and $Q(F_j)$, $Q(H)$."""
+    from chaplygin_nd.symbolic.search.known_integrals import gradients_at
+
+    N = n * (n - 1) // 2 + n
+    m = N - n
+    xs = sp.Symbol("x")
+    Dx = Delta(xs, a, b)
+    basis = [A for A in so_basis(n) if all(A[i, n - 1] == 0 for i in range(n))]
+    pt = [_fq(v) for v in list(vec(M)) + list(g)]
+    X, dX = field_and_jacobian(n, a, b, M, g)
+    D, dD = _fq(Dx.subs(xs, g[n - 1])), _fq(sp.diff(Dx, xs).subs(xs, g[n - 1]))
+    XD = dD * X[N - 1] / D
+    grads = gradients_at(model, M, g)
+    zetas = [list(vec(A * M - M * A)) + list(A * g) for A in basis]
+    _, ann = _rref_solve([[_fq(v) for v in zt] for zt in zetas], [flint.fmpq(0)] * len(zetas))
+    vals, ders = [], []
+    for polys in cols:
+        vals.append([p(*pt) if p is not None else flint.fmpq(0) for p in polys])
+        ders.append([[p.derivative(l)(*pt) if p is not None else flint.fmpq(0) for l in range(N)]
+                     for p in polys])
+    Cs = []
+    for Q, DQ in zip(vals, ders, strict=True):
+        QD = dD * Q[N - 1] / D
+        C = []
+        for i in range(N):
+            v = sum((DQ[i][l] * X[l] for l in range(N)), flint.fmpq(0))
+            v -= sum((dX[l][i] * Q[l] for l in range(N)), flint.fmpq(0))
+            C.append(v + _fq(s) * XD * Q[i] - _fq(tau) * QD * X[i])
+        Cs.append(C)
+    rows = [[sum((w[i] * C[i] for i in range(N)), flint.fmpq(0)) for C in Cs] for w in ann]
+    rows.append([sum((Q[m + k] * _fq(g[k]) for k in range(n)), flint.fmpq(0)) for Q in vals])
+    for r in range(grads.rows):
+        gr = [_fq(v) for v in grads.row(r)]
+        rows.append([sum((gr[i] * Q[i] for i in range(N)), flint.fmpq(0)) for Q in vals])
+    return rows
+
+
+def _independent(z, cols, seed, n, labels=None, clock=None) -> tuple[list[int], bool, int]:
+    """Indices of columns independent as functions on P (syzygies proved modulo the sphere),
+    whether a proved syzygy involves the column D X (which depends on a, b), and the points used. The sampled syzygies
+    contain the true ones; when one of them is not an identity the sample was too small, and the
+    same seeded points are extended (doubled) until every sampled syzygy is proved."""
     N = len(z)
-    pts = _points(n, 2 * (len(cols) // N) + 6, seed, "field-columns")
-    rows = []
-    for M, g in pts:
-        pt = [_fq(v) for v in list(vec(M)) + list(g)]
-        vals = [[p(*pt) if p is not None else flint.fmpq(0) for p in polys] for polys in cols]
-        for i in range(N):
-            rows.append([v[i] for v in vals])
-    _, kernel = _rref_solve(rows, [flint.fmpq(0)] * len(rows))
-    if clock:
-        clock("column rank")
-    gam = list(z[N - n:])
-    dropped = set()
-    for v in kernel:
-        for i in range(N):
-            e = sum((_q(c) * _expr(cols[u][i], z) for u, c in enumerate(v)
-                     if c != 0 and cols[u][i] is not None), sp.Integer(0))
-            if e != 0 and _sphere_reduce(sp.expand(e), gam) != 0:
-                raise ArithmeticError("a sampled syzygy of the field box is not an identity")
-        dropped.add(max(u for u, c in enumerate(v) if c != 0))
+    count = 2 * (len(cols) // N) + 6
+    zero = _ctx(z).from_dict({})
+    for _ in range(_MAX_DOUBLINGS + 1):
+        rows = []
+        for M, g in _points(n, count, seed, "field-columns"):
+            pt = [_fq(v) for v in list(vec(M)) + list(g)]
+            vals = [[p(*pt) if p is not None else flint.fmpq(0) for p in polys] for polys in cols]
+            for i in range(N):
+                rows.append([v[i] for v in vals])
+        _, kernel = _rref_solve(rows, [flint.fmpq(0)] * len(rows))
+        if clock:
+            clock("column rank")
+        proved = all(vanishes_on_sphere(sum((c * cols[u][i] for u, c in enumerate(v)
+                                             if c != 0 and cols[u][i] is not None), zero), n)
+                     for v in kernel for i in range(N))
+        if clock:
+            clock("syzygy proofs")
+        if proved:
+            break
+        count *= 2
+    else:
+        raise ArithmeticError(f"a sampled syzygy of the field box is not an identity at {count // 2} points")
+    dropped = {max(u for u, c in enumerate(v) if c != 0) for v in kernel}
     dx = bool(labels) and any(c != 0 and labels[u][0] == "D X" for v in kernel for u, c in enumerate(v))
-    if clock:
-        clock("syzygy proofs")
-    return [u for u in range(len(cols)) if u not in dropped], dx
+    return [u for u in range(len(cols)) if u not in dropped], dx, count
 
 
-def _expr(poly, z):
-    return sum((_q(c) * sp.prod([v**int(e) for v, e in zip(z, mono, strict=True)])
-                for mono, c in poly.to_dict().items()), sp.Integer(0))
+def _rank_of_trivial(C: int, counted: list, proved: list, rho, rows) -> int:
+    """How many independent exact solutions are known: the counted trivial columns, the proved
+    orbit-direction fields and Delta^tau X written in the box (each checked against the sampled
+    conditions, which every true solution satisfies)."""
+    vecs = [[flint.fmpq(1) if w == u else flint.fmpq(0) for w in range(C)] for u in counted] + list(proved)
+    if rho is not None:
+        if any(sum((r[u] * rho[u] for u in range(C)), flint.fmpq(0)) != 0 for r in rows):
+            raise ArithmeticError("Delta^tau X fails a sampled condition: the conditions are wrong")
+        vecs.append(rho)
+    if not vecs:
+        return 0
+    return flint.fmpq_mat(len(vecs), C, [v for row in vecs for v in row]).rref()[1]
 
 
 def _is_trivial_unit(v, triv) -> bool:
     nz = [u for u, c in enumerate(v) if c != 0]
     return len(nz) == 1 and triv[nz[0]]
-
-
-def invariants(n: int, M, gamma) -> list:
-    r"""$O(n-1)$-invariant polynomials: $x = \gamma_n$, $\langle M^i u, M^j v\rangle$ ($u, v \in
-    \{\gamma, E_n\}$, $i + j \le 4$), $\operatorname{tr} M^2$, $\operatorname{tr} M^4$. Where their
-    differentials and $d\|\gamma\|^2$ have rank $\dim P + 1 - \dim(\text{orbit})$ they span the
-    annihilator of the orbit (checked at a point in :func:`_orbit_fields`)."""
-    E = _E(n)
-    pw = [sp.eye(n)]
-    for _ in range(4):
-        pw.append(pw[-1] * M)
-    out = [gamma[n - 1], (pw[2]).trace(), (pw[4]).trace()]
-    for i in range(5):
-        for j in range(i, 5 - i):
-            for u, v in ((gamma, gamma), (E, E), (gamma, E)):
-                if u is v and (i + j) % 2 == 1:
-                    continue
-                if (i, j) == (0, 0):
-                    continue
-                out.append(sp.expand(((pw[i] * u).T * (pw[j] * v))[0, 0]))
-    return [e for e in out if e != 0]
-
-
-def _orbit_fields(n, z, cols, others, seed) -> list:
-    """The combinations of ``others`` (kernel vectors) that are orbit-direction fields, each
-    proved exactly (returned as (field, its coefficients on the columns)): Q(I) = 0 modulo the sphere for every invariant I of :func:`invariants`, whose
-    differentials span the annihilator of the orbits at a seeded point (exact rank)."""
-    M, gamma, _ = ba.coordinates(n)
-    inv = invariants(n, M, gamma)
-    ctx = _ctx(z)
-    N = len(z)
-    fl = [ctx.from_dict({mm: _fq(c) for mm, c in sp.Poly(e, *z).as_dict().items()}) for e in inv]
-    grads = [[f.derivative(l) for l in range(N)] for f in fl]
-    # spanning check at a point
-    (Mp, gp), = _points(n, 1, seed, "orbit-span")
-    pt = [_fq(v) for v in list(vec(Mp)) + list(gp)]
-    rowsd = [[g(*pt) for g in gr] for gr in grads] + [[flint.fmpq(0)] * (N - n) + [2 * v for v in pt[N - n:]]]
-    basis = [A for A in so_basis(n) if all(A[i, n - 1] == 0 for i in range(n))]
-    zetas = [[_fq(v) for v in list(vec(A * Mp - Mp * A)) + list(A * gp)] for A in basis]
-    rk = lambda r: flint.fmpq_mat(len(r), N, [v for row in r for v in row]).rref()[1]  # noqa: E731
-    if rk(rowsd) != N - rk(zetas):
-        return []
-    def field(v):
-        return [sum((c * cols[u][i] for u, c in enumerate(v) if c != 0 and cols[u][i] is not None),
-                    ctx.from_dict({})) for i in range(N)]
-    fields = [field(v) for v in others]
-    rows = []
-    for Mv, gv in _points(n, 6, seed, "orbit-fields"):
-        ptv = [_fq(x) for x in list(vec(Mv)) + list(gv)]
-        gvals = [[g(*ptv) for g in gr] for gr in grads]
-        Qs = [[q(*ptv) for q in Q] for Q in fields]
-        for gk in gvals:
-            rows.append([sum((gk[i] * Q[i] for i in range(N)), flint.fmpq(0)) for Q in Qs])
-    _, comb = _rref_solve(rows, [flint.fmpq(0)] * len(rows))
-    gam = list(z[N - n:])
-    proved = []
-    for c in comb:
-        Q = [sum((ci * F[i] for ci, F in zip(c, fields, strict=True) if ci != 0), ctx.from_dict({}))
-             for i in range(N)]
-        ok = True
-        for gr in grads:
-            e = sum((Q[i] * gr[i] for i in range(N)), ctx.from_dict({}))
-            if e != 0 and _sphere_reduce(sp.expand(_expr(e, z)), gam) != 0:
-                ok = False
-                break
-        if ok:
-            proved.append((Q, [sum((ci * v[u] for ci, v in zip(c, others, strict=True)), flint.fmpq(0))
-                               for u in range(len(cols))]))
-    return proved
