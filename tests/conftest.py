@@ -1,7 +1,8 @@
 """Shared pytest setup: mpmath precision is reset before every test (mpmath's own habit), so a
 test may raise ``mp.dps`` freely without leaking it into the next one; our cache of compiled
-heyoka integrators (runtime/jit_cache.py) is one temporary folder per test session (each system
-compiles once per run; the tests never write into the user's chaplygin-nd cache). heyoka's own
+heyoka integrators (runtime/jit_cache.py) is one temporary folder per test session, shared by the
+xdist workers (each system compiles once per run; the tests never write into the user's
+chaplygin-nd cache). heyoka's own
 cache of compiled code (~/.cache/heyoka, heyoka's default) is left as the user configured it;
 with it off, the heyoka tests add about 15 s of JIT to a run on 2 cores. The wheel that
 tests/test_wheel.py and tests/test_site_packages.py run is built once per pytest process."""
@@ -26,12 +27,54 @@ import mpmath  # noqa: E402
 import pytest  # noqa: E402
 
 
+def shared_session_folder(config) -> Path | None:
+    """A private folder shared by every pytest-xdist worker of this run (None in a run without
+    workers): the controller's base temporary folder, the parent of each worker's own, removed
+    with it after a green run."""
+    if not hasattr(config, "workerinput"):
+        return None
+    folder = config._tmp_path_factory.getbasetemp().parent / "shared"
+    folder.mkdir(mode=0o700, exist_ok=True)
+    return folder
+
+
+def derived_once(config, name: str, derive):
+    """``derive()``, computed by the first worker of the run that asks and unpickled by the
+    others (a lock in :func:`shared_session_folder` orders them; without workers, computed here).
+    Only for values of this run's own code: the folder lives and dies with the run."""
+    import fcntl
+    import pickle
+
+    folder = shared_session_folder(config)
+    if folder is None:
+        return derive()
+    path = folder / f"{name}.pickle"
+    with open(folder / f"{name}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if path.exists():
+            return pickle.loads(path.read_bytes())
+        value = derive()
+        part = folder / f"{name}.part"
+        part.write_bytes(pickle.dumps(value))
+        os.replace(part, path)
+        return value
+
+
 @pytest.fixture(scope="session", autouse=True)
-def _session_heyoka_cache(tmp_path_factory):
+def _session_heyoka_cache(tmp_path_factory, request):
+    """The project cache (compiled integrators, heyoka's object code, evidence) is one temporary
+    folder for the run, shared by the xdist workers (each system compiles once per run, not once
+    per worker: the cache's writes are atomic and its entries keyed, as for parallel rows)."""
     from chaplygin_nd.runtime import jit_cache as heyoka_cache
 
     old = os.environ.get(heyoka_cache.ENV)
-    os.environ[heyoka_cache.ENV] = str(tmp_path_factory.mktemp("heyoka-cache"))
+    shared = shared_session_folder(request.config)
+    if shared is not None:
+        folder = shared / "project-cache"
+        folder.mkdir(mode=0o700, exist_ok=True)
+    else:
+        folder = tmp_path_factory.mktemp("heyoka-cache")
+    os.environ[heyoka_cache.ENV] = str(folder)
     heyoka_cache.forget_memory()
     yield
     heyoka_cache.forget_memory()

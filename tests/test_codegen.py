@@ -66,6 +66,7 @@ def test_banner(fresh):
         == {"import numpy as np"}
 
 
+@pytest.mark.slow  # derives every kernel again in a fresh process (~6 CPU-s): make test-slow
 def test_deterministic_across_hash_seeds(fresh, tmp_path):
     """Same input => byte-identical files, whatever PYTHONHASHSEED the generating process has."""
     out = tmp_path / "seeded"

@@ -280,6 +280,9 @@ def _drawn(pkg: Path, cache: Path) -> dict:
     return json.loads(r.stdout.strip().splitlines()[-1])
 
 
+#: six measurements in fresh processes (~8 CPU-s): slow by nature, in make test-slow; the field's
+#: own edit is also test_editing_the_field_in_a_copy_of_the_project_invalidates_the_cache (make test)
+@pytest.mark.slow
 def test_editing_any_module_the_drawn_measurement_loads_is_a_miss(tmp_path):
     """No hand-kept file list: the drawn ensembles' cache is keyed by the manifest of every
     project module loaded. Warm the cache in a copy of the project, then edit (one at a time, each

@@ -30,17 +30,28 @@ EPS = np.finfo(float).eps
 FIDELITY_ULPS = 64
 
 
-def _all_kernels():
-    # through codegen.kernels_of (derived once per process): test_codegen's regeneration in the
-    # same pytest worker then reuses these kernels instead of deriving them a second time
-    out = []
-    for stem, producer in MODULES:
-        for k in kernels_of(producer):
-            out.append(pytest.param(stem, k, id=f"{stem}.{k.name}"))
-    return out
+def _all_kernels(config):
+    """Every kernel, derived once per run: by the first pytest-xdist worker that collects this
+    module, unpickled by the other (conftest.derived_once), and left in codegen.kernels_of's memo
+    (its default argument) so that test_codegen's regeneration in either worker reuses them
+    instead of deriving them again."""
+    from conftest import derived_once
+
+    derived = derived_once(config, "codegen-kernels",
+                           lambda: {producer: kernels_of(producer) for _, producer in MODULES})
+    kernels_of.__defaults__[0].update(derived)
+    return [(stem, k) for stem, producer in MODULES for k in kernels_of(producer)]
 
 
-KERNELS = _all_kernels()
+def pytest_generate_tests(metafunc):
+    """Parametrize the kernel tests at collection, from the derived kernels (see _all_kernels)."""
+    if "kernel" not in metafunc.fixturenames:
+        return
+    kernels = _all_kernels(metafunc.config)
+    if metafunc.function is test_three_way_exact:
+        kernels = [(stem, k) for stem, k in kernels if _is_rational(k)]
+    metafunc.parametrize("stem,kernel", [pytest.param(stem, k, id=f"{stem}.{k.name}")
+                                         for stem, k in kernels])
 
 
 def _sample(argument, rng, exact: bool):
@@ -92,7 +103,6 @@ def _is_rational(kernel) -> bool:
         p.exp.is_Rational and not p.exp.is_Integer for p in e.atoms(sp.Pow)) for e in kernel.outputs)
 
 
-@pytest.mark.parametrize("stem,kernel", KERNELS)
 def test_fidelity_against_mpmath(stem, kernel):
     """NumPy kernel = 50-digit evaluation of the derived expression, within FIDELITY_ULPS eps |f|_abs."""
     fn = getattr(importlib.import_module(f"chaplygin_nd.generated.{stem}"), kernel.name)
@@ -113,7 +123,6 @@ def test_fidelity_against_mpmath(stem, kernel):
     assert worst <= 1.0
 
 
-@pytest.mark.parametrize("stem,kernel", [k for k in KERNELS if _is_rational(k.values[1])])
 def test_three_way_exact(stem, kernel):
     """Exact SymPy value = mpmath (50 digits) = NumPy kernel, at dyadic rational points."""
     fn = getattr(importlib.import_module(f"chaplygin_nd.generated.{stem}"), kernel.name)

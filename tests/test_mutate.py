@@ -50,6 +50,7 @@ def _run(mutants_and_rows):
     return [mutate.evaluate(t) for t in tasks]
 
 
+@pytest.mark.slow  # runs each sampled mutant against every row that reaches it (~5 CPU-s): make test-slow
 def test_a_deterministic_sample_of_mutants_is_killed_or_equivalent():
     stored, seconds = reach.load()
     fns = reach.printed_functions()

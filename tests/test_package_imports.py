@@ -7,6 +7,7 @@ of the code (deferred ones too), over every module of the installed namespace.""
 from __future__ import annotations
 
 import ast
+import functools
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -41,7 +42,11 @@ def _targets(path: Path) -> set[str]:
     return {m for m in out if m in MODULES}
 
 
-GRAPH = {m: _targets(p) for m, p in MODULES.items()}
+@functools.cache
+def _graph() -> dict[str, set[str]]:
+    """Module -> the project modules it imports (read when a test first asks, not at collection:
+    both xdist workers collect this file)."""
+    return {m: _targets(p) for m, p in MODULES.items()}
 
 
 def _circle_through(start: str) -> list[str] | None:
@@ -51,7 +56,7 @@ def _circle_through(start: str) -> list[str] | None:
     while frontier:
         nxt = []
         for m in frontier:
-            for t in sorted(GRAPH[m]):
+            for t in sorted(_graph()[m]):
                 if t == start:
                     path = [m]
                     while path[-1] != start:
@@ -69,9 +74,9 @@ ROOT_MODULES = ("chaplygin_nd", "chaplygin_nd.api", "chaplygin_nd.cli")
 
 
 def test_the_graph_is_read():
-    assert "chaplygin_nd.api" in GRAPH["chaplygin_nd"]          # the deferred re-export
-    assert "chaplygin_nd" in GRAPH["chaplygin_nd.cli"]          # the version
-    assert "chaplygin_nd.simulate.scene.planner" in GRAPH["chaplygin_nd.api"]
+    assert "chaplygin_nd.api" in _graph()["chaplygin_nd"]          # the deferred re-export
+    assert "chaplygin_nd" in _graph()["chaplygin_nd.cli"]          # the version
+    assert "chaplygin_nd.simulate.scene.planner" in _graph()["chaplygin_nd.api"]
 
 
 def test_no_circle_through_the_package_root():
@@ -83,7 +88,7 @@ def test_the_notebook_api_imports_no_command_line():
     reached, todo = set(), ["chaplygin_nd.api"]
     while todo:
         m = todo.pop()
-        for t in GRAPH[m]:
+        for t in _graph()[m]:
             if t not in reached:
                 reached.add(t)
                 todo.append(t)

@@ -54,7 +54,8 @@ def _xiVnD_no_x0(Omega0, gamma0, a, b):  # gamma_0 - x_0 E_n -> gamma_0 - E_n
 @pytest.mark.parametrize("claim_id, name, mutant", [
     ("P:inversion", "K", _K_sign),
     ("eq:Delta", "Delta", _Delta_sign),
-    ("Th:Re", "zeta_Th_Re", _zeta_factor),
+    # Th:Re proves twice (~4 CPU-s, the costliest of the four): make test-slow
+    pytest.param("Th:Re", "zeta_Th_Re", _zeta_factor, marks=pytest.mark.slow),
     ("eq:xiVnD", "zeta_xiVnD", _xiVnD_no_x0),
 ])
 def test_a_mutated_printed_formula_is_caught(monkeypatch, claim_id, name, mutant):

@@ -31,8 +31,9 @@ LONG_ON_FAST = {"ensemble3d", "vertical5d"}
 #: with heyoka these take 20-50 s each with both cores busy (pytest --durations): in
 #: make test-slow (CI runs it), so that make test stays within its time; horizontal6d's
 #: reference is the mpmath Taylor method in n = 6 (an mpmath inverse of the 15 x 15 L_gamma at
-#: every step, 1200 steps): ~38 CPU-s, a quarter of make test's wall time on 2 cores by itself
-SLOW_ON_FAST = {"generic4d", "prolate_ball3d", "explicit4d", "horizontal6d"}
+#: every step, 1200 steps): ~38 CPU-s, a quarter of make test's wall time on 2 cores by itself;
+#: spherical6d (n = 6, ~7 CPU-s, the costliest of the rest) too
+SLOW_ON_FAST = {"generic4d", "prolate_ball3d", "explicit4d", "horizontal6d", "spherical6d"}
 #: a frequency map is a grid of orbits, not one trajectory: tests/test_fma.py checks it
 MAPS = {name for name in builtin_scenes() if isinstance(find(name), FrequencyMapScene)}
 CASES = [pytest.param(name, install, marks=pytest.mark.slow
