@@ -198,4 +198,6 @@ STUDY = ("bench/bench_evidence.py (chaplygin bench evidence, 2026-11-26, seed 20
          "(< 0.7 % at 95 %), misses 0 of 200 (< 1.5 % at 95 %), undecided 3 of 456 (all V, "
          "even n, tangent in the whole space, <Y> still rising to 2p = 4; with the tangent in "
          "TV: 0 of 64) and 0 of 200; the old single threshold left 45 of 456 undecided (<Y> -> "
-         "4 on V); the generic-J controls: 60 of 64 chaotic, 2 regular, 2 undecided")
+         "4 on V); the generic-J controls: 60 of 64 chaotic, 2 regular, 2 undecided. Re-run "
+         "2026-11-27 with the log and moment carried scaled (the tolerance holding on the state): "
+         "every count the same")
