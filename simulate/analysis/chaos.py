@@ -8,7 +8,23 @@ its direction $u = \delta/\|\delta\|$ and the log of its length, which obey (exa
     \dot u = Df(y)u - \sigma u, \qquad \dot\ell = \sigma, \qquad \dot m = t\,\sigma, \qquad
     \sigma = \langle u, Df(y)u\rangle = \frac{\langle\delta, \dot\delta\rangle}{\|\delta\|^2},
 
-so $\ell(t) = \ln(\|\delta(t)\|/\|\delta(0)\|)$ never overflows. MEGNO is $Y(t) = \frac{2}{t}\int_0^t
+so $\ell(t) = \ln(\|\delta(t)\|/\|\delta(0)\|)$ never overflows. The integrator carries $\ell$ and
+$m$ multiplied by the powers of two ``LOG_SCALE`` $= 2^{-16}$ and ``MOMENT_SCALE`` $= 2^{-24}$
+(:func:`unscaled` divides them out: multiplying by a power of two is exact in binary floating
+point, so this changes no equation and no value). The reason is heyoka's error control: its
+tolerance is absolute while the largest state component is below 1 and relative to it above, and
+$m$ grows like $t$ on a torus ($\lambda t^2/4$ under chaos), $\ell$ like $\ln t$ ($\lambda t$).
+Carried unscaled, $m \approx 4096$ at the rows' horizon made the stated tolerance $10^{-10}$ act as
+about $4\cdot10^{-7}$ on the physical state late in every orbit (measured against a $10^{-13}$
+reference: $6\cdot10^{-8}$ at $T$ on the $n = 5$ row's orbits, $7\cdot10^{-9}$ scaled; ``chaplygin
+bench megno-scaling``). Scaled, both stayed below $10^{-3}$ on the rows' regular orbits measured
+there and below 0.03 on the chaotic control ($2^{-24}m \approx 2^{-26}\lambda t^2$ reaches 1 only
+for $\lambda t^2 \gtrsim 6.7\cdot10^{7}$), so the stated tolerance is the one the physical state
+gets. The price: up to 32 % more Taylor steps on the rows' systems (none on the reduced system,
+whose state exceeds 1 anyway): the tolerance is no longer loosened late in the orbit. (Carrying $q
+= \int\ell$ instead of $m$, with $m = t\ell - q$ by parts, is exact too, but $q \approx t\ln t$
+loosens the control further: half the steps, $4\cdot10^{-5}$ at $T$.)
+MEGNO is $Y(t) = \frac{2}{t}\int_0^t
 s\,\sigma(s)\,ds = 2m(t)/t$ and its running mean $\langle Y\rangle(t) = \frac1t\int_0^tY$ (trapezoid
 over the output grid); the finite-time Lyapunov exponent is $\ell(T)/T$. $Df(y)u$ is the derivative
 of $f(y + \varepsilon u)$ in $\varepsilon$ at 0, built by heyoka's symbolic differentiation
@@ -34,19 +50,25 @@ from chaplygin_nd.simulate.integrators import heyoka_systems
 from chaplygin_nd.simulate.integrators.heyoka_systems import System
 
 __all__ = ["MEGNO_REGULAR", "MEGNO_CHAOTIC", "tangent_system", "megno_class", "megno_from_samples",
-           "initial_tangents", "LADDER", "megno_ladder", "ladder_class", "LADDER_GROWTH",
+           "initial_tangents", "LADDER", "LOG_SCALE", "MOMENT_SCALE", "unscaled", "megno_ladder", "ladder_class", "LADDER_GROWTH",
            "LADDER_BOUNDED"]
 
 MEGNO_REGULAR = 2.5
 MEGNO_CHAOTIC = 4.0
+#: the integrator carries LOG_SCALE * l and MOMENT_SCALE * m (powers of two: exact; module docstring)
+LOG_SCALE = 2.0 ** -16
+MOMENT_SCALE = 2.0 ** -24
 
 
-def tangent_system(system: System) -> System:
+def tangent_system(system: System, log_scale: float = LOG_SCALE,
+                   moment_scale: float = MOMENT_SCALE) -> System:
     r"""``system`` augmented with the unit tangent vector $u$, $\ell$ and $m$ of the module
-    docstring (state: $y$, $u$, $\ell$, $m$; the same parameters). Domain: as ``system``."""
+    docstring (state: $y$, $u$, ``LOG_SCALE`` $\ell$, ``MOMENT_SCALE`` $m$, both recovered by
+    :func:`unscaled`; the same parameters). Other scales (``bench/bench_megno_scaling.py``
+    compares 1, 1: the form carried before) name another system. Domain: as ``system``."""
     d = system.dim
-    names = tuple(system.names) + tuple(f"tangent_{v}" for v in system.names) + ("log_tangent",
-                                                                                  "megno_moment")
+    names = tuple(system.names) + tuple(f"tangent_{v}" for v in system.names) + (
+        "log_tangent_scaled", "megno_moment_scaled")
 
     def build(v, p, ops):
         hy = ops.hy
@@ -57,9 +79,20 @@ def tangent_system(system: System) -> System:
         shifted = hy.subs(f, {str(y[i]): y[i] + eps * u[i] for i in range(d)})
         Du = hy.subs([hy.diff(e, eps) for e in shifted], {"tangent_epsilon": hy.expression(0.0)})
         sigma = hy.sum([u[i] * Du[i] for i in range(d)])
-        return list(f) + [Du[i] - sigma * u[i] for i in range(d)] + [sigma, hy.time * sigma]
+        return list(f) + [Du[i] - sigma * u[i] for i in range(d)] + [
+            log_scale * sigma, moment_scale * (hy.time * sigma)]
 
-    return System(f"{system.name} + MEGNO tangent", names, system.parameters, build)
+    scaled = (log_scale, moment_scale) == (LOG_SCALE, MOMENT_SCALE)
+    name = f"{system.name} + MEGNO tangent" + ("" if scaled else f" ({log_scale!r}, {moment_scale!r})")
+    return System(name, names, system.parameters, build)
+
+
+def unscaled(states: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    r"""$(\ell, m)$ from states of :func:`tangent_system` whose last axis-1 entries are its last two
+    components (shape ``(samples, dim, lanes)`` or ``(samples, dim)``): the carried values divided
+    by ``LOG_SCALE`` and ``MOMENT_SCALE`` (exact). Domain: such states."""
+    states = np.asarray(states, float)
+    return states[:, -2] / LOG_SCALE, states[:, -1] / MOMENT_SCALE
 
 
 def initial_tangents(count: int, dim: int, seed: int) -> np.ndarray:
@@ -165,4 +198,6 @@ STUDY = ("bench/bench_evidence.py (chaplygin bench evidence, 2026-11-26, seed 20
          "(< 0.7 % at 95 %), misses 0 of 200 (< 1.5 % at 95 %), undecided 3 of 456 (all V, "
          "even n, tangent in the whole space, <Y> still rising to 2p = 4; with the tangent in "
          "TV: 0 of 64) and 0 of 200; the old single threshold left 45 of 456 undecided (<Y> -> "
-         "4 on V); the generic-J controls: 60 of 64 chaotic, 2 regular, 2 undecided")
+         "4 on V); the generic-J controls: 60 of 64 chaotic, 2 regular, 2 undecided. Re-run "
+         "2026-11-27 with the log and moment carried scaled (the tolerance holding on the state): "
+         "every count the same")

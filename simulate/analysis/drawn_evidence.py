@@ -242,11 +242,12 @@ def _integrate(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int, first: int 
         if s.tangent == "none":                       # a frequency-only run (the ladder's re-runs)
             megno[where], lyap[where], ladder[where], power[where] = np.nan, np.nan, np.nan, np.nan
         else:
-            megno[where] = chaos.megno_from_samples(grid[:, :used], states[:, -1, :])
-            lyap[where] = states[-1, -2, :] / grid[-1, :used]
-            ladder[where] = chaos.megno_ladder(grid[:, :used], states[:, -1, :]).T
+            ell, m = chaos.unscaled(states)
+            megno[where] = chaos.megno_from_samples(grid[:, :used], m)
+            lyap[where] = ell[-1] / grid[-1, :used]
+            ladder[where] = chaos.megno_ladder(grid[:, :used], m).T
             half = (len(t) - 1) // 2
-            power[where] = (states[-1, -2, :] - states[half, -2, :]) / np.log(2.0)
+            power[where] = (ell[-1] - ell[half]) / np.log(2.0)
         kept_at = Y[::stride] if not first else np.concatenate([anchor[None, sl], Y[::stride]])
         dr, names = kept.drift(s.system, kept_at, ens.a[sl], b_lane, ens.scale[sl], s.n, s.J)
         drift[where] = dr
