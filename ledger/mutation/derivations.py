@@ -201,6 +201,11 @@ def _tests_reaching(key: str, fn) -> tuple[str, ...]:
 #: itself, from the start (the same answer, slower: ``chaplygin bench mutation`` runs both side
 #: by side).
 FORK = True
+#: Whether a mutant that changed no row is run against its tests from the test session parked at
+#: the function's first call (:func:`.runtime.kill` with ``fork``, as a derivation no row reaches
+#: is); ``False``: a whole ``pytest`` session in the worker per mutant (the same answer, slower:
+#: ``python -m bench.bench_mutation_profile --fast`` runs both side by side).
+TESTS_FORK = True
 #: This worker's parked processes ((function, row) -> :class:`.forkpoint.Parked`), of the current
 #: function only (tasks come grouped by function; :func:`end_group` ends them).
 _PARKED: dict[tuple[str, str], forkpoint.Parked] = {}
@@ -319,7 +324,7 @@ def _decide_by_rows(task: Task, fn, code, record: dict) -> dict:
             "mutated line executed; so no check can change"))
     if record["outcome"] == "survived":  # no check changed: the tests that reach it may tell
         tests = task.tests or _tests_reaching(m.function, fn)
-        failed = mr.kill(fn, code, m.function, tests) if tests else None
+        failed = mr.kill(fn, code, m.function, tests, TESTS_FORK) if tests else None
         if failed is not None:
             record.update(outcome="killed", row="tests", reason=f"no row changed; {failed}")
     return record
