@@ -262,7 +262,7 @@ def test_dir_of_the_package_is_clean():
     ("printed", ["--function", "section4.K"]),
 ])
 def test_a_partial_mutation_run_never_replaces_the_full_record(module, argv, capsys):
-    """Round-23 trial: `chaplygin mutate-derivations --function X` in the checkout replaced the
+    """A new user's trial: `chaplygin mutate-derivations --function X` in the checkout replaced the
     checked-in record of the full run (856 mutants) by its 7. A partial run needs --out."""
     import importlib
 

@@ -256,7 +256,7 @@ def test_to_expression_is_the_real_part_sum_of_its_definition_in_sympy():
     """reconstruction.to_expression (FLINT complex arithmetic) against the same sum written in
     SymPy from the definitions: linear forms sum_j (re + i im)_rj x_j, monomials their products,
     a column the signed sum of its monomials, a real column Re(i^ipow * column), the result
-    sum_j q_j (real column j). Round 25's run: a factor of 2 on every monomial and the linear
+    sum_j q_j (real column j). A run: a factor of 2 on every monomial and the linear
     forms' coefficients dropped survived the tests that compare only spans and zero-ness."""
     n = 4
     B_ = candidate_basis.basis(n, 2, 2, sampled_field.axisymmetric(n, A, B).planes)

@@ -154,7 +154,7 @@ def test_no_plots_writes_no_map_figure(tmp_path):
 
 
 def test_without_heyoka_a_map_stops_before_its_plan_with_one_line(tmp_path, monkeypatch, capsys):
-    """Round-24 trial: without heyoka, fma4d printed its plan line, then the error."""
+    """A new user's trial: without heyoka, fma4d printed its plan line, then the error."""
     from chaplygin_nd.simulate.integrators import heyoka_taylor
     from chaplygin_nd.simulate.scene.cli import main
 
@@ -169,7 +169,7 @@ def test_without_heyoka_a_map_stops_before_its_plan_with_one_line(tmp_path, monk
 
 
 def test_the_plan_says_how_many_processes_run_the_orbits():
-    """Round-24 trial: the plan said "all worker process(es)"."""
+    """A new user's trial: the plan said "all worker process(es)"."""
     import os
 
     cores = os.cpu_count() or 1

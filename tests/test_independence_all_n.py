@@ -32,3 +32,24 @@ def test_controls_the_checks_can_fail():
     a = sp.Rational(-1, 3)
     assert wi.value(M, g, a, 1, 2, "flint") != wi.value(M, g, a, 0, 2, "flint")
     assert ia.closed_form_residual(M, g, f, theta, a, 2, "flint") == 0
+
+
+@pytest.mark.parametrize("n", [4, 5, 6])
+def test_c_tangent_rows_are_the_gradients_restricted_to_tp(n):
+    """Each restricted row vanishes on the normal (0, gamma) of P and agrees with the full gradient on
+    tangent vectors (dM, v) with <v, gamma> = 0: the rows are the differentials on TP."""
+    from chaplygin_nd.symbolic.family import independence as ind
+
+    rng = points.generator(5, "c rows on TP", n)
+    M, g = points.skew_matrix(rng, n), points.sphere_point(rng, n)
+    N = n * (n - 1) // 2
+    rows = ia.c_tangent_rows(M, g, "sympy")
+    _, grads = ind.coefficient_gradients(M, g, "sympy")
+    assert len(rows) == len(grads) == n - 1 and all(len(r) == N + n for r in rows)
+    normal = [0] * N + list(g)
+    v = [sp.Rational(k + 1, 7) for k in range(n)]
+    v = [vi - sum(vj * gj for vj, gj in zip(v, g, strict=True)) * gi for vi, gi in zip(v, g, strict=True)]
+    tangent = [sp.Rational((-1) ** k * (k + 2), 5) for k in range(N)] + v
+    for row, grad in zip(rows, grads, strict=True):
+        assert sp.simplify(sum(r * c for r, c in zip(row, normal, strict=True))) == 0
+        assert sp.simplify(sum((r - q) * c for r, q, c in zip(row, grad, tangent, strict=True))) == 0

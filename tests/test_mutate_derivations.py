@@ -224,7 +224,7 @@ def test_kept_records_of_mutants_the_code_no_longer_has_are_dropped(monkeypatch,
 
 
 def test_one_functions_mutants_are_split_so_every_worker_has_work_and_progress_comes_early():
-    """Round-24 trial: a run of one function's 21 mutants was one group, so one core worked and
+    """A new user's trial: a run of one function's 21 mutants was one group, so one core worked and
     nothing was reported (or kept on Ctrl-C) until it ended. Groups are now at most a quarter of
     each worker's share, and at most GROUP for a whole run."""
     from types import SimpleNamespace as NS
@@ -241,7 +241,7 @@ def test_one_functions_mutants_are_split_so_every_worker_has_work_and_progress_c
 
 def test_a_group_s_mutants_are_kept_as_they_are_decided_not_when_the_group_ends(tmp_path,
                                                                                monkeypatch):
-    """Round 24: a group was reported (and kept in --out) only when it ended, and the costliest
+    """Seen in a run: a group was reported (and kept in --out) only when it ended, and the costliest
     groups took more than 16 min. Here the second mutant of a one-group run waits until the
     parent has written the first into --out: it is decided only if the parent kept the first
     while the group was still running (a bounded wait, then the record says it was not)."""
@@ -287,7 +287,7 @@ def test_a_time_budget_is_not_taken_for_a_result_by_except_exception():
 
 
 def test_a_replay_that_never_returns_is_cut_at_the_budget_and_the_check_is_run(monkeypatch):
-    """Round 25: a mutant of reduced5_invariants.products recursed without end inside a replay,
+    """Seen in a run: a mutant of reduced5_invariants.products recursed without end inside a replay,
     which had no budget, and held a worker. The replay now has the check's budget; past it, the
     check itself is run (with its own budget) and decides."""
     from types import SimpleNamespace as NS
@@ -315,7 +315,7 @@ def test_a_replay_that_never_returns_is_cut_at_the_budget_and_the_check_is_run(m
 
 
 def test_values_of_a_slots_class_without_equality_are_compared_attribute_by_attribute():
-    """Round 25: wedge_integrals' dual numbers (``__slots__``, no ``__eq__``) were compared by
+    """Seen in a run: wedge_integrals' dual numbers (``__slots__``, no ``__eq__``) were compared by
     identity, so a mutant that only swapped the factors of a product (the same dual number)
     "differed" at every call and survived."""
     from chaplygin_nd.ledger.mutation.replay import identical

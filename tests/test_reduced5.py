@@ -358,7 +358,7 @@ def test_generator_products_are_every_exponent_vector_once_in_the_documented_ord
 def test_generation_check_reports_the_counts_of_its_definition():
     """reduced5_invariants.generation_check: ``products`` is the number of generator products of
     the tridegree, ``rank`` the rank of their values (at most ``products``, at most the invariant
-    dimension, which it must equal for ``spans``). Round 25's mutation run: S6:reduced-n5 reads
+    dimension, which it must equal for ``spans``). A mutation run: S6:reduced-n5 reads
     only ``spans``, so a count of 1 and a rank of 1 for a tridegree without products survived it."""
     from chaplygin_nd.symbolic.reduction import invariants_n5 as ri
 

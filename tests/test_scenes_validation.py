@@ -157,7 +157,7 @@ def test_missing_file_is_a_scene_error(tmp_path):
 
 
 def test_a_misspelt_built_in_scene_gets_the_closest_name():
-    """Round-24 trial: ``chaplygin simulate stedy4d`` listed the scenes but did not say which one
+    """A new user's trial: ``chaplygin simulate stedy4d`` listed the scenes but did not say which one
     was meant, and said ``file:`` as if it were a field of the scene."""
     from chaplygin_nd.simulate.scene.spec import find
 

@@ -150,3 +150,20 @@ def test_block_is_a_matrix_over_the_ring_of_its_entries():
     assert blk[0][0] == 0 and blk[0][1] == -v[2] and blk[3][0] == -w[0]
     sym = fourd.block(sp.symbols("v1:4"), sp.symbols("w1:4"))
     assert all(isinstance(entry, sp.Expr) for row in sym for entry in row)
+
+
+def test_inverse_coefficients_are_triples_that_invert_L_in_the_algebra():
+    """Each block of the exact inverse of L_gamma (n = 4) is one triple (c0, c1, c2) of the algebra
+    span{I, qq^T, q-hat}, and C is a two-sided inverse of L there: sum_k L[i][k] C[k][j] = delta_ij I and
+    sum_k C[i][k] L[k][j] = delta_ij I (products by the algebra's rule, s = |q|^2 left free)."""
+    from chaplygin_nd.symbolic import fourd
+
+    C = fourd.inverse_coefficients(on_sphere=False)
+    L = fourd._L_algebra()
+    assert all(len(C[i][j]) == 3 for i in range(2) for j in range(2))
+    for i in range(2):
+        for j in range(2):
+            for left, right in ((L, C), (C, L)):
+                prod = [p + r for p, r in zip(fourd._amul(left[i][0], right[0][j]),
+                                              fourd._amul(left[i][1], right[1][j]), strict=True)]
+                assert [sp.simplify(p - t) for p, t in zip(prod, (int(i == j), 0, 0), strict=True)] == [0, 0, 0]

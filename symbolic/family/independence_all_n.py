@@ -40,7 +40,7 @@ from chaplygin_nd.symbolic.exact import points
 from chaplygin_nd.symbolic.family import independence as ind
 from chaplygin_nd.symbolic.family import wedge_integrals as wi
 
-__all__ = ["frame_point", "elementary", "closed_form_residual", "phi_rank", "c_rank"]
+__all__ = ["frame_point", "elementary", "closed_form_residual", "phi_rank", "c_tangent_rows", "c_rank"]
 
 
 def frame_point(rng, n: int):
@@ -107,13 +107,20 @@ def phi_rank(f, theta, engine: str = "sympy") -> int:
     return ind._rank(rows, engine)
 
 
-def c_rank(M, gamma, engine: str = "sympy") -> int:
-    """The rank on $TP$ of the differentials of the $n - 1$ coefficients of $p(\\lambda, \\sigma)$ at $(M, \\gamma)$."""
+def c_tangent_rows(M, gamma, engine: str = "sympy") -> list[list]:
+    r"""The differentials of the $n - 1$ coefficients of $p(\lambda, \sigma)$ at $(M, \gamma)$ restricted to $TP$:
+    each gradient in $((M_{ij})_{i<j}, \gamma)$ with its $\gamma$ part projected on $\gamma^\perp$
+    ($v \mapsto v - \langle v, \gamma\rangle\gamma$; domain $\lVert\gamma\rVert = 1$)."""
     num, zero, _ = wi.numbers(engine)
     n = M.rows
     _, grads = ind.coefficient_gradients(M, gamma, engine)
     g = [num(v) for v in gamma]
     N = n * (n - 1) // 2
-    tangent = [row[:N] + [row[N + i] - g[i] * sum((row[N + s] * g[s] for s in range(n)), zero) for i in range(n)]
-               for row in grads]
-    return ind._rank(tangent, engine)
+    return [row[:N] + [row[N + i] - g[i] * sum((row[N + s] * g[s] for s in range(n)), zero) for i in range(n)]
+            for row in grads]
+
+
+def c_rank(M, gamma, engine: str = "sympy") -> int:
+    """The rank on $TP$ of the differentials of the $n - 1$ coefficients of $p(\\lambda, \\sigma)$ at $(M, \\gamma)$
+    (:func:`c_tangent_rows`)."""
+    return ind._rank(c_tangent_rows(M, gamma, engine), engine)
