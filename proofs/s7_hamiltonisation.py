@@ -44,6 +44,7 @@ import sympy as sp
 from chaplygin_nd.ledger.registry import Part, Verdict, claim, decided
 from chaplygin_nd.symbolic.exact.points import ledger_seed
 from chaplygin_nd.symbolic.search import bivector_ansatz as ba
+from chaplygin_nd.symbolic.search import box_columns as bc
 from chaplygin_nd.symbolic.search import poisson as ps
 from chaplygin_nd.symbolic.search import poisson_proof as pp
 
@@ -92,7 +93,7 @@ def _control_n3() -> tuple[list[Part], dict]:
     same = (closed.xreplace({sa: a, sb: b}) - P).applyfunc(sp.expand)
     N = P.rows
     gam = list(ba.coordinates(3)[1])
-    same_ok = all(ps._sphere_reduce(v, gam) == 0 for v in same if v != 0)
+    same_ok = all(bc.sphere_reduce(v, gam) == 0 for v in same if v != 0)
     parts.append(Part("n = 3: the closed form equals the structure found, at a = 1/3, b = 2/5",
                       "holds" if same_ok else "fails", "exact polynomial identity modulo the sphere (SymPy)"))
     parts.append(_proved("n = 3: the closed form is a Hamiltonisation for symbolic a, b (rho = Delta^(1/2))",
@@ -243,7 +244,7 @@ def _bm_field_is_trivial() -> Part:
     eqs = []
     for i in range(6):
         r = sp.expand(Q[i] - sum(c * col[1][i] for c, col in zip(cs, cols, strict=True)))
-        eqs += sp.Poly(ps._sphere_reduce(r, list(g)), *z).coeffs()
+        eqs += sp.Poly(bc.sphere_reduce(r, list(g)), *z).coeffs()
     sol = sp.solve(eqs, cs, dict=True)
     ok = bool(sol) and any(v != 0 for v in Q)
     text = ", ".join(f"{sp.sympify(sol[0].get(c, 0)).subs({cc: 0 for cc in cs})} {col[0]}"

@@ -272,7 +272,7 @@ def jacobi_certificate(n: int, degree: int, e: int, a0, b0, *, seed: int, den: i
                        label: str = "") -> JacobiCertificate:
     """Steps 1-3 of the module docstring for the box (n, degree, e) from the point (a0, b0)."""
     from chaplygin_nd.symbolic.search import bivector_ansatz as ba
-    from chaplygin_nd.symbolic.search import poisson as ps
+    from chaplygin_nd.symbolic.search import box_columns as bc
     from chaplygin_nd.symbolic.search.cost import StageClock
 
     t0 = time.perf_counter()
@@ -281,8 +281,8 @@ def jacobi_certificate(n: int, degree: int, e: int, a0, b0, *, seed: int, den: i
     clock = StageClock(out.stages)
     at = (flint.fmpq(int(a0.p), int(a0.q)), flint.fmpq(int(b0.p), int(b0.q)))
     ans = ba.ansatz(n, degree)
-    fb = ps.flint_bivectors(ans)
-    cols, _ = ps._independent_columns(ans, fb, seed)
+    fb = bc.flint_bivectors(ans)
+    cols, _ = bc.independent_columns(ans, fb, seed)
     N = len(ans.coords)
     lin_pts = small_points(n, 2 * (len(cols) // N) + 6, seed, "omega-linear" + label, den)
     A, h = _linear_system(n, e, fb, cols, lin_pts)

@@ -18,8 +18,10 @@ import flint
 import sympy as sp
 from chaplygin_nd.symbolic.algebra import so_basis, vec
 from chaplygin_nd.symbolic.search import bivector_ansatz as ba
+from chaplygin_nd.symbolic.search.box_columns import mpoly_context as _ctx
+from chaplygin_nd.symbolic.search.box_columns import rref_solve as _rref_solve
+from chaplygin_nd.symbolic.search.box_columns import sample_points as _points
 from chaplygin_nd.symbolic.search.point_values import fq as _fq
-from chaplygin_nd.symbolic.search.poisson import _ctx, _points, _rref_solve
 
 __all__ = ["vanishes_on_sphere", "sphere_normal_form", "to_sympy", "invariants", "orbit_fields", "rho_x_combination"]
 

@@ -42,6 +42,9 @@ from chaplygin_nd.symbolic.algebra import so_basis, vec, wedge
 from chaplygin_nd.symbolic.axisym_inverse import ansatz_terms, inverse_numerator
 from chaplygin_nd.symbolic.axisymmetric import Delta
 from chaplygin_nd.symbolic.search import bivector_ansatz as ba
+from chaplygin_nd.symbolic.search.box_columns import mpoly_context as _ctx
+from chaplygin_nd.symbolic.search.box_columns import rref_solve as _rref_solve
+from chaplygin_nd.symbolic.search.box_columns import sample_points as _points
 from chaplygin_nd.symbolic.search.cost import StageClock
 from chaplygin_nd.symbolic.search.field_point import field_and_jacobian
 from chaplygin_nd.symbolic.search.orbit_fields import (
@@ -50,7 +53,7 @@ from chaplygin_nd.symbolic.search.orbit_fields import (
     rho_x_combination,
     vanishes_on_sphere,
 )
-from chaplygin_nd.symbolic.search.poisson import _ctx, _fq, _points, _rref_solve
+from chaplygin_nd.symbolic.search.point_values import fq as _fq
 
 __all__ = ["field_blocks", "FieldBox", "search_fields", "estimate", "invariants"]
 
