@@ -13,8 +13,8 @@ by $R_1 = R_2 = 0$, S6:reduced-n5) the reduced field has
 
 1. **an invariant measure**: the density $\Delta^{-3/2}/\lvert J_{yy'}\rvert$ in every chart $z = r \setminus \{y, y'\}$ of $Z$ with
    $J_{yy'} = \det\partial(R_1, R_2)/\partial(y, y') \ne 0$ (44 pairs; they cover the regular part of $Z$), each invariant by
-   Liouville's criterion computed in that chart (:mod:`symbolic.family.quotient_measure_n5`); these are the chart
-   expressions of one density, the Leray residue $\Delta^{-3/2}dr/(dR_1\wedge dR_2)$. It is positive where $\Delta > 0$ (item 3).
+   Liouville's criterion computed in that chart (:mod:`symbolic.family.quotient_measure_n5`); they are one density
+   (computed: on every overlap $\lvert\det\partial z'/\partial z\rvert = \lvert J_{c'}/J_c\rvert$, 946 pairs of charts). It is positive where $\Delta > 0$ (item 3).
    Its relation to the measure $\Delta^{-3/2}dM\,d\gamma$ of $P$ (P:Measure) is computed, not used: the push-forward with
    its fibre-volume factor is the chart density times one constant at seeded points. The exponent $-3/2$ is
    also derived from the ansatz $\Delta^\alpha$ and the invariance of the ideal $(R_1, R_2)$, not assumed;
@@ -61,8 +61,8 @@ every equilibrium; exact points of both kinds of equilibria
 (:mod:`symbolic.family.equilibria_n5`: $\Omega E_5 = 0$, and $\eta \ne 0$ fixing $p$), each with the reduced field zero, on the
 principal stratum and of rank $< 8$. **Argued** (one part, :data:`ARGUED`): the theorem (the citation), applied on the
 principal stratum, with named definition-level facts: Heine–Borel; the level set $\pi(P) \cap \{f = c\}$ is closed, as a
-limit of $\pi(p_k)$ with $p_k$ in the closed bounded $\{H \le h\}$ is $\pi$ of a limit point of the $p_k$ (Bolzano–Weierstrass);
-the chart densities agree on overlaps, being the expressions of one form, the Leray residue.
+limit of $\pi(p_k)$ with $p_k$ in the closed bounded $\{H \le h\}$ is $\pi$ of a limit point of the $p_k$ (Bolzano–Weierstrass).
+That the chart densities agree on overlaps is computed (:func:`symbolic.family.quotient_measure_n5.chart_transition_residuals`).
 Note: $Z(\mathbb{R})$ is larger than $\pi(P)$ (e.g. $A_+ = -1$, every other coordinate $0$, lies on $Z$; $A_+ = \lVert k_+\rVert^2 \ge 0$
 on $\pi(P)$), so the level sets are taken in $\pi(P)$, where the box bounds them, not in all of $Z$.
 
@@ -210,6 +210,8 @@ def measure_chart_part() -> Part:
     every = rational_identity([g3 - u * R1 - v * R2] + [Tc - c1 * R1 - c2 * R2 for Tc, (c1, c2), _ in certs.values()],
                               label="EJ5 every chart")
     every_rem = [out for out, (_, _, r) in certs.items() if r != 0]
+    transitions = qm.chart_transition_residuals()
+    one_density = rational_identity(transitions, label="EJ5 chart transitions")
     ratios, naive = {"sympy": [], "flint": []}, []
     for t in range(2):
         rng = points.generator(ledger_seed(), "S6:euler-jacobi-n5 push-forward", t)
@@ -231,6 +233,8 @@ def measure_chart_part() -> Part:
             not every_rem and len(certs) == 44,
             f"division by (R1, R2, g3) leaves 0 in all {len(certs)} charts (not zero: {every_rem}); the 45th pair "
             "(A+, A-) has J = 0 identically, and where dR1 ^ dR2 != 0 one of the J_yy' (its coefficients) is not 0")),
+        (f"the chart densities are one density: |det dz'/dz| = |J_c'/J_c| for the {len(transitions)} pairs of "
+         "charts (polynomial identities, Cramer's rule on the implicit functions)", one_density),
         ("push-forward = Delta^(-3/2)/J up to a constant", Check(
             same and varies, f"det Gram(orbit) J^2 / det(dz Pi dz^T) = {ratios['sympy'][0]} at 2 seeded points "
             f"(SymPy QQ and FLINT fmpq); control: without J the ratio varies ({len(set(naive))} values)"))])
@@ -394,9 +398,8 @@ ARGUED = ("the Euler-Jacobi theorem (as the paper cites it at line 884: Arnold-K
           "principal stratum of P/SO(4) (charted by the regular part of Z), with definition-level facts named, "
           "not computed: Heine-Borel (the level set pi(P) & {f = c} is bounded by the computed box, and closed: a "
           "limit of pi(p_k), p_k in the closed bounded {H <= h}, is pi of a limit point of the p_k, "
-          "Bolzano-Weierstrass); the 44 chart densities Delta^(-3/2)/|J_yy'| are the expressions of one density, "
-          "the Leray residue Delta^(-3/2) dr/(dR_1 ^ dR_2). Everything else (measure, integrals, compactness "
-          "bounds, every equilibrium critical) is computed")
+          "Bolzano-Weierstrass). Everything else (the measure in every chart and its agreement between charts, "
+          "the integrals, compactness bounds, every equilibrium critical) is computed")
 
 
 @claim("S6:euler-jacobi-n5", uses=("S6:reduced-n5", "S6:sixth-integral-n5", "S6:open-reduced-n5",

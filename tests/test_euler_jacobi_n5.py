@@ -177,3 +177,28 @@ def test_every_equilibrium_is_critical_by_an_explicit_kernel_vector():
     c = ej.coordinates()
     row = sum(((Q * P.diff(c[n]) - P * Q.diff(c[n])) * k["w"][n] for n in ej.r5.COORDS), 0 * P)
     assert row != 0
+
+
+def test_the_chart_densities_agree_on_every_overlap_and_the_check_can_fail():
+    """|det dz'/dz| = |J_c'/J_c| for every pair of charts (946), so the 44 chart densities are one density;
+    control: with J_c in place of J_c' (the density 1/|J| read as the same function in every chart) the
+    identity fails for some pair."""
+    import itertools
+
+    from chaplygin_nd.symbolic.family import quotient_measure_n5 as qm
+
+    residuals = qm.chart_transition_residuals()
+    assert len(residuals) == 44 * 43 // 2 and all(r == 0 for r in residuals)
+    R1, R2 = ej.relations()
+    c = ej.coordinates()
+    wrong = 0
+    for one, other in itertools.islice(itertools.combinations(qm.charts(), 2), 40):
+        J, m = qm.chart_jacobian(one)
+        r = [one.index(y) for y in one if y not in other]
+        s = [y for y in other if y not in one]
+        if len(r) != 1:
+            continue
+        adj = [[m[1][1], -m[0][1]], [-m[1][0], m[0][0]]]
+        scaled = -(adj[r[0]][0] * R1.diff(c[s[0]]) + adj[r[0]][1] * R2.diff(c[s[0]]))
+        wrong += scaled - J != 0 and scaled + J != 0
+    assert wrong > 0

@@ -12,8 +12,8 @@ is invariant iff $\sum_{i\in z}\frac{d}{dz_i}(\tilde\rho X_i) = 0$ on $Z$, where
 $\frac{d}{dz_i}(\Delta^{-3/2}g) = \Delta^{-3/2}(\frac{d}{dz_i}g - \tfrac32 g\,\partial_i\Delta/\Delta)$ and clearing denominators,
 this is the polynomial identity :func:`chart_divergence` $= q_1R_1 + q_2R_2$, checked exactly
 (symbolic $a, b$) by the row — in this chart and in every other pair $(y, y')$ with $J_{yy'} \ne 0$
-(:func:`charts`, 44 pairs), which together cover the regular part of $Z$; the densities $\Delta^{-3/2}/\lvert J_{yy'}\rvert$ are the
-chart expressions of the Leray residue $\Delta^{-3/2}dr/(dR_1\wedge dR_2)$.
+(:func:`charts`, 44 pairs), which together cover the regular part of $Z$; the densities $\Delta^{-3/2}/\lvert J_{yy'}\rvert$ agree on
+every overlap (:func:`chart_transition_residuals`, checked by the row), so they are one density on the regular part of $Z$.
 
 **Push-forward.** The measure of $P$ is $\Delta^{-3/2}\,dM\,d\gamma$ (P:Measure, $n = 5$), the volume of the
 Euclidean metric in $((M_{ij})_{i<j}, \gamma)$ restricted to $P$, times $\Delta^{-3/2}$. By the coarea formula its
@@ -32,7 +32,8 @@ from functools import cache
 
 from chaplygin_nd.symbolic.family import euler_jacobi_n5 as ej
 
-__all__ = ["CHART_OUT", "chart_jacobian", "chart_divergence", "relation_s_polynomial", "charts", "pushforward_ratio"]
+__all__ = ["CHART_OUT", "chart_jacobian", "chart_divergence", "relation_s_polynomial", "charts",
+           "chart_transition_residuals", "pushforward_ratio"]
 
 #: The two coordinates solved for on $Z$: $(y, y') = (S_{qq}, A_+)$.
 CHART_OUT = ("Sqq", "Ap")
@@ -112,6 +113,40 @@ def charts() -> tuple:
 
     return tuple(out for out in itertools.combinations(ej.r5.COORDS, 2) if chart_jacobian(out)[0] != 0)
 
+
+
+def chart_transition_residuals() -> list:
+    r"""For every unordered pair of charts $c = (y, y')$, $c' = (u, u')$ of :func:`charts`: the residual of
+    $J_c^k\det\partial z'/\partial z = \pm J_c^{k-1}J_{c'}$, $k = \lvert c\setminus c'\rvert$ (the sign that makes it smaller),
+    as polynomials (ring elements). On $Z$, $z' = r \setminus c'$ is a function of $z = r \setminus c$ whose
+    Jacobian is the identity on the shared coordinates and $\partial\phi_r/\partial z_s$ ($r \in c\setminus c'$,
+    $s \in c'\setminus c$) elsewhere, with $J_c\,\partial\phi/\partial z_s = -\operatorname{adj}(\partial R/\partial c)\,\partial R/\partial z_s$
+    (implicit functions). All residuals zero means $\lvert\det\partial z'/\partial z\rvert = \lvert J_{c'}/J_c\rvert$
+    wherever both charts are defined: the chart densities $\Delta^{-3/2}/\lvert J_c\rvert$ are one density on the
+    regular part of $Z$. Domain: the relations of S6:reduced-n5."""
+    import itertools
+
+    R1, R2 = ej.relations()
+    out = []
+    for c, cp in itertools.combinations(charts(), 2):
+        J, m = chart_jacobian(c)
+        Jp, _ = chart_jacobian(cp)
+        adj = [[m[1][1], -m[0][1]], [-m[1][0], m[0][0]]]
+        rows = [c.index(r) for r in c if r not in cp]
+        cols = [s for s in cp if s not in c]
+
+        def scaled(r, s, adj=adj):   # J_c times d(phi_r)/d(z_s)
+            dR = (_d(R1, s), _d(R2, s))
+            return -(adj[r][0] * dR[0] + adj[r][1] * dR[1])
+
+        if len(rows) == 1:
+            lhs, rhs = scaled(rows[0], cols[0]), Jp
+        else:
+            lhs = scaled(rows[0], cols[0]) * scaled(rows[1], cols[1]) - scaled(rows[0], cols[1]) * scaled(rows[1], cols[0])
+            rhs = J * Jp
+        difference = lhs - rhs   # the identity holds up to the sign of the orientation: lhs = +rhs or -rhs
+        out.append(difference if difference == 0 else lhs + rhs)
+    return out
 
 def _det(rows, engine):
     n = len(rows)
