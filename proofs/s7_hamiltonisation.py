@@ -185,7 +185,7 @@ def _search_row(n: int) -> Verdict:
                   "every box excluded by Jacobi, under make verify-deep, off a curve g = 0 and finitely "
                   "many points (two certificates from independent sample points, each: the linear stage "
                   "solved over Q(a, b) and checked on every sampled row, mu its pivot minor; 1 = sum "
-                  "lambda_k f_k / nu for sampled Jacobi equations f_k, checked over Q[a, b, t, sigma]; "
+                  "lambda_k f_k / nu for sampled Jacobi equations f_k, checked over Q[a, b, t, sigma] in FLINT and SymPy; "
                   "g the common factors of their curves mu * nu * prod (det L_gamma * Delta) at the sample points; each in the box's "
                   f"'certificate'). {where}",
                   notes="make verify computes the Jacobi boxes' certificates only under make "

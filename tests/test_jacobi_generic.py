@@ -91,3 +91,16 @@ def test_a_factor_is_called_zero_free_on_the_domain_only_when_it_is():
     # a = 0, b = 0, a curve through (1, 27/...) and a = -1 all meet a >= -1, b >= 0
     for f in (a, b, 25 * a * b + 54 * a - 4 * b, a + 1, a - b):
         assert not jg.no_zero_in_domain(f)
+
+
+def test_the_second_engine_recomputes_the_certificate_identity():
+    """_sympy_agrees recomputes sum lambda_k f_k = nu in SymPy's ring from FLINT's terms: a true identity
+    agrees, one with nu off by a term does not."""
+    import flint
+
+    ctx = flint.fmpq_mpoly_ctx.get(("a", "b", "t0", "sigma"), "lex")
+    a, b, t, s = ctx.gens()
+    lams, fs = [a + 1, flint.fmpq(1, 3) * b], [t * s - 2, t + a]
+    nu = sum((lv * f for lv, f in zip(lams, fs)), ctx.from_dict({}))
+    assert jg._sympy_agrees(lams, fs, nu, ctx)
+    assert not jg._sympy_agrees(lams, fs, nu + flint.fmpq(1, 7) * s, ctx)

@@ -112,7 +112,7 @@ class JacobiCertificate:
                 f"at a sample point, with mu = {self.short[0]} (the linear stage's pivot minor) and "
                 f"nu = {self.short[1]} (c a rational constant; every factor in full in the "
                 f"certificate): 1 = sum of {self.support} of the {self.equations} sampled Jacobi "
-                f"equations times polynomials over nu, checked over Q[a, b, t, sigma] "
+                f"equations times polynomials over nu, checked over Q[a, b, t, sigma] in FLINT and SymPy "
                 f"({self.free} unknowns t and sigma)")
 
 
@@ -357,7 +357,9 @@ def jacobi_certificate(n: int, degree: int, e: int, a0, b0, *, seed: int, den: i
     total = sum((lift(lv) * eqs[k][1] for lv, k in zip(lam_num, S, strict=True)), ctx.from_dict({}))
     if total != lift(nu):
         raise ArithmeticError("the certificate sum lambda_k f_k = nu fails over Q[a, b, t, sigma]")
-    clock("certificate check")
+    if not _sympy_agrees([lift(lv) for lv in lam_num], [eqs[k][1] for k in S], lift(nu), ctx):
+        raise ArithmeticError("SymPy's ring disagrees: sum lambda_k f_k != nu over Q[a, b, t, sigma]")
+    clock("certificate check (FLINT and SymPy)")
     out.proved = True
     if mu(*at) == 0 or nu(*at) == 0:
         raise ArithmeticError("the certificate's curve passes through its own point")
@@ -377,6 +379,17 @@ def jacobi_certificate(n: int, degree: int, e: int, a0, b0, *, seed: int, den: i
                 "lambda": {str(eqs[k][0]): poly_text(lv) for lv, k in zip(lam_num, S, strict=True)}}
     out.seconds = time.perf_counter() - t0
     return out
+
+
+def _sympy_agrees(lams: list, fs: list, nu, ctx) -> bool:
+    r"""The certificate identity $\sum_k \lambda_k f_k = \nu$ recomputed in SymPy's sparse ring over
+    $\mathbb{Q}$ from the FLINT polynomials' terms (the second engine on what a row claims)."""
+    R = sp.ring([str(v) for v in ctx.names()], sp.QQ)[0]
+
+    def conv(p):
+        return R.from_dict({m: sp.QQ(int(c.p), int(c.q)) for m, c in p.to_dict().items()})
+
+    return sum((conv(lv) * conv(f) for lv, f in zip(lams, fs, strict=True)), R.zero) == conv(nu)
 
 
 def generic_exclusion(n: int, degree: int, e: int, a0, b0, *, seed: int) -> tuple[bool, str, dict]:
