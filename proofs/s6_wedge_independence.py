@@ -62,7 +62,9 @@ import os
 import sympy as sp
 from chaplygin_nd.ledger.registry import Part, Verdict, claim
 from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.flint_engine import engine_label
 from chaplygin_nd.symbolic.exact.points import ledger_seed
+from chaplygin_nd.symbolic.exact.tally import record
 from chaplygin_nd.symbolic.family import exceptional_b as eb
 from chaplygin_nd.symbolic.family import independence as ind
 from chaplygin_nd.symbolic.family import independence_all_n as ia
@@ -102,6 +104,7 @@ def independence(n: int) -> tuple[Part, dict]:
     at the point and SO(n-1)-invariant, both engines."""
     M, g, a, b = point(n, "rank", adapted=True)
     recs = {eng: ind.rank_record(M, g, a, b, eng) for eng in ENGINES}
+    record("points", engine_label(ENGINES), label=f"{ROW} rank, n = {n}")
     r = recs["sympy"]
     ok = all(x["rank"] == x["expected"] == x["functions"] and not x["not_conserved"]
              and not x["not_invariant"] for x in recs.values())
@@ -131,6 +134,8 @@ def all_n_independence(n: int) -> Part:
     for eng in engines:
         res = [ia.closed_form_residual(M, g, f, theta, a, k, eng) for k in range(1, K + 1)]
         out[eng] = (all(r == 0 for r in res), ia.phi_rank(f, theta, eng), ia.c_rank(M, g, eng))
+    for k in range(1, K + 1):
+        record("points", engine_label(engines), label=f"{ROW} closed form, n = {n}, k = {k}")
     ok = all(z and pr == K and cr == n - 1 for z, pr, cr in out.values())
     control = ""
     if n == min(ALL_N_ARG):

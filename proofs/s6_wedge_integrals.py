@@ -60,7 +60,9 @@ import os
 import sympy as sp
 from chaplygin_nd.ledger.registry import Part, Verdict, claim
 from chaplygin_nd.symbolic.exact import points
+from chaplygin_nd.symbolic.exact.flint_engine import engine_label
 from chaplygin_nd.symbolic.exact.points import ledger_seed
+from chaplygin_nd.symbolic.exact.tally import record
 from chaplygin_nd.symbolic.family import wedge_integrals as wi
 from chaplygin_nd.symbolic.family import wedge_proof as wp
 
@@ -93,6 +95,9 @@ def point(n: int, what: str, adapted: bool):
 def _zero_in_both(values: dict) -> tuple[bool, list]:
     """``values``: engine -> list of (label, value); both engines must give zero everywhere."""
     bad = [(eng, lab, str(v)) for eng, vals in values.items() for lab, v in vals if v != 0]
+    who = engine_label(tuple(values))
+    for lab, _ in next(iter(values.values()), []):   # one exact zero test per value, decided by every engine
+        record("points", who, label=f"S6:wedge-integrals {lab}")
     return not bad, bad
 
 
