@@ -33,9 +33,9 @@ def _cpu() -> float:
     return own.ru_utime + own.ru_stime + kids.ru_utime + kids.ru_stime
 
 
-def _decide(tasks, fork: bool) -> tuple[list[dict], float, float]:
-    """Decide ``tasks`` in a fresh fork of this process with ``derivations.FORK = fork``:
-    (records, CPU seconds of the fork and its children, wall seconds)."""
+def in_fork(work):
+    """Run ``work()`` in a fresh fork of this process: ``(its return value, wall seconds)`` (the value
+    pickled back through a pipe; the fork ends with ``os._exit``, so nothing of it outlives the call)."""
     read, write = os.pipe()
     start = time.perf_counter()
     pid = os.fork()
@@ -43,12 +43,7 @@ def _decide(tasks, fork: bool) -> tuple[list[dict], float, float]:
         status = 1
         try:
             os.close(read)
-            from chaplygin_nd.ledger.mutation import derivations, runloop
-
-            derivations.FORK = fork
-            c0 = _cpu()
-            out = [r for g in runloop.groups(tasks, 1) for r in runloop.evaluate_group(g)]
-            data = pickle.dumps((out, _cpu() - c0))
+            data = pickle.dumps(work())
             with os.fdopen(write, "wb") as f:
                 f.write(data)
             status = 0
@@ -58,8 +53,22 @@ def _decide(tasks, fork: bool) -> tuple[list[dict], float, float]:
     with os.fdopen(read, "rb") as f:
         data = f.read()
     os.waitpid(pid, 0)
-    records, cpu = pickle.loads(data)
-    return records, cpu, time.perf_counter() - start
+    return pickle.loads(data), time.perf_counter() - start
+
+
+def _decide(tasks, fork: bool) -> tuple[list[dict], float, float]:
+    """Decide ``tasks`` in a fresh fork of this process with ``derivations.FORK = fork``:
+    (records, CPU seconds of the fork and its children, wall seconds)."""
+    def work():
+        from chaplygin_nd.ledger.mutation import derivations, runloop
+
+        derivations.FORK = fork
+        c0 = _cpu()
+        out = [r for g in runloop.groups(tasks, 1) for r in runloop.evaluate_group(g)]
+        return out, _cpu() - c0
+
+    (records, cpu), wall = in_fork(work)
+    return records, cpu, wall
 
 
 def compare(functions=FUNCTIONS) -> dict:

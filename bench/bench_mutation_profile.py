@@ -99,35 +99,22 @@ def _instrument() -> _Stages:
 
 def _decide(tasks, fast: bool | None) -> dict:
     """Decide ``tasks`` in a fresh fork with the stages timed; ``fast``: ``derivations.FAST``."""
-    read, write = os.pipe()
-    start = time.perf_counter()
-    pid = os.fork()
-    if pid == 0:
-        status = 1
-        try:
-            os.close(read)
-            os.nice(0)
-            from chaplygin_nd.ledger.mutation import derivations, runloop
+    from chaplygin_nd.bench.bench_mutation import in_fork
 
-            if fast is not None:
-                for flag in FLAGS:
-                    setattr(derivations, flag, fast)
-            stages = _instrument()
-            c0 = _cpu()
-            out = [r for g in runloop.groups(tasks, 1) for r in runloop.evaluate_group(g)]
-            data = pickle.dumps((out, _cpu() - c0, stages.own, stages.kids, stages.count))
-            with os.fdopen(write, "wb") as f:
-                f.write(data)
-            status = 0
-        finally:
-            os._exit(status)
-    os.close(write)
-    with os.fdopen(read, "rb") as f:
-        data = f.read()
-    os.waitpid(pid, 0)
-    records, cpu, own, kids, count = pickle.loads(data)
-    return {"records": records, "cpu": cpu, "wall": time.perf_counter() - start,
-            "own": own, "kids": kids, "count": count}
+    def work():
+        os.nice(0)
+        from chaplygin_nd.ledger.mutation import derivations, runloop
+
+        if fast is not None:
+            for flag in FLAGS:
+                setattr(derivations, flag, fast)
+        stages = _instrument()
+        c0 = _cpu()
+        out = [r for g in runloop.groups(tasks, 1) for r in runloop.evaluate_group(g)]
+        return out, _cpu() - c0, stages.own, stages.kids, stages.count
+
+    (records, cpu, own, kids, count), wall = in_fork(work)
+    return {"records": records, "cpu": cpu, "wall": wall, "own": own, "kids": kids, "count": count}
 
 
 def draw(size: int, seed: int) -> list:
