@@ -73,6 +73,7 @@ from __future__ import annotations
 
 import sympy as sp
 from chaplygin_nd.ledger.registry import Part, Verdict, claim
+from chaplygin_nd.symbolic import algebra, model
 from chaplygin_nd.symbolic.exact import points
 from chaplygin_nd.symbolic.exact.identity import Check, rational_identity
 from chaplygin_nd.symbolic.exact.points import ledger_seed
@@ -268,6 +269,17 @@ def equilibria_part() -> Part:
     return _part("at every equilibrium G = S_uq = 0 (b > -2), and the equilibrium set on Z", checks)
 
 
+def _omega_e5_point(label: str, t: int, a, b) -> tuple:
+    r"""A seeded exact equilibrium of the first kind, $\Omega E_5 = 0$: $\gamma$ on $S^4$, $\Omega$ a random skew
+    matrix on the first four axes, $M = L_\gamma\Omega$ (eq:M-O-axi-symm, $n = 5$)."""
+    rng = points.generator(ledger_seed(), label, t)
+    g = points.sphere_point(rng, 5)
+    Om = sp.zeros(5, 5)
+    Om[:4, :4] = points.skew_matrix(rng, 4)
+    L = model.L_matrix(g, sp.diag(1, 1, 1, 1, 1 + a), b)
+    return algebra.unvec(list(L * sp.Matrix(algebra.vec(Om))), 5), g
+
+
 def critical_equilibria_part(a, b) -> Part:
     r"""Every equilibrium on $Z$ lies in the critical set of the six integrals, computed
     (:func:`symbolic.family.euler_jacobi_n5.equilibrium_kernel_residuals`): with $w = \partial_GN$, each row of the Jacobian of
@@ -275,7 +287,6 @@ def critical_equilibria_part(a, b) -> Part:
     $a, b$); at $G = S_{uq} = 0$ (every equilibrium, :func:`equilibria_part`) the $G$ and $S_{uq}$ columns and $\partial_GR_i$ vanish and
     $w_x = 2\Delta \ne 0$, so the kernel has dimension $\ge 3$ and the rank is $\le 7$. Evaluated at exact equilibria
     ($\Omega E_5 = 0$), with the control that $J w \ne 0$ at a point that is not one."""
-    from chaplygin_nd.symbolic import algebra, model
 
     k = ej.equilibrium_kernel_residuals()
     ident = rational_identity(list(k["residuals"].values()), label="EJ5 kernel vector")
@@ -292,12 +303,7 @@ def critical_equilibria_part(a, b) -> Part:
         return J * wv, J
     at_eq = []
     for t in range(2):
-        rng = points.generator(ledger_seed(), "S6:euler-jacobi-n5 kernel", t)
-        g = points.sphere_point(rng, 5)
-        Om = sp.zeros(5, 5)
-        Om[:4, :4] = points.skew_matrix(rng, 4)
-        L = model.L_matrix(g, sp.diag(1, 1, 1, 1, 1 + a), b)
-        M = algebra.unvec(list(L * sp.Matrix(algebra.vec(Om))), 5)
+        M, g = _omega_e5_point("S6:euler-jacobi-n5 kernel", t, a, b)
         v, J = Jw(ej.quotient_point(M, g))
         at_eq.append(v.is_zero_matrix and J.rank() < 8)
     rng = points.generator(ledger_seed(), "S6:euler-jacobi-n5 kernel control")
@@ -319,7 +325,6 @@ def relative_equilibria_part(a, b) -> Part:
     field is zero there, the $SO(4)$-orbit has dimension 6 (principal stratum) and $(df_1..df_6, dR_1, dR_2)$ has rank
     $< 8$ (both engines). First kind ($\Omega E_5 = 0$): the $SO(5)$-orbit has dimension 10 and $dc_i$, $dH$ vanish on
     $Y_{e_m\wedge E_5}$. Second kind ($\eta \ne 0$ fixes $p$): $Y_\eta(p) = 0$ and the $SO(5)$-orbit has dimension $< 10$."""
-    from chaplygin_nd.symbolic import algebra, model
     from chaplygin_nd.symbolic.exact import flint_engine
     from chaplygin_nd.symbolic.family import equilibria_n5 as eqm
     from chaplygin_nd.symbolic.family import independence_all_n as ia
@@ -338,12 +343,7 @@ def relative_equilibria_part(a, b) -> Part:
 
     first, second = [], []
     for t in range(2):
-        rng = points.generator(ledger_seed(), "S6:euler-jacobi-n5 relative equilibria", t)
-        g = points.sphere_point(rng, 5)
-        Om = sp.zeros(5, 5)
-        Om[:4, :4] = points.skew_matrix(rng, 4)
-        L = model.L_matrix(g, sp.diag(1, 1, 1, 1, 1 + a), b)
-        M = algebra.unvec(list(L * sp.Matrix(algebra.vec(Om))), 5)
+        M, g = _omega_e5_point("S6:euler-jacobi-n5 relative equilibria", t, a, b)
         zero, ranks, orb = at_point(M, g)
         first.append(zero and max(ranks) < 8 and all(o["orbit_rank"] == 10 and o["so4_rank"] == 6
                                                      and not any(o["values"]) for o in orb.values()))
