@@ -134,6 +134,8 @@ def _main(argv: list[str] | None, command: str) -> int:
         from chaplygin_nd.symbolic.codegen.kernels import stale_report
 
         also = stale_report
+    if targets:
+        graph.import_beside()
     results = run(rows, jobs=args.jobs, seed=args.seed, on_result=lambda r: say(report.line(r)),
                   also=also, on_also=lambda text: stale_text.append(str(text)))
     problems = _problems(results, whole=not args.ids)

@@ -19,7 +19,9 @@ an unchanged ledger rewrites the same bytes.
 
 from __future__ import annotations
 
+import contextlib
 import re
+import threading
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
@@ -242,6 +244,23 @@ def draw(results: Sequence[Result], link: Callable[[str], str | None] = site_lin
               "row to a row that uses it;\ncolour = verdict, or the kind of a finding",
               title_fontsize=9)
     return fig
+
+
+def import_beside() -> threading.Thread:
+    """Import matplotlib (about 1 s) in a daemon thread of this process, while the ledger's
+    workers decide the rows: :func:`render` needs it only after the last row, where the import was
+    part of ``verify``'s serial tail. The parent only waits for its workers meanwhile; the import
+    lock makes :func:`render`'s own import wait for this one if it is still running."""
+    def work() -> None:
+        with contextlib.suppress(Exception):   # render imports again and reports any error
+            import matplotlib
+
+            matplotlib.use("Agg")
+            from matplotlib import pyplot  # noqa: F401
+
+    thread = threading.Thread(target=work, name="import-matplotlib", daemon=True)
+    thread.start()
+    return thread
 
 
 def render(results: Sequence[Result], link: Callable[[str], str | None] = site_link) -> str:

@@ -238,3 +238,14 @@ def test_the_json_records_what_the_site_shows_of_each_row():
                for p in leg["sources"]["printed"])
     assert leg["sources"]["paper_lines"]
     assert any(t.startswith("tests/") for t in leg["sources"]["tests"] + rows["K:Delta"]["sources"]["tests"])
+
+
+def test_the_graph_import_beside_the_rows_ends_with_matplotlib_ready():
+    from chaplygin_nd.ledger import graph
+
+    thread = graph.import_beside()
+    thread.join(timeout=120)
+    assert not thread.is_alive() and thread.daemon
+    import matplotlib
+
+    assert matplotlib.get_backend().lower() == "agg"
