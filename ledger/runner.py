@@ -8,6 +8,7 @@ import signal
 import time
 import traceback
 from collections.abc import Callable, Sequence
+from concurrent.futures import Future
 from dataclasses import dataclass, replace
 
 from chaplygin_nd.ledger.catalog import Row, all_rows, discover
@@ -229,9 +230,10 @@ def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFA
             on_result(decided[row.id])
         if jobs > 1:  # started whole before a Ctrl-C is taken (chaplygin_nd.processes.Pool)
             pool = processes.pool(jobs, _context(), _init_worker)
-            futures, extra = {}, None
+            futures: dict[Future, str] = {}
+            extra: Future | None = None
             for task in hand_out_order(todo, stored_seconds(), also is not None):
-                if task == ALSO_TASK:
+                if task == ALSO_TASK and also is not None:
                     extra = pool.submit(also)
                 else:
                     futures[pool.submit(_run_one, task, seed, fresh)] = task
