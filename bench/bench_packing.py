@@ -87,6 +87,48 @@ def measure(label: str, count: int | None = None, widths=WIDTHS) -> dict:
     return out
 
 
+#: pilot fractions compared by :func:`pilot_sweep`
+FRACTIONS = (1 / 64, 1 / 32, 1 / 16)
+
+
+def pilot_sweep(label: str, count: int | None = None) -> dict:
+    """Per pilot fraction: the correlation of the pilot's steps with the run's, the useful
+    fraction packed by them, and the lane-steps saved against the parameter order minus the
+    pilot's (fractions of the parameter order's lane-steps): what chose ``packing.PILOT``."""
+    from chaplygin_nd.bench.bench_megno_scaling import _case
+    from chaplygin_nd.simulate.analysis import chaos, packing
+    from chaplygin_nd.simulate.analysis import drawn_evidence as de
+    from chaplygin_nd.simulate.integrators.heyoka_taylor import compiled_integrator
+
+    s, ens, y0 = _case(label)
+    if count is not None:
+        ens, y0 = de.subset(ens, np.arange(count)), y0[:count]
+    _, _, _, extra = de._integrate(s, ens, y0, SEED)
+    steps, width = extra["steps"], de.BATCH
+    ta, _, _ = compiled_integrator(de._system(s), "double", s.tol, compact=True, batch=width,
+                                   opt_level=de.OPT_LEVEL)
+    u0 = chaos.initial_tangents(len(y0), y0.shape[1], SEED)
+    if s.tangent == "V":
+        u0 = de.v_tangents(u0, y0, s.n)
+    full = np.concatenate([y0, u0, np.zeros((len(y0), 2))], axis=1)
+    b = ens.b if s.b_override is None else np.full(len(y0), float(s.b_override))
+    pars, first = np.stack([ens.a, b]), de.schedule(ens)
+
+    def lane_steps(index, cost):
+        return sum(width * cost[lanes[:used]].max() for lanes, used in packing.batches(index, width))
+
+    base = lane_steps(first, steps)
+    out = {}
+    for frac in FRACTIONS:
+        pilot = packing.pilot_steps(ta, full, pars, frac * s.T * ens.time_factor, first)
+        packed = first[np.argsort(-pilot[first], kind="stable")]
+        out[f"1/{round(1 / frac)}"] = {
+            "correlation": round(float(np.corrcoef(pilot, steps)[0, 1]), 3),
+            "efficiency": round(packing.efficiency(steps, packed, width), 4),
+            "saved": round((base - lane_steps(packed, steps) - lane_steps(first, pilot)) / base, 4)}
+    return out
+
+
 def table(result: dict) -> str:
     """Markdown: one line per row system and run."""
     lines = ["| system (row) | orbits | run | CPU s (pilot) | useful fraction | oracle | bit-identical |",
@@ -105,17 +147,22 @@ def table(result: dict) -> str:
 
 
 def main(out: Path, quick: bool = False) -> int:
-    """Measure every case (``quick``: 24 orbits of two, no other width) and write
-    ``packing.md`` / ``.json`` into ``out``."""
+    """Measure every case (``quick``: 24 orbits of two, no other width) and the pilot fractions
+    on the first two, and write ``packing.md`` / ``.json`` into ``out``."""
     load0 = os.getloadavg()[0]
     result = {label: measure(label, 24, ()) if quick else measure(label)
               for label, _ in (CASES[:2] if quick else CASES)}
+    sweep = {label: pilot_sweep(label, 24 if quick else None) for label, _ in CASES[:2]}
     load = [round(load0, 2), round(os.getloadavg()[0], 2)]
-    (out / "packing.json").write_text(json.dumps({"cases": result, "load": load}, indent=1),
-                                      encoding="utf-8")
+    (out / "packing.json").write_text(json.dumps({"cases": result, "pilot": sweep, "load": load},
+                                                 indent=1), encoding="utf-8")
+    lines = ["| system | pilot | correlation | useful fraction | lane-steps saved net |",
+             "|---|---|---|---|---|"]
+    lines += [f"| {label} | {frac} | {v['correlation']:.3f} | {v['efficiency']:.3f} | "
+              f"{100 * v['saved']:.1f} % |" for label, rows in sweep.items() for frac, v in rows.items()]
     text = (f"# Batch packing of the evidence rows' orbits (load {load[0]} -> {load[1]} on "
             f"{os.cpu_count()} cores; CPU seconds of the integration, compile excluded)\n\n"
-            + table(result) + "\n")
+            + table(result) + "\n\n## The pilot's fraction\n\n" + "\n".join(lines) + "\n")
     (out / "packing.md").write_text(text, encoding="utf-8")
     print(text)
     return 0
