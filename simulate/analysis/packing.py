@@ -33,10 +33,11 @@ import numpy as np
 
 __all__ = ["PILOT", "order", "pilot_steps", "efficiency", "batches"]
 
-#: the pilot's horizon as a fraction of each orbit's own. Measured on two ensembles (lane-steps saved
-#: by packing, minus the pilot's, as fractions of the run): the 200 orbits of S5:reconstruction
-#: (pilot-to-run correlation of the steps 0.92 / 0.96 / 0.98) -1 % / 3.1 % / 3.8 % at 1/64, 1/32,
-#: 1/16; 50 orbits of the n = 4 control 23.7 % / 22.8 % / 21.6 %: 1/32 is within 1 % of the best of both
+#: the pilot's horizon as a fraction of each orbit's own. Lane-steps saved by packing net of the
+#: pilot's, as fractions of the parameter order's, at 1/64 / 1/32 / 1/16 (bench packing's sweep):
+#: the 200 orbits of S5:reconstruction -0.6 / 3.0 / 4.0 % (pilot-to-run correlation of the steps
+#: 0.92 / 0.96 / 0.98), n = 5 (100 orbits) 7.6 / 7.2 / 7.4 %, the reduced field (50) 12.3 / 13.1 /
+#: 13.5 %, V at n = 7 (50) 14.0 / 13.5 / 11.0 %: 1/32 is within 1 % of the best on each
 PILOT = 1.0 / 32.0
 
 
