@@ -1,5 +1,5 @@
 """Issue 20: the faster vectorised NAFF (BLAS products, one windowed buffer) equals the earlier
-``einsum`` formulation, and the batch schedule and width of the drawn evidence change no orbit."""
+``einsum`` formulation, and the batch packing and width of the drawn evidence change no orbit."""
 
 from __future__ import annotations
 
@@ -107,10 +107,10 @@ def test_lines_equal_the_einsum_formulation_on_random_signals(N, dt):
     assert compared >= 24 * 5                        # every planted line was compared
 
 
-def test_the_batch_schedule_and_width_change_no_orbit(tmp_path, monkeypatch):
+def test_the_batch_packing_and_width_change_no_orbit(tmp_path, monkeypatch):
     pytest.importorskip("heyoka")
     from chaplygin_nd.simulate.analysis import drawn_evidence as de
-    from chaplygin_nd.simulate.analysis import draws
+    from chaplygin_nd.simulate.analysis import draws, packing
     from chaplygin_nd.simulate.dynamics import so
 
     monkeypatch.setenv("CHAPLYGIN_ND_CACHE", str(tmp_path))
@@ -119,12 +119,18 @@ def test_the_batch_schedule_and_width_change_no_orbit(tmp_path, monkeypatch):
     s = de.Setting("schedule", "full", 4, 48.0, 0.5, observables="four", expected=3)
     order = de.schedule(ens)
     assert sorted(order) == list(range(11)) and not np.array_equal(order, np.arange(11))
-    Z, megno, lyap, extra = de._integrate(s, ens, y0, 5)
-    monkeypatch.setattr(de, "schedule", lambda e: np.arange(e.count))
-    monkeypatch.setattr(de, "BATCH", 4)            # and the SIMD width
+    packed = []
+    pack = packing.order
+    monkeypatch.setattr(packing, "order", lambda *a, **k: packed.append(pack(*a, **k)) or packed[-1])
+    Z, megno, lyap, extra = de._integrate(s, ens, y0, 5)   # packed by the pilot's steps
+    (used,) = packed
+    assert sorted(used) == list(range(11))
+    assert not np.array_equal(used, order) and not np.array_equal(used, np.arange(11))
+    monkeypatch.setattr(packing, "order", lambda ta, states, *a, **k: np.arange(len(states)))
+    monkeypatch.setattr(de, "BATCH", 4)            # draw order, and another SIMD width
     Z0, megno0, lyap0, extra0 = de._integrate(s, ens, y0, 5)
     assert np.array_equal(Z, Z0) and np.array_equal(megno, megno0) and np.array_equal(lyap, lyap0)
-    for key in ("ladder", "power", "drift"):          # the ladder and the integrals too
+    for key in ("ladder", "power", "drift", "steps", "final"):   # the ladder and the integrals too
         assert np.array_equal(extra[key], extra0[key]), key
 
 

@@ -38,7 +38,7 @@ from dataclasses import asdict, dataclass, field, replace
 from typing import Any
 
 import numpy as np
-from chaplygin_nd.simulate.analysis import chaos, combinations, draws, kept, naff
+from chaplygin_nd.simulate.analysis import chaos, combinations, draws, kept, naff, packing
 from chaplygin_nd.simulate.analysis import result_cache as rc
 from chaplygin_nd.simulate.analysis.draws import Ensemble
 from chaplygin_nd.simulate.analysis.frequencies import REGULAR
@@ -173,14 +173,15 @@ def observables(s: Setting, Y: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.n
 
 
 def schedule(ens: Ensemble) -> np.ndarray:
-    r"""The order in which the orbits of ``ens`` fill heyoka's batches: sorted by $(a, b, s)$.
+    r"""The orbits of ``ens`` sorted by $(a, b, s)$: the order of the pilot's batches and of ties in
+    the packed order of the run (:func:`simulate.analysis.packing.order`).
 
     A batch runs until its slowest lane is done, and the number of Taylor steps of an orbit
     depends mostly on $a$ (measured on the $n = 5$ draw: about 8000 at $a = -0.9$, 3000 at $a = 2$),
     while the draws cycle $a$ with period 4: in draw order every batch held orbits of every $a$
     and waited for the slowest (with 4 lanes: 1.4x the steps of the sorted order). Each lane is
     integrated independently (its own step sizes), so the order changes no orbit: the results are
-    bit-identical (tests/test_drawn_evidence.py) and are returned in draw order."""
+    bit-identical (tests/test_naff_projections.py) and are returned in draw order."""
     return np.lexsort((ens.scale, ens.b, ens.a))
 
 
@@ -188,7 +189,8 @@ def _integrate(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int, first: int 
                anchor: np.ndarray | None = None):
     """Signals ``(count, signals, samples)``, MEGNO and Lyapunov estimates per orbit (draw order),
     and in ``extra`` the ladder, the tangent's growth, the drift of the integrals and ``final``:
-    each orbit's state at the last sample. ``first``: the index of the first sample (1: the
+    each orbit's state at the last sample, ``steps``: its Taylor steps (batches packed by
+    :func:`simulate.analysis.packing.order`). ``first``: the index of the first sample (1: the
     samples dt, 2 dt, ..., T of a continuation from ``y0``, whose time is taken as 0 — the
     fields are autonomous); ``anchor``: the states the integrals' drift is measured from (default
     ``y0``; a continuation passes the orbits' initial states)."""
@@ -201,14 +203,18 @@ def _integrate(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int, first: int 
     u0 = chaos.initial_tangents(len(y0), d, seed)
     if s.tangent == "V":
         u0 = v_tangents(u0, y0, s.n)
-    order = schedule(ens)
-    ens, y0, u0 = subset(ens, order), y0[order], u0[order]
+    full = y0 if s.tangent == "none" else np.concatenate([y0, u0, np.zeros((len(y0), 2))], axis=1)
+    b_all = ens.b if s.b_override is None else np.full(len(y0), float(s.b_override))
+    order = packing.order(ta, full, np.stack([ens.a, b_all]), s.T * ens.time_factor,
+                          first=schedule(ens))
+    ens, y0, full = subset(ens, order), y0[order], full[order]
     anchor = y0 if anchor is None else anchor[order]
     t = np.arange(int(round(s.T / s.dt)) + 1) * s.dt     # heyoka's grid starts at the start
     sig, megno, lyap = None, np.empty(len(y0)), np.empty(len(y0))
     final = np.empty_like(y0)
     ladder, power = np.empty((len(y0), len(chaos.LADDER))), np.empty(len(y0))
     drift, drift_of = np.empty(len(y0)), [""] * len(y0)
+    steps = np.empty(len(y0), dtype=np.int64)
     stride = max(1, (len(t) - 1) // 1024)                 # the integrals at <= 1025 samples
     if first and s.tangent != "none":
         raise ValueError("a continuation carries no tangent vector (MEGNO is that of the first run)")
@@ -220,10 +226,8 @@ def _integrate(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int, first: int 
         def pad(x, used=used):
             return np.concatenate([x, np.repeat(x[-1:], BATCH - used, 0)])
 
-        state = y0[sl] if s.tangent == "none" else \
-            np.concatenate([y0[sl], u0[sl], np.zeros((used, 2))], axis=1)
         factor = pad(ens.time_factor[sl])
-        ta.state[:] = pad(state).T
+        ta.state[:] = pad(full[sl]).T
         b_lane = ens.b[sl] if s.b_override is None else np.full(used, float(s.b_override))
         ta.pars[:] = np.stack([pad(ens.a[sl]), pad(b_lane)])
         ta.set_time(0.0)
@@ -232,6 +236,7 @@ def _integrate(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int, first: int 
         for lane, res in enumerate(ta.propagate_res[:used]):
             if str(res[0]) != "taylor_outcome.time_limit":
                 raise RuntimeError(f"{s.name}: heyoka stopped early ({res[0]}) on orbit {where[lane]}")
+            steps[where[lane]] = int(res[3])
         states = states[first:, :, :used]                    # a continuation drops its start
         Y = np.moveaxis(states[:, :d, :], 1, 2)              # (samples, lanes, dim)
         final[where] = Y[-1]
@@ -254,7 +259,7 @@ def _integrate(s: Setting, ens: Ensemble, y0: np.ndarray, seed: int, first: int 
         for w, name in zip(where, names):
             drift_of[w] = name
     return sig, megno, lyap, {"ladder": ladder, "power": power, "drift": drift,
-                              "drift_of": drift_of, "final": final}
+                              "drift_of": drift_of, "final": final, "steps": steps}
 
 
 def v_tangents(u0: np.ndarray, y0: np.ndarray, n: int) -> np.ndarray:

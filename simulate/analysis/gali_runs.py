@@ -7,7 +7,8 @@ torus rows (:mod:`simulate.analysis.torus_rows`) share: ``system`` any
 :class:`simulate.integrators.heyoka_systems.System`, orbit $k$ run to $T\cdot f_k$ and sampled every
 $dt\cdot f_k$ (``time_factor`` $f_k$: the energy scale of :mod:`simulate.analysis.draws`), the vectors
 read every ``stride`` samples (GALI needs the trend, not every sample), in time chunks of bounded
-memory. :func:`extend` continues orbits frequency-only (no deviation vectors) from their last
+memory. Orbits share a batch by the measured prediction of their cost
+(:func:`simulate.analysis.packing.order`: a short pilot run; the orbits do not change). :func:`extend` continues orbits frequency-only (no deviation vectors) from their last
 states: the horizon ladder of :mod:`simulate.analysis.naff_ladder`.
 """
 
@@ -17,6 +18,7 @@ from collections.abc import Callable
 
 import numpy as np
 from chaplygin_nd.simulate.analysis import gali as gl
+from chaplygin_nd.simulate.analysis import packing
 from chaplygin_nd.simulate.integrators.heyoka_systems import System
 
 __all__ = ["integrate", "extend", "BATCH", "TOL", "OPT_LEVEL"]
@@ -55,12 +57,10 @@ def integrate(system: System, y0: np.ndarray, pars: np.ndarray, *, K: int, T: fl
     series = np.empty((count, len(keep), K))
     final = np.empty((count, d))
     sig = None
-    for start in range(0, count, BATCH):
-        idx = np.arange(start, min(start + BATCH, count))
-        used = len(idx)
-        lanes = np.concatenate([idx, np.repeat(idx[-1:], BATCH - used)])
-        state = np.concatenate([y0[lanes], u0[lanes].reshape(BATCH, K * d)], axis=1)
-        ta.state[:] = state.T
+    full = np.concatenate([y0, u0.reshape(count, K * d)], axis=1)
+    for lanes, used in packing.batches(packing.order(ta, full, pars, T * f), BATCH):
+        idx = lanes[:used]
+        ta.state[:] = full[lanes].T
         ta.pars[:] = pars[:, lanes]
         ta.set_time(0.0)
         chunks_y, chunks_u = [], []
@@ -113,10 +113,8 @@ def extend(system: System, y: np.ndarray, pars: np.ndarray, *, t0: float, t1: fl
     f = np.ones(count) if time_factor is None else np.asarray(time_factor, float)
     t = np.arange(int(round((t1 - t0) / dt)) + 1) * dt
     sig, final = None, np.empty_like(y)
-    for start in range(0, count, BATCH):
-        idx = np.arange(start, min(start + BATCH, count))
-        used = len(idx)
-        lanes = np.concatenate([idx, np.repeat(idx[-1:], BATCH - used)])
+    for lanes, used in packing.batches(packing.order(ta, y, pars, (t1 - t0) * f), BATCH):
+        idx = lanes[:used]
         ta.state[:] = y[lanes].T
         ta.pars[:] = pars[:, lanes]
         ta.set_time(0.0)
