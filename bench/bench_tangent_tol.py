@@ -182,7 +182,7 @@ def cost(orbits=ORBITS, tols=(1e-10, 1e-9), repeat=5, only=None):
             total[t] += v * ROW_ORBITS[name]
         lines.append(f"| {name} | " + " | ".join(f"{v:.4f}" for v in row)
                      + f" | {row[-1] / row[0]:.3f} |")
-    lines.append("| rows (weighted) | " + " | ".join(f"{total[t]:.1f} s" for t in tols)
+    lines.append("| weighted by the rows' orbits | " + " | ".join(f"{total[t]:.1f} s" for t in tols)
                  + f" | {total[tols[-1]] / total[tols[0]]:.3f} |")
     text = "\n".join(lines)
     print(text, flush=True)
