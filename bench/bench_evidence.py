@@ -2,7 +2,7 @@ r"""The validation study of the evidence rows' chaos rule: systems whose answer 
 drawn orbits of each, every indicator the rows use, and the confusion table of each candidate rule.
 
 Systems (drawn by :func:`simulate.analysis.draws.draw` with the ledger's default seed; the rows'
-machinery, :func:`simulate.analysis.drawn_evidence.measure`, heyoka tolerance $10^{-10}$):
+machinery, :func:`simulate.analysis.drawn_evidence.measure`, heyoka tolerance ``TOL`` = $10^{-9}$):
 
 * **integrable** — the 3D Chaplygin sphere with the *generic* mass tensor $\mathbb{J} = \mathrm{diag}(1, 2,
   0.5)$ (inertia $\mathrm{diag}(2.5, 1.5, 3)$; integrable by Chaplygin's theorem, no symmetry); the

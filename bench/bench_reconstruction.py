@@ -5,9 +5,10 @@ of the re-examination rule (:mod:`simulate.analysis.reconstruction`,
 
 Per orbit of the row's ``excess`` class (the row's draw and seed, read from the cache or measured):
 
-* one straight run to $16T$ at the row's tolerance $10^{-10}$ and one to $8T$ at $10^{-13}$: the
-  lines must agree (integration error) — and the run to $4T$ sampled at $dt = 1$ (the row's ladder
-  samples $4T$ that sparsely) against $dt = 1/2$ (aliasing of the output grid);
+* one straight run to $16T$ at the row's tolerance (``TOL`` of
+  :mod:`simulate.analysis.drawn_evidence`) and one to $8T$ at $10^{-13}$: the lines must agree
+  (integration error) — and the run to $4T$ sampled at $dt = 1$ (the row's ladder samples $4T$
+  that sparsely) against $dt = 1/2$ (aliasing of the output grid);
 * at $T, 2T, 4T, 8T, 16T$: the row's count, $D$, and the offending line — the member of the row's
   basis at its own horizon that the lattice at $8T$ does not hold with $|c| \le 4$ — its nearest
   line's frequency and amplitude (a frequency stays put, an artefact moves or shrinks);

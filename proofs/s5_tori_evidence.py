@@ -44,7 +44,7 @@ from chaplygin_nd.simulate.analysis import evidence_rows as er
 from chaplygin_nd.simulate.analysis import reconstruction as recon
 from chaplygin_nd.simulate.analysis.chaos import LADDER_BOUNDED, LADDER_GROWTH, MEGNO_CHAOTIC
 from chaplygin_nd.simulate.analysis.control import CHAOTIC_J
-from chaplygin_nd.simulate.analysis.drawn_evidence import BATCH
+from chaplygin_nd.simulate.analysis.drawn_evidence import BATCH, TOL
 from chaplygin_nd.simulate.analysis.frequencies import REGULAR
 from chaplygin_nd.symbolic.exact.points import ledger_seed
 from chaplygin_nd.symbolic.printed import section4 as printed4
@@ -55,7 +55,7 @@ SECTION5 = "Section 5 — n = 4"
 ROTATION_AGREE = 1e-6     # relative: the same rotation number on one level set
 ZETA_AGREE = 0.98         # of the resolved orbits on V: agree with the exact frequencies of zeta
 
-SETTINGS = (f"heyoka Taylor (batch of {BATCH}, compact mode, tol 1e-10) with a MEGNO tangent vector; "
+SETTINGS = (f"heyoka Taylor (batch of {BATCH}, compact mode, tol {TOL:g}) with a MEGNO tangent vector; "
             f"NAFF vectorised over orbits (order-2 Hann window) on complex observables; "
             f"integer-relation search |coefficients| <= 4, relative tolerance max(1e-7, 10 D), "
             f"lines beyond it explained by combinations |c| <= 12 when the false-match probability "

@@ -48,7 +48,7 @@ from chaplygin_nd.proofs import drawn_common as dc
 from chaplygin_nd.simulate.analysis import evidence_rows as er
 from chaplygin_nd.simulate.analysis import rules
 from chaplygin_nd.simulate.analysis.control import CHAOTIC_J
-from chaplygin_nd.simulate.analysis.drawn_evidence import BATCH
+from chaplygin_nd.simulate.analysis.drawn_evidence import BATCH, TOL
 from chaplygin_nd.simulate.analysis.frequencies import REGULAR
 from chaplygin_nd.symbolic import algebra, model
 from chaplygin_nd.symbolic.exact import points
@@ -223,7 +223,7 @@ def open_problem_verdict(n: int) -> Verdict:
     return Verdict.numerical(
         derived and no_chaos and kept_ok and over <= dc.CONTRADICTING_MAX,
         measured=measured, initial_conditions=len(res),
-        tolerance=(f"heyoka Taylor tol 1e-10, batch {BATCH}, T = 4096 at energy scale 1, dt = 0.5; NAFF "
+        tolerance=(f"heyoka Taylor tol {TOL:g}, batch {BATCH}, T = 4096 at energy scale 1, dt = 0.5; NAFF "
                    "vectorised; |coefficients| <= 4, lines beyond explained by |c| <= 12 when the "
                    "false-match probability is <= 1 %; D < 1e-5 regular (unresolved again at 2T, "
                    "4T); chaos by the MEGNO horizon ladder; " + dc.RULE),

@@ -15,9 +15,9 @@ energy scales $0.5, 1, 2$):
   ``CHAOTIC_J[4]`` (:mod:`simulate.analysis.control`), the same analysis: the control of the three rows.
 
 Orbits: $T = 4096$, $dt = 1/2$ at energy scale 1 (reduced and $P$), $T = 3000$, $dt = 5/4$ ($\mathcal V$,
-$n \le 6$; 6000 for $n = 7$); heyoka tolerance $10^{-10}$. The first ``RERUN`` = 4 unresolved orbits of
-an ensemble (in draw order; for $\mathcal V$ the first of each $n$) are integrated again with
-``LONGER`` = 4 times $T$ and classified again.
+$n \le 6$; 6000 for $n = 7$); heyoka tolerance ``TOL`` = $10^{-9}$ (:mod:`simulate.analysis.drawn_evidence`).
+The first ``RERUN`` = 4 unresolved orbits of an ensemble (in draw order; for $\mathcal V$ the first
+of each $n$) are integrated again with ``LONGER`` = 4 times $T$ and classified again.
 """
 
 from __future__ import annotations

@@ -26,7 +26,7 @@ __all__ = ["p_coefficients", "energy", "drift", "REDUCED_DEGREES", "KEPT"]
 #: homogeneity degrees in M of r = (A, B, E, G, F1, x, delta) (simulate.dynamics.so.reduced_invariants)
 REDUCED_DEGREES = np.array([2, 2, 1, 1, 2, 0, 2])
 #: an orbit keeps its integrals iff the drift is at most this (at scale 1; the Taylor tolerance of
-#: the rows is 1e-10, and the study's integrable orbits kept them to < 1e-8, bench/bench_evidence.py)
+#: the rows is 1e-9, and the study's integrable orbits kept them to < 1e-8, bench/bench_evidence.py)
 KEPT = 1e-6
 
 

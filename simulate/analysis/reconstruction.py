@@ -57,6 +57,10 @@ __all__ = ["HORIZONS", "LATTICE_K", "TOP", "Look", "Examined", "distinct", "p_fa
 
 #: the prefixes of the one straight run, in units of the row's T
 HORIZONS = (1.0, 2.0, 4.0, 8.0)
+#: heyoka's tolerance of the re-examination runs: the tolerance the rule was validated at (the
+#: pendula of :mod:`simulate.analysis.reconstruction_study`), kept when the rows' drawn runs moved
+#: to a looser one (:data:`simulate.analysis.drawn_evidence.TOL`): the study was not re-run there
+TOL = 1e-10
 #: coefficient bounds tried in turn for the rank-3 lattice
 LATTICE_K = (4, 12, 24)
 #: basis candidates: the strongest distinct lines
@@ -315,7 +319,7 @@ def reexamine(setting, ens, y0: np.ndarray, seed: int, index, use_cache: bool = 
               ) -> list[Examined]:
     """The re-examination (module docstring) of the orbits ``index`` of the ensemble ``(ens, y0)``
     of ``setting`` (:class:`simulate.analysis.drawn_evidence.Setting`): one straight frequency-only
-    run each to ``max(HORIZONS)`` times T at the setting's tolerance and sampling, then
+    run each to ``max(HORIZONS)`` times T at :data:`TOL` and the setting's sampling, then
     :func:`examine_signals`. Cached like the drawn ensembles (keyed by the setting, the draw, the
     orbits and the code)."""
     from chaplygin_nd.simulate.analysis import drawn_evidence as de
@@ -325,7 +329,7 @@ def reexamine(setting, ens, y0: np.ndarray, seed: int, index, use_cache: bool = 
     if not index:
         return []
     longest = replace(setting, name=f"{setting.name}-reexamined", T=setting.T * max(HORIZONS),
-                      tangent="none")
+                      tangent="none", tol=TOL)
     key = {"kind": "reexamined", "base": de.settings(setting, ens, y0, seed), "orbits": index,
            "horizons": list(HORIZONS), "setting": asdict(longest)}
 

@@ -34,7 +34,8 @@ from chaplygin_nd.simulate.analysis.frequencies import REGULAR
 __all__ = ["orbits", "signals", "visible", "run", "rates", "T", "DT", "SEED"]
 
 SEED = 20261121
-T, DT, TOL = 4096.0, 0.5, 1e-10
+T, DT = 4096.0, 0.5
+TOL = reconstruction.TOL   # the re-examination runs at the tolerance validated here
 BATCH = 8
 
 
