@@ -31,6 +31,7 @@ Two routes to the rate:
 
 from __future__ import annotations
 
+import functools
 import itertools
 
 import flint
@@ -89,21 +90,34 @@ def derivation_matrix(B, n: int, m: int, zero) -> dict[int, dict[int, object]]:
     r"""The matrix of $D_B$ on $\Lambda^m\mathbb{R}^n$ in the basis $e_I$ of :func:`subsets`, sparse: ``D[row][col]``
     (column $I$ = $D_B e_I$); ``B`` a list of lists. $D_B e_I = \sum_s\sum_j B_{j,i_s}\,e_{i_1}\wedge\dots\wedge e_j\wedge\dots$
     (S6:wedge-integrals)."""
+    D: dict[int, dict[int, object]] = {}
+    for c, i, j, r, positive in _derivation_pattern(n, m):
+        if B[j][i] == 0:
+            continue
+        row = D.setdefault(r, {})
+        row[c] = row.get(c, zero) + (B[j][i] if positive else -B[j][i])
+    return D
+
+
+@functools.lru_cache(maxsize=64)
+def _derivation_pattern(n: int, m: int) -> tuple:
+    r"""The entries of :func:`derivation_matrix` that do not depend on $B$, in its order: $(c, i, j, r, +)$ for
+    $e_I$ ($I$ the ``c``-th subset) with $i_s = i$ replaced by $j \notin I \setminus \{i\}$, $e_J$ the ``r``-th subset
+    and ``+`` the sign of the sorting permutation. Computed once per $(n, m)$ in a worker."""
     basis = subsets(n, m)
     index = {I: r for r, I in enumerate(basis)}
-    D: dict[int, dict[int, object]] = {}
+    out = []
     for c, I in enumerate(basis):
         for s, i in enumerate(I):
             for j in range(n):
-                if B[j][i] == 0 or (j != i and j in I):
+                if j != i and j in I:
                     continue
                 new = list(I)
                 new[s] = j
                 order = sorted(range(m), key=lambda t: new[t])
                 J = tuple(new[t] for t in order)
-                row = D.setdefault(index[J], {})
-                row[c] = row.get(c, zero) + (B[j][i] if _parity(order) > 0 else -B[j][i])
-    return D
+                out.append((c, i, j, index[J], _parity(order) > 0))
+    return tuple(out)
 
 
 def shifted(B, n: int, m: int, zero, shift=SHIFT) -> dict[int, dict[int, object]]:
