@@ -58,10 +58,10 @@ def pfaffian(M, idx, zero, one, memo: dict | None = None):
         return one
     if memo is not None and idx in memo:
         return memo[idx]
-    i0, rest = idx[0], idx[1:]
+    i0, rest = idx[0], tuple(idx[1:])
     tot = zero
     for t, j in enumerate(rest):
-        sub = tuple(r for r in rest if r != j)
+        sub = rest[:t] + rest[t + 1:]   # rest without j = rest[t]
         term = M[i0][j] * pfaffian(M, sub, zero, one, memo)
         tot = tot + term if t % 2 == 0 else tot - term
     if memo is not None:

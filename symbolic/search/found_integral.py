@@ -81,34 +81,31 @@ def _hodge_square(M: list) -> list:
     """:func:`hodge_square` on the rows ``M`` of a 6 x 6 matrix of ring elements."""
     n = 6
     W = [[M[0][0] * 0 for _ in range(n)] for _ in range(n)]
-    for (i, j), terms in _hodge_terms().items():
+    for (i, j), terms in _hodge_terms():
         W[i][j] = sum((s * M[k][l] * M[m][o] for s, (k, l, m, o) in terms), W[i][j]) / 8
     return W
 
 
-def _hodge_terms() -> dict:
-    r"""$(i, j) \mapsto [(\varepsilon_{ijklmn}, (k, l, m, n))]$ over the permutations of the
-    complement of $\{i, j\}$ (the sum of :func:`hodge_square`), computed once."""
+def _hodge_terms() -> list:
+    r"""$[((i, j), [(\varepsilon_{ijklmn}, (k, l, m, n))])]$ over the permutations of the complement of
+    $\{i, j\}$: the sum of :func:`hodge_square` (720 terms; formed on each call)."""
     import itertools
 
-    if not _HODGE:
-        def sign(t):
-            s = 1
-            for i in range(len(t)):
-                for j in range(i + 1, len(t)):
-                    if t[i] > t[j]:
-                        s = -s
-            return s
+    def sign(t):
+        s = 1
+        for i in range(len(t)):
+            for j in range(i + 1, len(t)):
+                if t[i] > t[j]:
+                    s = -s
+        return s
 
-        for i in range(6):
-            for j in range(6):
-                if i != j:
-                    rest = [t for t in range(6) if t not in (i, j)]
-                    _HODGE[(i, j)] = [(sign((i, j) + q), q) for q in itertools.permutations(rest)]
-    return _HODGE
-
-
-_HODGE: dict = {}
+    out = []
+    for i in range(6):
+        for j in range(6):
+            if i != j:
+                rest = [t for t in range(6) if t not in (i, j)]
+                out.append(((i, j), [(sign((i, j) + q), q) for q in itertools.permutations(rest)]))
+    return out
 
 
 def new_integral_6(M: sp.Matrix, gamma: sp.Matrix, a, b) -> tuple[sp.Expr, sp.Expr]:
@@ -272,12 +269,7 @@ def expand_polynomial(expr) -> sp.Expr:
     if not symbols:
         return sp.expand(expr)
     try:
-        R = _RINGS.get(symbols)
-        if R is None:
-            from sympy.polys.rings import ring
-
-            R = _RINGS[symbols] = ring(symbols, sp.QQ)[0]
-        return R.from_expr(expr).as_expr()
+        return _ring(symbols).from_expr(expr).as_expr()
     except (ValueError, sp.polys.polyerrors.CoercionFailed):
         return sp.expand(expr)
 
@@ -289,11 +281,7 @@ def in_ring(*objects):
     exprs = [sp.sympify(o) if not isinstance(o, sp.MatrixBase) else o for o in objects]
     free = set().union(*(e.free_symbols for e in exprs))
     symbols = tuple(sorted(free, key=sp.default_sort_key))
-    R = _RINGS.get(symbols)
-    if R is None:
-        from sympy.polys.rings import ring
-
-        R = _RINGS[symbols] = ring(symbols, sp.QQ)[0]
+    R = _ring(symbols)
     out = []
     for e in exprs:
         if isinstance(e, sp.MatrixBase) and e.cols == 1:
@@ -305,5 +293,8 @@ def in_ring(*objects):
     return R, out
 
 
-#: $\mathbb{Q}[\text{symbols}]$ of :func:`expand_polynomial`, one per tuple of symbols in a worker
-_RINGS: dict = {}
+def _ring(symbols: tuple):
+    r"""$\mathbb{Q}[\text{symbols}]$, a new ``PolyRing`` (a fraction of a millisecond once SymPy has seen the symbols)."""
+    from sympy.polys.rings import ring
+
+    return ring(symbols, sp.QQ)[0]
