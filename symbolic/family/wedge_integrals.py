@@ -31,6 +31,7 @@ Two routes to the rate:
 
 from __future__ import annotations
 
+import bisect
 import functools
 import itertools
 
@@ -76,16 +77,6 @@ def wedge_power(M, n: int, k: int, zero, one) -> list:
     return [pfaffian(M, I, zero, one, memo) for I in subsets(n, 2 * k)]
 
 
-def _parity(perm) -> int:
-    perm, sign = list(perm), 1
-    for i in range(len(perm)):
-        while perm[i] != i:
-            j = perm[i]
-            perm[i], perm[j] = perm[j], perm[i]
-            sign = -sign
-    return sign
-
-
 def derivation_matrix(B, n: int, m: int, zero) -> dict[int, dict[int, object]]:
     r"""The matrix of $D_B$ on $\Lambda^m\mathbb{R}^n$ in the basis $e_I$ of :func:`subsets`, sparse: ``D[row][col]``
     (column $I$ = $D_B e_I$); ``B`` a list of lists. $D_B e_I = \sum_s\sum_j B_{j,i_s}\,e_{i_1}\wedge\dots\wedge e_j\wedge\dots$
@@ -109,14 +100,14 @@ def _derivation_pattern(n: int, m: int) -> tuple:
     out = []
     for c, I in enumerate(basis):
         for s, i in enumerate(I):
+            rest = I[:s] + I[s + 1:]
             for j in range(n):
                 if j != i and j in I:
                     continue
-                new = list(I)
-                new[s] = j
-                order = sorted(range(m), key=lambda t: new[t])
-                J = tuple(new[t] for t in order)
-                out.append((c, i, j, index[J], _parity(order) > 0))
+                # sorting I with i_s -> j moves j from position s to its place p in J: a cycle of
+                # length |s - p| + 1, sign (-1)^(s - p)
+                p = bisect.bisect_left(rest, j)
+                out.append((c, i, j, index[rest[:p] + (j,) + rest[p:]], (s - p) % 2 == 0))
     return tuple(out)
 
 
