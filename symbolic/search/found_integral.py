@@ -21,7 +21,7 @@ from chaplygin_nd.symbolic.algebra import unvec
 
 __all__ = ["pfaffian", "pfaffian_vector", "denominator", "new_integral", "new_integral_text", "prove_symbolic",
            "prove_at_points", "varies_in_M", "hodge_square", "new_integral_6", "new_integral_6_text",
-           "general_integral", "expand_polynomial"]
+           "general_integral", "expand_polynomial", "in_ring"]
 
 
 def pfaffian(A: sp.Matrix):
