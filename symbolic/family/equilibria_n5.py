@@ -108,15 +108,34 @@ def isotropy_family_matrix():
     Ms = sp.symbols("M12 M13 M14 M15 M23 M24 M25 M34 M35 M45")
     g = sp.symbols("g1:6")
     lam, sig = sp.symbols("lambda sigma")
-    M = sp.zeros(n, n)
-    for (i, j), s in zip(pairs, Ms, strict=True):
-        M[i, j], M[j, i] = s, -s
-    from sympy.polys.matrices import DomainMatrix
-
-    dm = DomainMatrix.from_Matrix(M + sig * sp.Matrix(g) * sp.Matrix(g).T - lam * sp.eye(n))
-    P = sp.Poly(dm.domain.to_sympy(dm.det()), lam, sig)
-    coeffs = [P.coeff_monomial(lam**i * sig**j) for i, j in ((3, 0), (1, 0), (2, 1), (0, 1))]
     mu, m1, m2, m3 = sp.symbols("mu m1 m2 m3")
-    family = dict(zip(Ms, (mu, 0, 0, 0, 0, 0, 0, m1, m2, m3), strict=True)) | dict(zip(g, (0, 0, 0, 0, 1), strict=True))
-    rows = [[sp.expand(sp.diff(c, v).xreplace(family)) for v in (*Ms, *g[:4])] for c in coeffs]
+    from sympy.polys.matrices import DomainMatrix
+    from sympy.polys.rings import ring
+
+    # the determinant, its coefficients, their derivatives and the restriction to the family are all
+    # formed in QQ[M, g, lambda, sigma] (ring arithmetic; the same polynomials as with expressions)
+    R, *gens = ring((*Ms, *g, lam, sig), sp.QQ)
+    Mr, gr, L, S = gens[:10], gens[10:15], gens[15], gens[16]
+    mat = [[S * gr[i] * gr[j] - (L if i == j else 0) for j in range(n)] for i in range(n)]
+    for (i, j), v in zip(pairs, Mr, strict=True):
+        mat[i][j], mat[j][i] = mat[i][j] + v, mat[j][i] - v
+    det = DomainMatrix([[R(e) for e in row] for row in mat], (n, n), R.to_domain()).det()
+
+    def coeff(i, j):   # the coefficient of lambda^i sigma^j, an element of R free of lambda, sigma
+        return R({m[:15] + (0, 0): c for m, c in det.terms() if m[15:] == (i, j)})
+    coeffs = [coeff(i, j) for i, j in ((3, 0), (1, 0), (2, 1), (0, 1))]
+    F, *fam = ring((mu, m1, m2, m3), sp.QQ)
+    # M = mu e_12 + m1 e_34 + m2 e_35 + m3 e_45, gamma = e_5: the images of M12..M45, g1..g5
+    image = (fam[0], 0, 0, 0, 0, 0, 0, fam[1], fam[2], fam[3], 0, 0, 0, 0, 1)
+
+    def on_family(p):
+        out = F(0)
+        for m, c in p.terms():
+            term = F(c)
+            for v, e in zip(image, m[:15], strict=True):
+                if e:
+                    term *= v**e
+            out += term
+        return out.as_expr()
+    rows = [[on_family(c.diff(v)) for v in (*Mr, *gr[:4])] for c in coeffs]
     return sp.Matrix(rows), (mu, m1, m2, m3)

@@ -60,10 +60,15 @@ def coefficient_gradients(M, gamma, engine: str = "sympy") -> tuple[list[tuple[i
     _, Vl = _inverse([[lam**e for e in range(n + 1)] for lam in lams], n + 1, engine)
     _, Vs = _inverse([[s**e for e in range(3)] for s in sigs], 3, engine)
     monomials = [(n - 2 * j, 0) for j in range(1, n // 2 + 1)] + [(n - 1 - 2 * j, 1) for j in range(1, (n + 1) // 2)]
+    width = len(pairs) + n
+    # first in sigma (3 nodes), then in lambda: sum_li Vl[i][li] sum_si Vs[j][si] values[si, li]
+    in_sigma = {(j, li): [sum((Vs[j][si] * values[(si, li)][col] for si in range(3)), zero)
+                          for col in range(width)]
+                for j in {j for _, j in monomials} for li in range(n + 1)}
     grads = []
     for i, j in monomials:
-        grads.append([sum((Vs[j][si] * Vl[i][li] * values[(si, li)][col] for si in range(3)
-                           for li in range(n + 1)), zero) for col in range(len(pairs) + n)])
+        grads.append([sum((Vl[i][li] * in_sigma[(j, li)][col] for li in range(n + 1)), zero)
+                      for col in range(width)])
     return monomials, grads
 
 

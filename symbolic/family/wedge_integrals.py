@@ -31,6 +31,8 @@ Two routes to the rate:
 
 from __future__ import annotations
 
+import bisect
+import functools
 import itertools
 
 import flint
@@ -57,10 +59,10 @@ def pfaffian(M, idx, zero, one, memo: dict | None = None):
         return one
     if memo is not None and idx in memo:
         return memo[idx]
-    i0, rest = idx[0], idx[1:]
+    i0, rest = idx[0], tuple(idx[1:])
     tot = zero
     for t, j in enumerate(rest):
-        sub = tuple(r for r in rest if r != j)
+        sub = rest[:t] + rest[t + 1:]   # rest without j = rest[t]
         term = M[i0][j] * pfaffian(M, sub, zero, one, memo)
         tot = tot + term if t % 2 == 0 else tot - term
     if memo is not None:
@@ -75,35 +77,38 @@ def wedge_power(M, n: int, k: int, zero, one) -> list:
     return [pfaffian(M, I, zero, one, memo) for I in subsets(n, 2 * k)]
 
 
-def _parity(perm) -> int:
-    perm, sign = list(perm), 1
-    for i in range(len(perm)):
-        while perm[i] != i:
-            j = perm[i]
-            perm[i], perm[j] = perm[j], perm[i]
-            sign = -sign
-    return sign
-
-
 def derivation_matrix(B, n: int, m: int, zero) -> dict[int, dict[int, object]]:
     r"""The matrix of $D_B$ on $\Lambda^m\mathbb{R}^n$ in the basis $e_I$ of :func:`subsets`, sparse: ``D[row][col]``
     (column $I$ = $D_B e_I$); ``B`` a list of lists. $D_B e_I = \sum_s\sum_j B_{j,i_s}\,e_{i_1}\wedge\dots\wedge e_j\wedge\dots$
     (S6:wedge-integrals)."""
+    D: dict[int, dict[int, object]] = {}
+    for c, i, j, r, positive in _derivation_pattern(n, m):
+        if B[j][i] == 0:
+            continue
+        row = D.setdefault(r, {})
+        row[c] = row.get(c, zero) + (B[j][i] if positive else -B[j][i])
+    return D
+
+
+@functools.lru_cache(maxsize=64)
+def _derivation_pattern(n: int, m: int) -> tuple:
+    r"""The entries of :func:`derivation_matrix` that do not depend on $B$, in its order: $(c, i, j, r, +)$ for
+    $e_I$ ($I$ the ``c``-th subset) with $i_s = i$ replaced by $j \notin I \setminus \{i\}$, $e_J$ the ``r``-th subset
+    and ``+`` the sign of the sorting permutation. Computed once per $(n, m)$ in a worker."""
     basis = subsets(n, m)
     index = {I: r for r, I in enumerate(basis)}
-    D: dict[int, dict[int, object]] = {}
+    out = []
     for c, I in enumerate(basis):
         for s, i in enumerate(I):
+            rest = I[:s] + I[s + 1:]
             for j in range(n):
-                if B[j][i] == 0 or (j != i and j in I):
+                if j != i and j in I:
                     continue
-                new = list(I)
-                new[s] = j
-                order = sorted(range(m), key=lambda t: new[t])
-                J = tuple(new[t] for t in order)
-                row = D.setdefault(index[J], {})
-                row[c] = row.get(c, zero) + (B[j][i] if _parity(order) > 0 else -B[j][i])
-    return D
+                # sorting I with i_s -> j moves j from position s to its place p in J: a cycle of
+                # length |s - p| + 1, sign (-1)^(s - p)
+                p = bisect.bisect_left(rest, j)
+                out.append((c, i, j, index[rest[:p] + (j,) + rest[p:]], (s - p) % 2 == 0))
+    return tuple(out)
 
 
 def shifted(B, n: int, m: int, zero, shift=SHIFT) -> dict[int, dict[int, object]]:

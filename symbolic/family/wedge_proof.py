@@ -31,6 +31,8 @@ and every point of $P$ is moved to such a $\gamma$ by $SO(n-1)$, eq:action).
 
 from __future__ import annotations
 
+import functools
+
 from chaplygin_nd.symbolic.family import wedge_integrals as wi
 
 __all__ = ["wedge", "form", "collapse_residual", "vanishing_terms"]
@@ -43,13 +45,24 @@ def wedge(X: dict, Y: dict, zero) -> dict:
         if x == 0:
             continue
         for J, y in Y.items():
-            if y == 0 or set(I) & set(J):
+            if y == 0:
                 continue
-            # sign of the shuffle that sorts I + J: count pairs (i in I, j in J) with i > j
-            inv = sum(1 for i in I for j in J if i > j)
-            K = tuple(sorted(I + J))
-            out[K] = out.get(K, zero) + (x * y if inv % 2 == 0 else -(x * y))
+            shuffle = _shuffle(I, J)
+            if shuffle is None:
+                continue
+            K, even = shuffle
+            out[K] = out.get(K, zero) + (x * y if even else -(x * y))
     return out
+
+
+@functools.lru_cache(maxsize=1 << 16)
+def _shuffle(I: tuple, J: tuple):
+    """(sorted I + J, whether the shuffle that sorts I + J is even), or None when I and J meet."""
+    if set(I) & set(J):
+        return None
+    # sign of the shuffle that sorts I + J: count pairs (i in I, j in J) with i > j
+    inv = sum(1 for i in I for j in J if i > j)
+    return tuple(sorted(I + J)), inv % 2 == 0
 
 
 def form(values: list, basis: list) -> dict:

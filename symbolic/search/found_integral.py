@@ -21,7 +21,7 @@ from chaplygin_nd.symbolic.algebra import unvec
 
 __all__ = ["pfaffian", "pfaffian_vector", "denominator", "new_integral", "new_integral_text", "prove_symbolic",
            "prove_at_points", "varies_in_M", "hodge_square", "new_integral_6", "new_integral_6_text",
-           "general_integral"]
+           "general_integral", "expand_polynomial", "in_ring"]
 
 
 def pfaffian(A: sp.Matrix):
@@ -64,17 +64,32 @@ def new_integral(M: sp.Matrix, gamma: sp.Matrix, a, b) -> tuple[sp.Expr, sp.Expr
     e = sp.zeros(n, 1)
     e[n - 1] = 1
     u = (2 + a) * e + b * x * gamma
-    return sp.expand((v.T * u)[0, 0] ** 2), denominator(gamma, a, b)
+    return expand_polynomial((v.T * u)[0, 0] ** 2), denominator(gamma, a, b)
 
 
 def hodge_square(M: sp.Matrix) -> sp.Matrix:
     r"""$W = \star(M\wedge M)/8 \in \mathfrak{so}(6)$ for $M \in \mathfrak{so}(6)$:
     $W_{ij} = \frac18\sum \varepsilon_{ijklmn} M_{kl}M_{mn}$ (quadratic in $M$, equivariant)."""
-    import itertools
-
     n = M.shape[0]
     if n != 6:
         raise ValueError("hodge_square is the n = 6 object")
+    _R, (Mr,) = in_ring(M)
+    return sp.Matrix([[w.as_expr() for w in row] for row in _hodge_square(Mr)])
+
+
+def _hodge_square(M: list) -> list:
+    """:func:`hodge_square` on the rows ``M`` of a 6 x 6 matrix of ring elements."""
+    n = 6
+    W = [[M[0][0] * 0 for _ in range(n)] for _ in range(n)]
+    for (i, j), terms in _hodge_terms():
+        W[i][j] = sum((s * M[k][l] * M[m][o] for s, (k, l, m, o) in terms), W[i][j]) / 8
+    return W
+
+
+def _hodge_terms() -> list:
+    r"""$[((i, j), [(\varepsilon_{ijklmn}, (k, l, m, n))])]$ over the permutations of the complement of
+    $\{i, j\}$: the sum of :func:`hodge_square` (720 terms; formed on each call)."""
+    import itertools
 
     def sign(t):
         s = 1
@@ -84,14 +99,13 @@ def hodge_square(M: sp.Matrix) -> sp.Matrix:
                     s = -s
         return s
 
-    W = sp.zeros(n, n)
-    for i in range(n):
-        for j in range(n):
+    out = []
+    for i in range(6):
+        for j in range(6):
             if i != j:
-                rest = [t for t in range(n) if t not in (i, j)]
-                W[i, j] = sp.expand(sum(sign((i, j) + q) * M[q[0], q[1]] * M[q[2], q[3]]
-                                        for q in itertools.permutations(rest)) / 8)
-    return W
+                rest = [t for t in range(6) if t not in (i, j)]
+                out.append(((i, j), [(sign((i, j) + q), q) for q in itertools.permutations(rest)]))
+    return out
 
 
 def new_integral_6(M: sp.Matrix, gamma: sp.Matrix, a, b) -> tuple[sp.Expr, sp.Expr]:
@@ -99,15 +113,20 @@ def new_integral_6(M: sp.Matrix, gamma: sp.Matrix, a, b) -> tuple[sp.Expr, sp.Ex
     $\Delta$ (read off an exact ansatz over $\mathbb{Q}(a, b)$), with $W$ of :func:`hodge_square`,
     $p = WE_6$, $q = W\gamma$:
     $G = \big(2a(a+2)\|p\|^2 + 4abx\langle p, q\rangle + 2b(b+2)\|q\|^2 + ab(a+b+4)\langle p,
-    \gamma\rangle^2\big)/\Delta$."""
-    W = hodge_square(M)
-    e = sp.zeros(6, 1)
-    e[5] = 1
-    x = gamma[5]
-    p, q = W * e, W * gamma
-    num = (2 * a * (a + 2) * p.dot(p) + 4 * a * b * x * p.dot(q) + 2 * b * (b + 2) * q.dot(q)
-           + a * b * (a + b + 4) * (gamma.T * p)[0] ** 2)
-    return sp.expand(num), (2 + a) * (2 + b) - a * b * x**2
+    \gamma\rangle^2\big)/\Delta$. Computed in the polynomial ring of the inputs' symbols
+    (:func:`in_ring`)."""
+    _R, (Mr, g, A_, B_) = in_ring(M, gamma, a, b)
+    W = _hodge_square(Mr)
+    x = g[5]
+    p = [W[i][5] for i in range(6)]
+    q = [sum((W[i][j] * g[j] for j in range(6)), W[0][0] * 0) for i in range(6)]
+
+    def dot(u, w):
+        return sum((ui * wi for ui, wi in zip(u, w)), W[0][0] * 0)
+
+    num = (2 * A_ * (A_ + 2) * dot(p, p) + 4 * A_ * B_ * x * dot(p, q) + 2 * B_ * (B_ + 2) * dot(q, q)
+           + A_ * B_ * (A_ + B_ + 4) * dot(g, p) ** 2)
+    return num.as_expr(), (2 + a) * (2 + b) - a * b * gamma[5]**2
 
 
 def general_integral(M: sp.Matrix, gamma: sp.Matrix, a, b) -> tuple[sp.Expr, sp.Expr]:
@@ -117,14 +136,16 @@ def general_integral(M: sp.Matrix, gamma: sp.Matrix, a, b) -> tuple[sp.Expr, sp.
     $G_n = \big(2a(a+2)\|\omega\wedge e\|^2 + 4abx\langle\omega\wedge e, \omega\wedge\gamma\rangle
     + 2b(b+2)\|\omega\wedge\gamma\|^2 + ab(a+b+4)\|\omega\wedge e\wedge\gamma\|^2\big)/\Delta$.
     $n = 6$: :func:`new_integral_6`; $n = 5$: $a(2+a)^{-1}$ times $F$'s numerator plus a known
-    integral; $n = 4$: $0$. Guessed from $n = 5, 6$, checked at exact points (row S6:first-integrals)."""
+    integral; $n = 4$: $0$. Guessed from $n = 5, 6$, checked at exact points (row S6:first-integrals).
+    Computed in the polynomial ring of the inputs' symbols (:func:`in_ring`)."""
     import itertools
 
     n = M.shape[0]
+    _R, (Mr, g, A_, B_) = in_ring(M, gamma, a, b)
 
     def om(S):
         i, j, k, l = S
-        return M[i, j] * M[k, l] - M[i, k] * M[j, l] + M[i, l] * M[j, k]
+        return Mr[i][j] * Mr[k][l] - Mr[i][k] * Mr[j][l] + Mr[i][l] * Mr[j][k]
 
     def wedge(form, deg, vec):
         return {S: sum((-1) ** (deg - t) * form[S[:t] + S[t + 1:]] * vec[S[t]]
@@ -133,16 +154,16 @@ def general_integral(M: sp.Matrix, gamma: sp.Matrix, a, b) -> tuple[sp.Expr, sp.
 
     w = {S: om(S) for S in itertools.combinations(range(n), 4)}
     e = [0] * (n - 1) + [1]
-    we, wg = wedge(w, 4, e), wedge(w, 4, list(gamma))
-    weg = wedge(we, 5, list(gamma))
-    x = gamma[n - 1]
+    we, wg = wedge(w, 4, e), wedge(w, 4, g)
+    weg = wedge(we, 5, g)
+    x = g[n - 1]
 
     def dot(A, B):
         return sum(A[S] * B[S] for S in A)
 
-    num = (2 * a * (a + 2) * dot(we, we) + 4 * a * b * x * dot(we, wg)
-           + 2 * b * (b + 2) * dot(wg, wg) + a * b * (a + b + 4) * dot(weg, weg))
-    return sp.expand(num), (2 + a) * (2 + b) - a * b * x**2
+    num = (2 * A_ * (A_ + 2) * dot(we, we) + 4 * A_ * B_ * x * dot(we, wg)
+           + 2 * B_ * (B_ + 2) * dot(wg, wg) + A_ * B_ * (A_ + B_ + 4) * dot(weg, weg))
+    return num.as_expr(), (2 + a) * (2 + b) - a * b * gamma[n - 1]**2
 
 
 def new_integral_6_text() -> str:
@@ -166,7 +187,7 @@ def new_integral_text(n: int) -> str:
     den = denominator(sp.Matrix(gs), a, b)
     v = pfaffian_vector(unvec(Ms, n))
     inner = sum(v[i] * ((2 + a) * (1 if i == n - 1 else 0) + b * gs[-1] * gs[i]) for i in range(n))
-    return f"({sp.sstr(sp.expand(inner))})**2/({sp.sstr(den)})"
+    return f"({sp.sstr(expand_polynomial(inner))})**2/({sp.sstr(den)})"
 
 
 def prove_symbolic(n: int, a=None, b=None, builder=None):
@@ -233,3 +254,47 @@ def varies_in_M(n: int, builder, seed: int) -> tuple[bool, str]:
     verdict = "non-zero, so the integral is not constant" if slope != 0 else "zero"
     return slope != 0, (f"dP/d eps = {slope} at a seeded rational point (seed {seed}, a = "
                         f"{par['a']}, b = {par['b']}): {verdict}")
+
+
+def expand_polynomial(expr) -> sp.Expr:
+    r"""The expanded form of a polynomial expression (the value of ``sp.expand``), computed by
+    ring arithmetic in $\mathbb{Q}[\text{its free symbols}]$ (``PolyRing.from_expr`` walks the
+    tree once and multiplies out in the ring, then ``as_expr``): the same polynomial, the same
+    canonical expression, without SymPy's term-by-term expansion of products of sums, which
+    was most of the time of the builders above. Domain: polynomials with rational
+    coefficients; anything else (a negative power, a float, a function) is expanded by
+    ``sp.expand`` as before."""
+    expr = sp.sympify(expr)
+    symbols = tuple(sorted(expr.free_symbols, key=sp.default_sort_key))
+    if not symbols:
+        return sp.expand(expr)
+    try:
+        return _ring(symbols).from_expr(expr).as_expr()
+    except (ValueError, sp.polys.polyerrors.CoercionFailed):
+        return sp.expand(expr)
+
+
+def in_ring(*objects):
+    r"""$(R, \text{images})$: $R = \mathbb{Q}[\text{the free symbols of } objects]$ and each
+    object (a matrix as a list of rows, a vector as a list, a scalar) with its entries in $R$.
+    Domain: polynomial entries with rational coefficients (``ValueError`` otherwise)."""
+    exprs = [sp.sympify(o) if not isinstance(o, sp.MatrixBase) else o for o in objects]
+    free = set().union(*(e.free_symbols for e in exprs))
+    symbols = tuple(sorted(free, key=sp.default_sort_key))
+    R = _ring(symbols)
+    out = []
+    for e in exprs:
+        if isinstance(e, sp.MatrixBase) and e.cols == 1:
+            out.append([R.from_expr(v) for v in e])
+        elif isinstance(e, sp.MatrixBase):
+            out.append([[R.from_expr(v) for v in e.row(i)] for i in range(e.rows)])
+        else:
+            out.append(R.from_expr(e))
+    return R, out
+
+
+def _ring(symbols: tuple):
+    r"""$\mathbb{Q}[\text{symbols}]$, a new ``PolyRing`` (a fraction of a millisecond once SymPy has seen the symbols)."""
+    from sympy.polys.rings import ring
+
+    return ring(symbols, sp.QQ)[0]
