@@ -85,11 +85,11 @@ ARGUED: dict[tuple[str, str], str] = {
         "nowhere: known is 0 by the same 'if prods' (line 220) and the recovery check builds "
         "[F, K] only when there are products (line 224); tests/test_first_integrals.py's box "
         "(5, (3, 5, 1)) runs it and gives the same result",
-    ("search.found_integral.varies_in_M", "const: line 227 col 69: 0 -> 1"):
+    ("search.found_integral.varies_in_M", "const: line 248 col 69: 0 -> 1"):
         "another seeded exact point (stream 1 of the same seed and label instead of 0): the part "
         "needs one point where the exact slope dP/d eps is non-zero, a witness wherever it lies; "
         "the part's verdict is the same, its text names the other point",
-    ("search.found_integral.varies_in_M", "sign: line 231 col 24: M + eps * N -> M - eps * N"):
+    ("search.found_integral.varies_in_M", "sign: line 252 col 24: M + eps * N -> M - eps * N"):
         "the derivative along -N: d/d eps P(M - eps N)|_0 = -d/d eps P(M + eps N)|_0, non-zero "
         "exactly when the original is; the part's verdict is the same, its text shows -slope",
     ("reduction.invariants_n5.relations", "const: line 344 col 36: 1 -> 2"):
