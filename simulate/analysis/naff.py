@@ -210,14 +210,25 @@ def _projections(X: np.ndarray, nu: np.ndarray, dt: float, L: int, derivatives: 
 
 def _one_blas_thread():
     """A context with one BLAS thread (threadpoolctl, a dependency; a venv installed before it was
-    added only runs slower, the lines are the same)."""
-    try:
-        from threadpoolctl import threadpool_limits
-    except ImportError:  # pragma: no cover - the dependency is declared
+    added only runs slower, the lines are the same). The controller that finds the loaded BLAS
+    libraries is built once per process (:func:`_blas_controller`): building it scans every loaded
+    library, 7 ms a call, which was paid three times per ensemble."""
+    controller = _blas_controller()
+    if controller is None:  # pragma: no cover - the dependency is declared
         import contextlib
 
         return contextlib.nullcontext()
-    return threadpool_limits(1, user_api="blas")
+    return controller.limit(limits=1, user_api="blas")
+
+
+@functools.lru_cache(maxsize=1)
+def _blas_controller():
+    """The process's ``threadpoolctl.ThreadpoolController`` (None without threadpoolctl)."""
+    try:
+        from threadpoolctl import ThreadpoolController
+    except ImportError:  # pragma: no cover - the dependency is declared
+        return None
+    return ThreadpoolController()
 
 
 def _find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a) -> None:
@@ -225,16 +236,33 @@ def _find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a) -> None:
     ``R`` (subtracted in place) into ``found_w``, ``found_a``. Runs with one BLAS thread (the caller
     limits it): the products are small, and on a busy machine (``make verify`` runs a worker per
     core) OpenBLAS's waiting threads made them and everything after them up to 3x slower
-    (measured on the evidence rows)."""
+    (measured on the evidence rows).
+
+    Every ``(K, N)``-sized array lives in a buffer allocated once per call, not once per line:
+    arrays of tens of MB are fresh ``mmap`` pages each time, and the page faults cost more than
+    the arithmetic (the spectrum's ``abs`` 5x, the line's outer product 2x, measured). The
+    arithmetic is unchanged operation for operation, so the lines are the same bits
+    (tests/test_naff_buffers.py compares with the earlier loop): the window is multiplied in as
+    the complex array NumPy cast it to, the FFT runs in place on the zero-padded copy it made,
+    and $\overline{\alpha_p\beta_l} = \bar\alpha_p\bar\beta_l$ exactly (negation is exact)."""
     from scipy.fft import fft  # the same pocketfft as numpy.fft, bit for bit, 1.6x faster batched
 
     K, N = R.shape
     omega_grid = 2 * np.pi * np.fft.fftfreq(pad, d=dt)
     idx = np.arange(K)
+    wc = w.astype(complex)[None]                 # what R * w casts w to, once
     X = np.zeros((K, P * L), dtype=complex)      # the windowed residual, zero-padded to P * L
+    F = np.zeros((K, pad), dtype=complex)        # its zero-padded copy, transformed in place
+    spec = np.empty((K, pad))
+    line = np.empty((K, P, L), dtype=complex)
+    flat = line.reshape(K, P * L)[:, :N]
+    copied = min(pad, N)                          # X is zero beyond N, F beyond N stays zero...
     for m in range(terms):
-        np.multiply(R, w[None], out=X[:, :N])
-        spec = np.abs(fft(X, n=pad, axis=1))  # pad >= N: the same zero-padded input
+        np.multiply(R, wc, out=X[:, :N])
+        F[:, :copied] = X[:, :copied]
+        if m:
+            F[:, copied:] = 0.0                   # ...once the in-place FFT has overwritten it
+        np.abs(fft(F, axis=1, overwrite_x=True), out=spec)
         i = np.argmax(spec, axis=1)
         y0, y1, y2 = (np.log(spec[idx, (i + s) % pad] + 1e-300) for s in (-1, 0, 1))
         den = y0 - 2 * y1 + y2
@@ -251,11 +279,9 @@ def _find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a) -> None:
         found_w[:, m] = nu
         found_a[:, m] = np.abs(phi)
         # subtract the line phi e^{i nu t}, e^{i nu t_j} = conj(alpha_p beta_l) (<e, e>_w = 1)
-        line = alpha[:, :, None] * beta[:, None, :]
-        np.conjugate(line, out=line)
-        line = line.reshape(K, P * L)[:, :N]
-        line *= phi[:, None]
-        R -= line
+        np.multiply(np.conj(alpha)[:, :, None], np.conj(beta)[:, None, :], out=line)
+        flat *= phi[:, None]
+        R -= flat
 
 
 def spectral_lines_batch(Z: np.ndarray, dt: float, terms: int = 12, constant: float = 1e-6,
