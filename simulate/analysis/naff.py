@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import functools
 import itertools
+import threading
 import warnings
 from dataclasses import dataclass
 
@@ -231,37 +232,54 @@ def _blas_controller():
     return ThreadpoolController()
 
 
+_WORK = threading.local()
+
+
+def _scratch(name: str, shape: tuple[int, ...], dtype) -> np.ndarray:
+    """A C-contiguous array of ``shape`` and ``dtype`` whose memory is kept between calls (one
+    buffer per ``name`` and thread, grown to the largest request; contents undefined). NAFF on
+    an ensemble needs a few arrays of tens of MB per call; allocated fresh, their first touch
+    (page faults, zeroing by the kernel) cost a third of the time of a call on this machine
+    (measured). Kept per thread, so that concurrent calls (a threaded Dask worker) never share
+    one. A process keeps its largest request: about 56 bytes per sample of the ensemble."""
+    size = int(np.prod(shape))
+    store = _WORK.__dict__
+    buf = store.get(name)
+    if buf is None or buf.dtype != np.dtype(dtype) or buf.size < size:
+        store[name] = buf = np.empty(size, dtype=dtype)
+    return buf[:size].reshape(shape)
+
+
 def _find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a) -> None:
     """The loop of :func:`spectral_lines_batch`: ``terms`` lines of every row of the residual
-    ``R`` (subtracted in place) into ``found_w``, ``found_a``. Runs with one BLAS thread (the caller
+    ``R`` (subtracted in place, but for the last line) into ``found_w``, ``found_a``. Runs with one BLAS thread (the caller
     limits it): the products are small, and on a busy machine (``make verify`` runs a worker per
     core) OpenBLAS's waiting threads made them and everything after them up to 3x slower
     (measured on the evidence rows).
 
-    Every ``(K, N)``-sized array lives in a buffer allocated once per call, not once per line:
-    arrays of tens of MB are fresh ``mmap`` pages each time, and the page faults cost more than
-    the arithmetic (the spectrum's ``abs`` 5x, the line's outer product 2x, measured). The
-    arithmetic is unchanged operation for operation, so the lines are the same bits
-    (tests/test_naff_buffers.py compares with the earlier loop): the window is multiplied in as
-    the complex array NumPy cast it to, the FFT runs in place on the zero-padded copy it made,
-    and $\overline{\alpha_p\beta_l} = \bar\alpha_p\bar\beta_l$ exactly (negation is exact)."""
+    Every ``(K, N)``-sized array is a kept buffer (:func:`_scratch`), not a fresh allocation
+    per line: the page faults of fresh arrays of tens of MB cost more than the arithmetic (the
+    spectrum's ``abs`` 5x, the line's outer product 2x, measured). The arithmetic is unchanged
+    operation for operation, so the lines are the same bits (tests/test_naff_buffers.py compares
+    with the earlier loop): the window is multiplied in as the complex array NumPy cast it to,
+    the FFT runs in place on a zero-padded copy as ``fft(x, n=pad)`` makes one, and
+    $\overline{\alpha_p\beta_l} = \bar\alpha_p\bar\beta_l$ exactly (negation is exact)."""
     from scipy.fft import fft  # the same pocketfft as numpy.fft, bit for bit, 1.6x faster batched
 
     K, N = R.shape
     omega_grid = 2 * np.pi * np.fft.fftfreq(pad, d=dt)
     idx = np.arange(K)
     wc = w.astype(complex)[None]                 # what R * w casts w to, once
-    X = np.zeros((K, P * L), dtype=complex)      # the windowed residual, zero-padded to P * L
-    F = np.zeros((K, pad), dtype=complex)        # its zero-padded copy, transformed in place
-    spec = np.empty((K, pad))
-    line = np.empty((K, P, L), dtype=complex)
+    X = _scratch("window", (K, P * L), complex)  # the windowed residual, zero-padded to P * L
+    X[:, N:] = 0.0
+    F = _scratch("fft", (K, pad), complex)       # its zero-padded copy, transformed in place
+    spec = _scratch("abs", (K, pad), float)
+    line = _scratch("line", (K, P, L), complex)
     flat = line.reshape(K, P * L)[:, :N]
-    copied = min(pad, N)                          # X is zero beyond N, F beyond N stays zero...
     for m in range(terms):
         np.multiply(R, wc, out=X[:, :N])
-        F[:, :copied] = X[:, :copied]
-        if m:
-            F[:, copied:] = 0.0                   # ...once the in-place FFT has overwritten it
+        F[:, :N] = X[:, :N]                       # pad >= N
+        F[:, N:] = 0.0
         np.abs(fft(F, axis=1, overwrite_x=True), out=spec)
         i = np.argmax(spec, axis=1)
         y0, y1, y2 = (np.log(spec[idx, (i + s) % pad] + 1e-300) for s in (-1, 0, 1))
@@ -278,6 +296,8 @@ def _find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a) -> None:
         phi, alpha, beta = _projections(Xr, nu, dt, L, False)
         found_w[:, m] = nu
         found_a[:, m] = np.abs(phi)
+        if m == terms - 1:
+            break                                 # the last residual is never read
         # subtract the line phi e^{i nu t}, e^{i nu t_j} = conj(alpha_p beta_l) (<e, e>_w = 1)
         np.multiply(np.conj(alpha)[:, :, None], np.conj(beta)[:, None, :], out=line)
         flat *= phi[:, None]
@@ -302,9 +322,10 @@ def spectral_lines_batch(Z: np.ndarray, dt: float, terms: int = 12, constant: fl
     together: no Python loop over signals. Domain: $N \ge 7$; ``terms`` $\ge 1$."""
     Z = np.asarray(Z, dtype=complex)
     K, N = Z.shape
-    size = np.max(np.abs(Z), axis=1)
-    R = Z - Z.mean(axis=1, keepdims=True)
-    scale = np.max(np.abs(R), axis=1)
+    mag = _scratch("abs", (K, N), float)       # kept buffers (see _find_lines), same values
+    size = np.max(np.abs(Z, out=mag), axis=1)
+    R = np.subtract(Z, Z.mean(axis=1, keepdims=True), out=_scratch("residual", (K, N), complex))
+    scale = np.max(np.abs(R, out=mag), axis=1)
     live = (scale > constant * size) & (scale > 0)
     w = _hann2(N)
     P, L = _blocks(N)
