@@ -251,7 +251,7 @@ def _scratch(name: str, shape: tuple[int, ...], dtype) -> np.ndarray:
 
 
 def _find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a) -> None:
-    """The loop of :func:`spectral_lines_batch`: ``terms`` lines of every row of the residual
+    r"""The loop of :func:`spectral_lines_batch`: ``terms`` lines of every row of the residual
     ``R`` (subtracted in place, but for the last line) into ``found_w``, ``found_a``. Runs with one BLAS thread (the caller
     limits it): the products are small, and on a busy machine (``make verify`` runs a worker per
     core) OpenBLAS's waiting threads made them and everything after them up to 3x slower
