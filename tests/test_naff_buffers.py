@@ -136,3 +136,20 @@ def test_two_threads_do_not_share_buffers():
     for t in threads:
         t.join()
     assert got["a"] == [ref["a"]] * 3 and got["b"] == [ref["b"]] * 3
+
+
+def test_frozen_rows_are_not_recomputed_and_keep_their_bits(monkeypatch):
+    """Newton's rows whose frequency no longer moves keep their projections; the rows still
+    moving are recomputed one by one (the path is taken here) and the lines keep their bits."""
+    Z = _signals(16, 2049, 0.5, seed=3)
+    ref = _reference_lines(Z, 0.5, 6)
+    sizes: list[int] = []
+    original = naff._projections
+
+    def counted(X, *args):
+        sizes.append(len(X))
+        return original(X, *args)
+
+    monkeypatch.setattr(naff, "_projections", counted)
+    assert _bits(naff.spectral_lines_batch(Z, 0.5, 6)) == _bits(ref)
+    assert 1 in sizes and sum(sizes) < 16 * 6 * 5      # fewer rows than 5 products per line

@@ -250,6 +250,23 @@ def _scratch(name: str, shape: tuple[int, ...], dtype) -> np.ndarray:
     return buf[:size].reshape(shape)
 
 
+def _update_projections(Xr, nu, dt, L, rows, phi, d1, d2) -> None:
+    r"""Overwrite ``phi``, ``d1``, ``d2`` (:func:`_projections` with derivatives) at the rows
+    ``rows`` by their values at ``nu``; the other rows are left as they are. The values of a row
+    do not depend on the other rows (elementwise operations and one BLAS product per row: the
+    stacked ``@`` calls ``zgemm`` row by row), so a row computed alone has the bits it has in the
+    whole batch. The whole batch when more than a quarter of the rows are asked for (then one
+    call is cheaper than many), else one call per row."""
+    K = len(nu)
+    if len(rows) == 0:
+        return
+    if 4 * len(rows) > K:
+        phi[:], d1[:], d2[:] = _projections(Xr, nu, dt, L, True)
+        return
+    for k in rows:
+        phi[k:k + 1], d1[k:k + 1], d2[k:k + 1] = _projections(Xr[k:k + 1], nu[k:k + 1], dt, L, True)
+
+
 def _find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a) -> None:
     r"""The loop of :func:`spectral_lines_batch`: ``terms`` lines of every row of the residual
     ``R`` (subtracted in place, but for the last line) into ``found_w``, ``found_a``. Runs with one BLAS thread (the caller
@@ -287,13 +304,19 @@ def _find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a) -> None:
         shift = np.where(np.abs(den) > 0, 0.5 * (y0 - y2) / np.where(den == 0, 1, den), 0.0)
         nu = omega_grid[i] + shift * (2 * np.pi / (pad * dt))
         Xr = X.reshape(K, P, L)
+        phi, d1, d2 = _projections(Xr, nu, dt, L, True)
         for _ in range(newton):
-            phi, d1, d2 = _projections(Xr, nu, dt, L, True)
             g = 2 * np.real(np.conj(phi) * d1)
             h = 2 * np.real(np.abs(d1) ** 2 + np.conj(phi) * d2)
             step = np.where(h < 0, g / np.where(h == 0, 1, h), 0.0)
-            nu = nu - np.clip(step, -np.pi / (N * dt), np.pi / (N * dt))
-        phi, alpha, beta = _projections(Xr, nu, dt, L, False)
+            new = nu - np.clip(step, -np.pi / (N * dt), np.pi / (N * dt))
+            moved = np.flatnonzero(new.view(np.int64) != nu.view(np.int64))
+            nu = new
+            # phi, d1, d2 at the new nu (after the last step phi alone is read): a row whose
+            # nu did not move keeps the values it has, which are those bits (:func:`_update_projections`)
+            _update_projections(Xr, nu, dt, L, moved, phi, d1, d2)
+        alpha = np.exp(-1j * nu[:, None] * (np.arange(P) * (L * dt))[None])   # as _projections
+        beta = np.exp(-1j * nu[:, None] * (np.arange(L) * dt)[None])
         found_w[:, m] = nu
         found_a[:, m] = np.abs(phi)
         if m == terms - 1:
