@@ -241,7 +241,8 @@ def _scratch(name: str, shape: tuple[int, ...], dtype) -> np.ndarray:
     an ensemble needs a few arrays of tens of MB per call; allocated fresh, their first touch
     (page faults, zeroing by the kernel) cost a third of the time of a call on this machine
     (measured). Kept per thread, so that concurrent calls (a threaded Dask worker) never share
-    one. A process keeps its largest request: about 56 bytes per sample of the ensemble."""
+    one. A process keeps its largest request: 72 bytes per sample of the ensemble (about
+    220 MB for the largest ensemble of the evidence rows, 32 orbits of 10 signals of 9601 samples)."""
     size = int(np.prod(shape))
     store = _WORK.__dict__
     buf = store.get(name)
