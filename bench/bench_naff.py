@@ -22,7 +22,7 @@ DT = 0.5
 
 def _earlier_find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a) -> None:
     """The line loop as it was before the kept buffers and the frozen Newton rows."""
-    from chaplygin_nd.simulate.analysis import naff
+    from chaplygin_nd.simulate.analysis import naff_lines
     from scipy.fft import fft
 
     K, N = R.shape
@@ -39,12 +39,12 @@ def _earlier_find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a) ->
         nu = omega_grid[i] + shift * (2 * np.pi / (pad * dt))
         Xr = X.reshape(K, P, L)
         for _ in range(newton):
-            phi, d1, d2 = naff._projections(Xr, nu, dt, L, True)
+            phi, d1, d2 = naff_lines._projections(Xr, nu, dt, L, True)
             g = 2 * np.real(np.conj(phi) * d1)
             h = 2 * np.real(np.abs(d1) ** 2 + np.conj(phi) * d2)
             step = np.where(h < 0, g / np.where(h == 0, 1, h), 0.0)
             nu = nu - np.clip(step, -np.pi / (N * dt), np.pi / (N * dt))
-        phi, alpha, beta = naff._projections(Xr, nu, dt, L, False)
+        phi, alpha, beta = naff_lines._projections(Xr, nu, dt, L, False)
         found_w[:, m] = nu
         found_a[:, m] = np.abs(phi)
         line = alpha[:, :, None] * beta[:, None, :]
@@ -76,7 +76,7 @@ def _bits(out) -> bytes:
 def measure(shapes=SHAPES, repeats: int = 2) -> list[dict]:
     """Per shape: CPU seconds of the earlier and the current ``lines_batch`` (the best of
     ``repeats``, alternating), and whether their outputs are the same bits."""
-    from chaplygin_nd.simulate.analysis import naff
+    from chaplygin_nd.simulate.analysis import naff, naff_lines
 
     rows = []
     naff.lines_batch(_signals((2, 2, 1025), 0), DT)          # imports, FFT plans: not timed
@@ -86,15 +86,15 @@ def measure(shapes=SHAPES, repeats: int = 2) -> list[dict]:
         outs = {}
         for _ in range(repeats):
             for name in ("earlier", "current"):
-                current = naff._find_lines
+                current = naff_lines._find_lines
                 if name == "earlier":
-                    naff._find_lines = _earlier_find_lines
+                    naff_lines._find_lines = _earlier_find_lines
                 try:
                     c0 = time.process_time()
                     outs[name] = naff.lines_batch(Z, DT)
                     times[name].append(time.process_time() - c0)
                 finally:
-                    naff._find_lines = current
+                    naff_lines._find_lines = current
         rows.append({"shape": list(shape), "earlier_cpu": round(min(times["earlier"]), 3),
                      "current_cpu": round(min(times["current"]), 3),
                      "same_bits": _bits(outs["earlier"]) == _bits(outs["current"])})

@@ -9,11 +9,11 @@ import threading
 
 import numpy as np
 import pytest
-from chaplygin_nd.simulate.analysis import naff
+from chaplygin_nd.simulate.analysis import naff, naff_lines
 
 
 def _reference_find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a) -> None:
-    """The earlier ``naff._find_lines``: fresh arrays for every line, ``abs`` of a padded FFT."""
+    """The earlier ``naff_lines._find_lines``: fresh arrays for every line, ``abs`` of a padded FFT."""
     from scipy.fft import fft
 
     K, N = R.shape
@@ -30,12 +30,12 @@ def _reference_find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a) 
         nu = omega_grid[i] + shift * (2 * np.pi / (pad * dt))
         Xr = X.reshape(K, P, L)
         for _ in range(newton):
-            phi, d1, d2 = naff._projections(Xr, nu, dt, L, True)
+            phi, d1, d2 = naff_lines._projections(Xr, nu, dt, L, True)
             g = 2 * np.real(np.conj(phi) * d1)
             h = 2 * np.real(np.abs(d1) ** 2 + np.conj(phi) * d2)
             step = np.where(h < 0, g / np.where(h == 0, 1, h), 0.0)
             nu = nu - np.clip(step, -np.pi / (N * dt), np.pi / (N * dt))
-        phi, alpha, beta = naff._projections(Xr, nu, dt, L, False)
+        phi, alpha, beta = naff_lines._projections(Xr, nu, dt, L, False)
         found_w[:, m] = nu
         found_a[:, m] = np.abs(phi)
         line = alpha[:, :, None] * beta[:, None, :]
@@ -55,11 +55,11 @@ def _reference_lines(Z, dt, terms=12, constant=1e-6, floor=1e-9, newton=4):
     R = Z - Z.mean(axis=1, keepdims=True)
     scale = np.max(np.abs(R), axis=1)
     live = (scale > constant * size) & (scale > 0)
-    w = naff._hann2(N)
-    P, L = naff._blocks(N)
+    w = naff_lines._hann2(N)
+    P, L = naff_lines._blocks(N)
     pad = next_fast_len(N)
     found_w, found_a = np.zeros((K, terms)), np.zeros((K, terms))
-    with naff._one_blas_thread():
+    with naff_lines._one_blas_thread():
         _reference_find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a)
     out = []
     for k in range(K):
@@ -144,12 +144,12 @@ def test_frozen_rows_are_not_recomputed_and_keep_their_bits(monkeypatch):
     Z = _signals(16, 2049, 0.5, seed=3)
     ref = _reference_lines(Z, 0.5, 6)
     sizes: list[int] = []
-    original = naff._projections
+    original = naff_lines._projections
 
     def counted(X, *args):
         sizes.append(len(X))
         return original(X, *args)
 
-    monkeypatch.setattr(naff, "_projections", counted)
+    monkeypatch.setattr(naff_lines, "_projections", counted)
     assert _bits(naff.spectral_lines_batch(Z, 0.5, 6)) == _bits(ref)
     assert 1 in sizes and sum(sizes) < 16 * 6 * 5      # fewer rows than 5 products per line
