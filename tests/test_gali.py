@@ -144,3 +144,34 @@ def test_torus_orbit_resolution_follows_the_drawn_rows():
     assert not orbit(3, 1e-7, 2).resolved
     assert orbit(4, 1e-7, 2).resolved                    # an excess stays one
     assert not orbit(3, 1e-3, 0).resolved
+
+
+def _einsum_group_matrix(y, n, symmetric=True):
+    """The earlier columns of ``group_directions``: products with the matrix X (the reference)."""
+    N = so.so_dim(n)
+    M, g = so.unvec(y[..., :N], n), y[..., N:N + n]
+    cols = []
+    if symmetric:
+        for i in range(n - 1):
+            for j in range(i + 1, n - 1):
+                X = np.zeros((n, n))
+                X[i, j], X[j, i] = 1.0, -1.0
+                XM = np.einsum("ij,...jk->...ik", X, M) - np.einsum("...ij,jk->...ik", M, X)
+                cols.append(np.concatenate([so.vec(XM), np.einsum("ij,...j->...i", X, g)], -1))
+    cols.append(np.concatenate([np.zeros(y.shape[:-1] + (N,)), g], -1))
+    return np.stack(cols, -1)
+
+
+@pytest.mark.parametrize("n", [4, 5, 6, 7, 8])
+@pytest.mark.parametrize("symmetric", [True, False])
+def test_group_columns_are_the_bits_of_the_products(n, symmetric):
+    """The copied columns equal the einsum products bit for bit, zeros of either sign included,
+    so the orthonormal directions (one QR of the same matrix) are the same bits too."""
+    rng = np.random.default_rng(n)
+    y = rng.standard_normal((40, 3, so.so_dim(n) + n))
+    y[::3, :, :4] = 0.0
+    y[1::3, :, 2:7] = -0.0
+    new, old = gl._group_matrix(y, n, symmetric), _einsum_group_matrix(y, n, symmetric)
+    assert new.shape == old.shape and new.tobytes() == old.tobytes()
+    Q_old, _ = np.linalg.qr(old)
+    assert gl.group_directions(y, n, symmetric).tobytes() == Q_old.tobytes()

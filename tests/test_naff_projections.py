@@ -5,11 +5,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from chaplygin_nd.simulate.analysis import naff
+from chaplygin_nd.simulate.analysis import naff, naff_lines
 
 
 def _einsum_projections(X, nu, dt, L, derivatives):
-    """The earlier formulation of ``naff._projections``, kept as the reference."""
+    """The earlier formulation of ``naff_lines._projections``, kept as the reference."""
     K, P, _ = X.shape
     p = np.arange(P) * (L * dt)
     l_ = np.arange(L) * dt
@@ -33,8 +33,8 @@ def _einsum_lines(Z, dt, terms, newton=4):
     Z = np.asarray(Z, dtype=complex)
     K, N = Z.shape
     R = Z - Z.mean(axis=1, keepdims=True)
-    w = naff._hann2(N)
-    P, L = naff._blocks(N)
+    w = naff_lines._hann2(N)
+    P, L = naff_lines._blocks(N)
     from scipy.fft import next_fast_len
 
     pad = next_fast_len(N)
@@ -84,7 +84,7 @@ def test_blas_projections_equal_the_einsum_formulation(derivatives):
     K, P, L = 9, 37, 41
     X = rng.standard_normal((K, P, L)) + 1j * rng.standard_normal((K, P, L))
     nu = rng.uniform(-3, 3, K)
-    new, old = naff._projections(X, nu, 0.5, L, derivatives), _einsum_projections(X, nu, 0.5, L, derivatives)
+    new, old = naff_lines._projections(X, nu, 0.5, L, derivatives), _einsum_projections(X, nu, 0.5, L, derivatives)
     for a, b in zip(new, old):
         assert np.max(np.abs(a - b)) <= 1e-12 * np.max(np.abs(b))
 

@@ -102,21 +102,42 @@ def group_directions(y: np.ndarray, n: int, symmetric: bool = True) -> np.ndarra
     r"""Orthonormal columns spanning $\mathfrak{so}(n-1)\cdot y$ and the normal $(0, \gamma)$ of $P$ at
     the full states ``y`` ``(..., d)`` (layout :func:`simulate.dynamics.so.vec`, then $\gamma$): shape
     ``(..., d, r)``. ``symmetric`` False: the normal only (a system without the symmetry)."""
+    Q, R = np.linalg.qr(_group_matrix(y, n, symmetric))
+    return Q
+
+
+def _group_matrix(y: np.ndarray, n: int, symmetric: bool = True) -> np.ndarray:
+    r"""The columns that :func:`group_directions` orthonormalises: $([X, M], X\gamma)$ for $X = E_i
+    \wedge E_j$, $i < j < n - 1$ (in that order), then $(0, \gamma)$. $X$ moves rows and columns:
+    $(XM)_{i\cdot} = M_{j\cdot}$, $(XM)_{j\cdot} = -M_{i\cdot}$, $(MX)_{\cdot j} = M_{\cdot i}$,
+    $(MX)_{\cdot i} = -M_{\cdot j}$, $(X\gamma)_i = \gamma_j$, $(X\gamma)_j = -\gamma_i$, so they are
+    copied, not multiplied. The products with the matrix $X$ (``einsum``, as before) gave the same
+    numbers with every zero $+0$ (a sum of products starts at $+0$); the copies are normalised
+    the same way (``+ 0.0``), so the columns are the same bits (tests/test_gali.py compares)."""
     N = so.so_dim(n)
     y = np.asarray(y, float)
     M, g = so.unvec(y[..., :N], n), y[..., N:N + n]
-    cols = []
-    if symmetric:
-        for i in range(n - 1):
-            for j in range(i + 1, n - 1):
-                X = np.zeros((n, n))
-                X[i, j], X[j, i] = 1.0, -1.0
-                XM = np.einsum("ij,...jk->...ik", X, M) - np.einsum("...ij,jk->...ik", M, X)
-                cols.append(np.concatenate([so.vec(XM), np.einsum("ij,...j->...i", X, g)], -1))
-    cols.append(np.concatenate([np.zeros(y.shape[:-1] + (N,)), g], -1))
-    A = np.stack(cols, -1)
-    Q, R = np.linalg.qr(A)
-    return Q
+    a, b = so.pairs(n)
+    r = (n - 1) * (n - 2) // 2 + 1 if symmetric else 1
+    A = np.zeros(y.shape[:-1] + (N + n, r))
+    XM, MX, Xg = np.empty_like(M), np.empty_like(M), np.empty_like(g)
+    col = 0
+    for i in range(n - 1 if symmetric else 0):
+        for j in range(i + 1, n - 1):
+            XM.fill(0.0)
+            MX.fill(0.0)
+            Xg.fill(0.0)
+            XM[..., i, :], XM[..., j, :] = M[..., j, :], -M[..., i, :]
+            MX[..., :, j], MX[..., :, i] = M[..., :, i], -M[..., :, j]
+            Xg[..., i], Xg[..., j] = g[..., j], -g[..., i]
+            XM += 0.0
+            MX += 0.0
+            Xg += 0.0
+            A[..., :N, col] = (XM - MX)[..., a, b]
+            A[..., N:, col] = Xg
+            col += 1
+    A[..., N:, col] = g
+    return A
 
 
 def project(u: np.ndarray, y: np.ndarray, n: int, symmetric: bool = True) -> np.ndarray:
