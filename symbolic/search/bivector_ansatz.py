@@ -140,16 +140,33 @@ class Ansatz:
 @lru_cache(maxsize=8)
 def ansatz(n: int, degree: int) -> Ansatz:
     r"""Every block times $x^k$, $0 \le k \le d$ (the box of degree $d$), as symbolic bivectors."""
-    M, gamma, z = coordinates(n)
-    blocks = block_bivectors(n, M, gamma)
+    _, _, z = coordinates(n)
     names = MM_NAMES + MG_NAMES
-    x = gamma[n - 1]
     labels, bivs = [], []
-    for j, B in enumerate(blocks):
+    for j in range(len(names)):
         for k in range(degree + 1):
             labels.append((names[j], k))
-            bivs.append(B if k == 0 else B.applyfunc(lambda e, k=k: sp.expand(x**k * e)))
+            bivs.append(_power_block(n, j, k))
     return Ansatz(n, degree, tuple(z), tuple(labels), tuple(bivs))
+
+
+@lru_cache(maxsize=4)
+def _symbolic_blocks(n: int) -> list[sp.Matrix]:
+    """:func:`block_bivectors` at the symbolic point of :func:`coordinates` (one per $n$: every box
+    of every degree is built from the same blocks)."""
+    M, gamma, _ = coordinates(n)
+    return block_bivectors(n, M, gamma)
+
+
+@lru_cache(maxsize=512)
+def _power_block(n: int, j: int, k: int) -> sp.Matrix:
+    r"""$x^k B_j$ with $x = \gamma_n$, expanded (shared by the boxes of degree $\ge k$); not to be
+    mutated (the boxes share it)."""
+    B = _symbolic_blocks(n)[j]
+    if k == 0:
+        return B
+    x = coordinates(n)[1][n - 1]
+    return B.applyfunc(lambda e: sp.expand(x**k * e))
 
 
 def _invariant_dimension(n: int, shape: str, gamma0: sp.Matrix) -> int:

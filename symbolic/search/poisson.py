@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import flint
 import sympy as sp
@@ -75,10 +76,19 @@ def field_data(n: int, a, b, M: sp.Matrix, gamma: sp.Matrix) -> dict:
     dg = dH_gamma([_fq(v) for v in w], [_fq(v) for v in gamma], _fq(b), n)
     dH = list(w) + [_q(v) for v in dg]
     X = list(vec(M * Om - Om * M)) + list(-Om * gamma)
-    xs = sp.Symbol("x")
-    D = Delta(xs, a, b)
     x = gamma[n - 1]
-    return {"dH": dH, "X": X, "Delta": D.subs(xs, x), "dDelta": sp.diff(D, xs).subs(xs, x)}
+    R, dD = _delta_derivative(a, b)
+    return {"dH": dH, "X": X, "Delta": Delta(x, a, b),
+            "dDelta": R.domain.to_sympy(dD(R.domain.from_sympy(sp.Rational(x))))}
+
+
+@lru_cache(maxsize=16)
+def _delta_derivative(a, b):
+    r"""$\Delta'(x)$ (eq:Delta) at rational $(a, b)$, a polynomial of $\mathbb{Q}[x]$ (derived once per
+    $(a, b)$ and evaluated exactly at each point of :func:`field_data`)."""
+    xs = sp.Symbol("x")
+    R = sp.ring([xs], sp.QQ)[0]
+    return R, R(sp.diff(Delta(xs, sp.Rational(a), sp.Rational(b)), xs))
 
 
 @dataclass

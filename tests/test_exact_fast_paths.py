@@ -1,0 +1,50 @@
+"""The fast exact routes agree with the routes they replace: Delta at rational points evaluated
+in Q[x, a, b] against the determinant of block_C, and the Jacobi residual of the Poisson proof in
+sparse polynomials against its expression form (the same polynomials, structurally)."""
+
+from random import Random
+
+import sympy as sp
+from chaplygin_nd.symbolic import axisymmetric as ax
+from chaplygin_nd.symbolic.search import bivector_ansatz as ba
+from chaplygin_nd.symbolic.search import poisson_proof as pp
+
+
+def test_delta_rational_fast_path_equals_determinant():
+    rng = Random(20261127)
+    for _ in range(60):
+        x, a, b = (sp.Rational(rng.randint(-40, 40), rng.randint(1, 30)) for _ in range(3))
+        fast = ax.Delta(x, a, b)
+        assert fast.is_Rational
+        assert fast == sp.expand(ax.block_C(x, a, b).det())
+    assert ax.Delta(1, 0, 2) == sp.expand(ax.block_C(1, 0, 2).det())
+
+
+def test_delta_symbolic_is_the_expanded_determinant():
+    g = sp.Symbol("g")
+    assert ax.Delta(g) == sp.expand(ax.block_C(g, ax.a, ax.b).det())
+    assert ax.Delta() == sp.expand(ax.block_C().det())
+
+
+def test_jacobi_residual_ring_equals_expression_route():
+    sa, sb = sp.symbols("a b", real=True)
+    coords = ba.coordinates(3)[2]
+    P = pp.borisov_mamaev(sa, sb)
+    fast = pp._jacobi_residual_ring(P, coords, sa, sb, sp.Rational(-1, 2))
+    slow = pp._jacobi_residual_expr(P, coords, sa, sb, sp.Rational(-1, 2))
+    assert fast is not None and len(fast) == len(slow) == 20
+    assert all(f == s for f, s in zip(fast, slow, strict=True))
+    # a perturbed (non-Poisson) structure: both routes give the same non-zero residuals
+    Q = P + sp.Matrix(6, 6, lambda i, j: 0 if i == j else (1 if i < j else -1)) * coords[0]
+    fast = pp._jacobi_residual_ring(Q, coords, sa, sb, sp.Rational(1, 3))
+    slow = pp._jacobi_residual_expr(Q, coords, sa, sb, sp.Rational(1, 3))
+    assert any(s != 0 for s in slow)
+    assert all(f == s for f, s in zip(fast, slow, strict=True))
+
+
+def test_jacobi_residual_falls_back_on_denominators():
+    sa, sb = sp.symbols("a b", real=True)
+    coords = ba.coordinates(3)[2]
+    P = pp.borisov_mamaev(sa, sb) / (1 + sa**2)
+    assert pp._jacobi_residual_ring(P, coords, sa, sb, sp.Rational(-1, 2)) is None
+    assert len(pp.jacobi_residual(P, coords, 3, sa, sb, sp.Rational(-1, 2))) == 20
