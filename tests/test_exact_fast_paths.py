@@ -48,3 +48,57 @@ def test_jacobi_residual_falls_back_on_denominators():
     P = pp.borisov_mamaev(sa, sb) / (1 + sa**2)
     assert pp._jacobi_residual_ring(P, coords, sa, sb, sp.Rational(-1, 2)) is None
     assert len(pp.jacobi_residual(P, coords, 3, sa, sb, sp.Rational(-1, 2))) == 20
+
+
+def _L_entries_reference(gamma, Jdiag, b, zero, one, derivative=None):
+    """The assembly of L_gamma entry by entry with every Kronecker delta multiplied out (the
+    definition of eq:M-O written literally), to compare the resolved assembly with."""
+    n = len(gamma)
+    pairs = [(i, j) for i in range(n) for j in range(i + 1, n)]
+
+    def d(p, q):
+        return one if p == q else zero
+
+    def g(p):
+        return gamma[p] if derivative is None else d(p, derivative)
+
+    rows = []
+    for k, l in pairs:
+        row = []
+        for i, j in pairs:
+            if derivative is None:
+                entry = gamma[j] * (d(k, i) * gamma[l] - d(l, i) * gamma[k]) \
+                    - gamma[i] * (d(k, j) * gamma[l] - d(l, j) * gamma[k])
+            else:
+                entry = g(j) * (d(k, i) * gamma[l] - d(l, i) * gamma[k]) \
+                    + gamma[j] * (d(k, i) * g(l) - d(l, i) * g(k)) \
+                    - g(i) * (d(k, j) * gamma[l] - d(l, j) * gamma[k]) \
+                    - gamma[i] * (d(k, j) * g(l) - d(l, j) * g(k))
+            entry = b * entry
+            if derivative is None and (k, l) == (i, j):
+                entry = entry + Jdiag[i] + Jdiag[j]
+            row.append(entry)
+        rows.append(row)
+    return rows
+
+
+def test_L_entries_equals_the_literal_assembly():
+    import flint
+    from chaplygin_nd.symbolic.mass_operator import L_entries
+    from sympy.polys.domains import QQ
+
+    rng = Random(7)
+    for n in (3, 4, 5, 7):
+        gs = list(sp.symbols(f"g1:{n + 1}"))
+        Js = list(sp.symbols(f"J1:{n + 1}"))
+        qs = [sp.Rational(rng.randint(-9, 9), rng.randint(1, 9)) for _ in range(n)]
+        cases = [(gs, Js, sp.Symbol("b"), sp.S.Zero, sp.S.One),
+                 ([QQ.from_sympy(q) for q in qs], [QQ(k + 2) for k in range(n)], QQ(2, 5), QQ.zero, QQ.one),
+                 ([flint.fmpq(int(q.p), int(q.q)) for q in qs], [flint.fmpq(k + 2) for k in range(n)],
+                  flint.fmpq(2, 5), flint.fmpq(0), flint.fmpq(1))]
+        for gamma, J, b, zero, one in cases:
+            for derivative in (None, 0, n - 1):
+                new = L_entries(gamma, J, b, zero, one, derivative)
+                old = _L_entries_reference(gamma, J, b, zero, one, derivative)
+                assert new == old
+                assert [type(v) for r in new for v in r] == [type(v) for r in old for v in r]
