@@ -102,3 +102,19 @@ def test_L_entries_equals_the_literal_assembly():
                 old = _L_entries_reference(gamma, J, b, zero, one, derivative)
                 assert new == old
                 assert [type(v) for r in new for v in r] == [type(v) for r in old for v in r]
+
+
+def test_block_coefficients_equal_the_forms_at_the_basis():
+    from chaplygin_nd.symbolic.algebra import so_basis
+
+    for n in (3, 4):
+        gamma0 = sp.zeros(n, 1)
+        gamma0[n - 2], gamma0[n - 1] = sp.Rational(3, 5), sp.Rational(4, 5)
+        basis, E = so_basis(n), ba._E(n)
+        coefficients = ba._linear_coefficients(n, gamma0, E)
+        m = len(basis)
+        for p in range(m):
+            for q in range(p + 1, m):
+                for c in range(m):
+                    at = [sp.expand(v) for v in ba.mm_blocks(basis[p], basis[q], basis[c], gamma0, E)]
+                    assert coefficients[(p, q, c)] == at

@@ -237,6 +237,27 @@ def _invariant_dimension(n: int, shape: str, gamma0: sp.Matrix) -> int:
     return len(idx) - DomainMatrix.from_Matrix(mat).convert_to(sp.QQ).rank()
 
 
+def _linear_coefficients(n: int, gamma0: sp.Matrix, E: sp.Matrix) -> dict:
+    r"""``{(p, q, c): [B_u(basis[p], basis[q]) at M = basis[c] for each MM block u]}``, exact: each
+    form evaluated once at the symbolic $M = \sum_c \mu_c\,\mathrm{basis}[c]$ (:func:`skew_symbols`),
+    expanded in $\mathbb{Q}[\mu]$, checked homogeneous of degree 1, and its coefficient of $\mu_c$
+    taken (one evaluation per $(p, q)$ instead of one per $(p, q, c)$)."""
+    basis = so_basis(n)
+    m = len(basis)
+    Ms = skew_symbols("mu", n)
+    mus = [Ms[i, j] for i, j in _pairs(n)]
+    R, *gens = sp.ring(mus, sp.QQ)
+    out: dict = {}
+    for p in range(m):
+        for q in range(p + 1, m):
+            polys = [R(sp.expand(f)) for f in mm_blocks(basis[p], basis[q], Ms, gamma0, E)]
+            if any(sum(k) != 1 for f in polys for k in f.keys()):
+                raise ArithmeticError("an MM block is not linear in M")
+            for c in range(m):
+                out[(p, q, c)] = [R.domain.to_sympy(f.coeff(gens[c])) for f in polys]
+    return out
+
+
 def completeness(n: int) -> dict:
     r"""At $\gamma_0 = (0, \dots, 0, 3/5, 4/5)$: the dimension of the $O(n-2)$-invariant tensors of
     each block type and the rank of the building blocks there (exact, over $\mathbb{Q}$). Equal
@@ -248,10 +269,10 @@ def completeness(n: int) -> dict:
     gamma0[n - 2], gamma0[n - 1] = sp.Rational(3, 5), sp.Rational(4, 5)
     basis, E = so_basis(n), _E(n)
     m = len(basis)
-    # the forms are linear in M: the coefficient of the coordinate c of M is the form at M = basis[c]
-    forms = {(p, q, c): mm_blocks(basis[p], basis[q], basis[c], gamma0, E)
-             for p in range(m) for q in range(p + 1, m) for c in range(m)}
-    rows_mm = [[sp.expand(forms[(p, q, c)][u]) for p in range(m) for q in range(p + 1, m) for c in range(m)]
+    # the forms are linear in M: the coefficient of the coordinate c of M (the form at
+    # M = basis[c]) is read off the form at the symbolic M, checked homogeneous linear there
+    forms = _linear_coefficients(n, gamma0, E)
+    rows_mm = [[forms[(p, q, c)][u] for p in range(m) for q in range(p + 1, m) for c in range(m)]
                for u in range(len(MM_NAMES))]
     rows_mg = []
     for u in range(len(MG_NAMES)):
