@@ -118,3 +118,35 @@ def test_block_coefficients_equal_the_forms_at_the_basis():
                 for c in range(m):
                     at = [sp.expand(v) for v in ba.mm_blocks(basis[p], basis[q], basis[c], gamma0, E)]
                     assert coefficients[(p, q, c)] == at
+
+
+def _mm_blocks_literal(xi, eta, M, gamma, E):
+    """The MM forms as the module docstring of bivector_ansatz writes them (left-to-right products)."""
+    from chaplygin_nd.symbolic.axisym_inverse import ansatz_terms
+
+    T = ansatz_terms(M, gamma)
+    br = xi * eta - eta * xi
+    lx, ly = ba._dot(xi * gamma, E), ba._dot(eta * gamma, E)
+    out = [ba._kil(t, br) for t in T]
+    out += [lx * ba._kil(eta, t) - ly * ba._kil(xi, t) for t in T]
+    out.append(ba._dot(M * gamma, E) * (ba._dot(xi * gamma, eta * E) - ba._dot(eta * gamma, xi * E)))
+    out.append(ba._dot(xi * gamma, M * eta * gamma))
+    out.append(ba._dot(xi * E, M * eta * E))
+    out.append(ba._dot(xi * gamma, M * eta * E) - ba._dot(eta * gamma, M * xi * E))
+    for u in (gamma, E):
+        for w in (M * gamma, M * E):
+            out.append(ba._dot(xi * u, eta * w) - ba._dot(eta * u, xi * w))
+    return out
+
+
+def test_mm_blocks_equal_the_literal_forms():
+    from chaplygin_nd.symbolic.algebra import so_basis
+
+    for n in (3, 4):
+        M, gamma, _ = ba.coordinates(n)
+        E = ba._E(n)
+        basis = so_basis(n)
+        xi = sum((sp.Rational(k + 1, 3) * B for k, B in enumerate(basis)), sp.zeros(n, n))
+        for eta in basis:
+            new = [sp.expand(v) for v in ba.mm_blocks(xi, eta, M, gamma, E)]
+            assert new == [sp.expand(v) for v in _mm_blocks_literal(xi, eta, M, gamma, E)]

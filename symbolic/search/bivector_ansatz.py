@@ -58,21 +58,25 @@ MM_NAMES = tuple([f"<T{j}(M),[xi,eta]>" for j in range(6)]
 MG_NAMES = ("xi g", "xi E", "l(xi) g", "l(xi) E")
 
 
-def mm_blocks(xi, eta, M, gamma, E) -> list:
+def mm_blocks(xi, eta, M, gamma, E, T=None) -> list:
     r"""The skew bilinear forms $B(\xi, \eta)$, linear in $M$, of the $MM$ block (module docstring);
-    exact for symbolic or rational entries, any $n \ge 3$."""
-    T = ansatz_terms(M, gamma)
+    exact for symbolic or rational entries, any $n \ge 3$. ``T``: ``ansatz_terms(M, gamma)`` when
+    the caller has it (it does not depend on $\xi, \eta$). Products are taken vector first
+    ($M(\eta\gamma)$, not $(M\eta)\gamma$): the same values, without $n\times n$ products."""
+    T = ansatz_terms(M, gamma) if T is None else T
+    xg, yg, xE, yE = xi * gamma, eta * gamma, xi * E, eta * E
+    Mg, ME = M * gamma, M * E
     br = xi * eta - eta * xi
-    lx, ly = _dot(xi * gamma, E), _dot(eta * gamma, E)
+    lx, ly = _dot(xg, E), _dot(yg, E)
     out = [_kil(t, br) for t in T]
     out += [lx * _kil(eta, t) - ly * _kil(xi, t) for t in T]
-    out.append(_dot(M * gamma, E) * (_dot(xi * gamma, eta * E) - _dot(eta * gamma, xi * E)))
-    out.append(_dot(xi * gamma, M * eta * gamma))
-    out.append(_dot(xi * E, M * eta * E))
-    out.append(_dot(xi * gamma, M * eta * E) - _dot(eta * gamma, M * xi * E))
-    for u in (gamma, E):
-        for w in (M * gamma, M * E):
-            out.append(_dot(xi * u, eta * w) - _dot(eta * u, xi * w))
+    out.append(_dot(Mg, E) * (_dot(xg, yE) - _dot(yg, xE)))
+    out.append(_dot(xg, M * yg))
+    out.append(_dot(xE, M * yE))
+    out.append(_dot(xg, M * yE) - _dot(yg, M * xE))
+    for xu, yu in ((xg, yg), (xE, yE)):          # u = gamma, then u = E
+        for w in (Mg, ME):
+            out.append(_dot(xu, eta * w) - _dot(yu, xi * w))
     return out
 
 
@@ -103,9 +107,10 @@ def block_bivectors(n: int, M, gamma) -> list[sp.Matrix]:
     basis = so_basis(n)
     m, N, E = len(basis), len(basis) + n, _E(n)
     mm: list[list] = [[None] * m for _ in range(m)]
+    T = ansatz_terms(M, gamma)
     for p in range(m):
         for q in range(p + 1, m):
-            mm[p][q] = mm_blocks(basis[p], basis[q], M, gamma, E)
+            mm[p][q] = mm_blocks(basis[p], basis[q], M, gamma, E, T)
     out = []
     for u in range(len(MM_NAMES)):
         P = sp.zeros(N, N)
@@ -248,9 +253,10 @@ def _linear_coefficients(n: int, gamma0: sp.Matrix, E: sp.Matrix) -> dict:
     mus = [Ms[i, j] for i, j in _pairs(n)]
     R, *gens = sp.ring(mus, sp.QQ)
     out: dict = {}
+    T = ansatz_terms(Ms, gamma0)
     for p in range(m):
         for q in range(p + 1, m):
-            polys = [R(sp.expand(f)) for f in mm_blocks(basis[p], basis[q], Ms, gamma0, E)]
+            polys = [R(sp.expand(f)) for f in mm_blocks(basis[p], basis[q], Ms, gamma0, E, T)]
             if any(sum(k) != 1 for f in polys for k in f.keys()):
                 raise ArithmeticError("an MM block is not linear in M")
             for c in range(m):
