@@ -246,44 +246,51 @@ def _combine(fb, cols, coeffs, ctx) -> dict:
 def jacobi_equations(n: int, a, b, P0: dict, Ks: list[dict], seed: int, ctx, points: int | None = None):
     r"""The Jacobi condition of the module docstring at seeded rational points of $P$, for
     $P = P_0 + \sum_i t_i K_i$: polynomials in $t_i$ and $\sigma$ over $\mathbb{Q}$ (a basis of
-    their span), and the generators $(t_1, \dots, t_r, \sigma)$."""
+    their span), and the generators $(t_1, \dots, t_r, \sigma)$. The arithmetic in $t, \sigma$ is
+    FLINT's ``fmpq_mpoly`` (the values at a point are ``fmpq``); the basis is read back into SymPy."""
     ts = sp.symbols(f"t1:{len(Ks) + 1}")
     gens = (*ts, sigma)
-    R, *rg = sp.ring(gens, sp.QQ)
+    T = flint.fmpq_mpoly_ctx.get(tuple(str(g) for g in gens), "lex")
+    tg = T.gens()
+    zero = T.from_dict({})
     N = ctx.nvars()
     parts = [P0, *Ks]
-    coef = [R(1), *rg[:-1]]
-    s = rg[-1]
+    coef = [T.from_dict({(0,) * len(gens): 1}), *tg[:-1]]
+    s = tg[-1]
+    # each part's entries and their non-zero partial derivatives, once (they do not depend on the point)
+    table = [(c, [((i, j), f, [(l, d) for l in range(N) if (d := f.derivative(l)) != 0])
+                  for (i, j), f in part.items()]) for part, c in zip(parts, coef, strict=True)]
     count = points if points is not None else 3 + len(Ks) // 4
     eqs = []
     for M, g in _points(n, count, seed, "jacobi"):
         pt = [_fq(v) for v in list(vec(M)) + list(g)]
         fd = field_data(n, a, b, M, g)
-        D, dD = R(R.domain.from_sympy(sp.Rational(fd["Delta"]))), R(R.domain.from_sympy(sp.Rational(fd["dDelta"])))
-        V = [[R(0)] * N for _ in range(N)]
-        dV = [[[R(0)] * N for _ in range(N)] for _ in range(N)]
-        for part, c in zip(parts, coef, strict=True):
-            for (i, j), f in part.items():
-                v = c * _qr(R, f(*pt))
+        D, dD = _fq(fd["Delta"]), _fq(fd["dDelta"])
+        V = [[zero] * N for _ in range(N)]
+        dV = [[[zero] * N for _ in range(N)] for _ in range(N)]
+        for c, entries in table:
+            for (i, j), f, derivatives in entries:
+                v = c * f(*pt)
                 V[i][j] += v
                 V[j][i] -= v
-                for l in range(N):
-                    dv = f.derivative(l)
-                    if dv != 0:
-                        w = c * _qr(R, dv(*pt))
-                        dV[l][i][j] += w
-                        dV[l][j][i] -= w
+                for l, d in derivatives:
+                    w = c * d(*pt)
+                    dV[l][i][j] += w
+                    dV[l][j][i] -= w
         PdD = [V[i][N - 1] * dD for i in range(N)]
         for i in range(N):
             for j in range(i + 1, N):
                 for k in range(j + 1, N):
-                    jac = R(0)
+                    jac = zero
                     for (p, q, r) in ((i, j, k), (j, k, i), (k, i, j)):
-                        jac += sum((V[p][l] * dV[l][q][r] for l in range(N) if V[p][l] and dV[l][q][r]), R(0))
+                        for l in range(N):
+                            if V[p][l] != 0 and dV[l][q][r] != 0:
+                                jac += V[p][l] * dV[l][q][r]
                     extra = V[j][k] * PdD[i] + V[k][i] * PdD[j] + V[i][j] * PdD[k]
-                    val = D * jac + s * extra
+                    val = jac * D + s * extra
                     if val != 0:
                         eqs.append(val)
+    R = sp.ring(gens, sp.QQ)[0]
     return _span_basis(eqs, R), gens
 
 
@@ -296,15 +303,18 @@ def _qr(R, v: flint.fmpq):
 
 
 def _span_basis(eqs: list, R) -> list[sp.Expr]:
-    """A basis (over QQ) of the span of the sampled equations, as SymPy expressions."""
+    """A basis (over QQ) of the span of the sampled equations (``fmpq_mpoly`` in the generators
+    of the SymPy ring ``R``, in its order), as SymPy expressions: the rows of the reduced echelon
+    form of their coefficient matrix (monomials in increasing exponent order)."""
     if not eqs:
         return []
-    monos = sorted({mono for e in eqs for mono in e.keys()})
+    terms = [e.to_dict() for e in eqs]
+    monos = sorted({mono for t in terms for mono in t})
     pos = {mono: i for i, mono in enumerate(monos)}
     A = flint.fmpq_mat(len(eqs), len(monos))
-    for r, e in enumerate(eqs):
-        for mono, c in e.items():
-            A[r, pos[mono]] = _fq(R.domain.to_sympy(c))
+    for r, t in enumerate(terms):
+        for mono, c in t.items():
+            A[r, pos[mono]] = c
     Rr, rank = A.rref()
     out = []
     for i in range(rank):
