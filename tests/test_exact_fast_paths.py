@@ -150,3 +150,18 @@ def test_mm_blocks_equal_the_literal_forms():
         for eta in basis:
             new = [sp.expand(v) for v in ba.mm_blocks(xi, eta, M, gamma, E)]
             assert new == [sp.expand(v) for v in _mm_blocks_literal(xi, eta, M, gamma, E)]
+
+
+def test_rational_draws_the_integers_of_ceiling_and_floor():
+    """The bounds of a seeded draw in integer arithmetic are SymPy's ceiling(lo q) and floor(hi q)."""
+    from chaplygin_nd.symbolic.exact import points
+
+    rng = Random(11)
+    for _ in range(500):
+        lo = sp.Rational(rng.randint(-30, 30), rng.randint(1, 9))
+        hi = lo + 1 + sp.Rational(rng.randint(0, 40), rng.randint(1, 9))   # an integer p in [lo q, hi q]
+        q = rng.randint(1, 15)
+        r1, r2 = Random(q), Random(q)
+        mine = points.rational(r1, lo, hi, q)
+        qq = r2.randint(1, q)
+        assert mine == sp.Rational(r2.randint(int(sp.ceiling(lo * qq)), int(sp.floor(hi * qq))), qq)
