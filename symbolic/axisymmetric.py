@@ -131,9 +131,10 @@ def _delta_expr(x, a, b) -> sp.Expr:
 
 @lru_cache(maxsize=1)
 def _delta_polynomial():
-    r"""$\det C$ of :func:`frame_coefficients` as a sparse polynomial of $\mathbb{Q}[x, a, b]$."""
+    r"""$\det C$ of :func:`block_C` (at the symbols $x, a, b$) as a sparse polynomial of
+    $\mathbb{Q}[x, a, b]$ (through :func:`block_C`, as the symbolic route goes)."""
     R = sp.ring([x, a, b], sp.QQ)[0]
-    return R, R(sp.expand(frame_coefficients()["C"].det()))
+    return R, R(sp.expand(block_C().det()))
 
 
 def det_L_axisym(n: int, x=x, a=a, b=b) -> sp.Expr:
