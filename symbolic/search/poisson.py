@@ -43,6 +43,7 @@ import flint
 import sympy as sp
 from chaplygin_nd.symbolic.algebra import vec
 from chaplygin_nd.symbolic.axisymmetric import Delta, mass_tensor
+from chaplygin_nd.symbolic.exact.flint_engine import use_engine
 from chaplygin_nd.symbolic.model import angular_velocity
 from chaplygin_nd.symbolic.search import bivector_ansatz as ba
 from chaplygin_nd.symbolic.search.box_columns import flint_bivectors
@@ -71,7 +72,8 @@ def field_data(n: int, a, b, M: sp.Matrix, gamma: sp.Matrix) -> dict:
     $\partial_{\gamma_k}H = -\tfrac12\langle\Omega, \partial_{\gamma_k}L_\gamma\,\Omega\rangle$ for the
     extension $H = \tfrac12\langle M, L_\gamma^{-1}M\rangle$ of eq:M-O to $\mathbb{R}^n$), $X$ of
     eq:motion-general ($[M, \Omega]$, $-\Omega\gamma$) and $\Delta(x)$, $\Delta'(x)$ (eq:Delta), exact."""
-    Om = angular_velocity(M, gamma, mass_tensor(n, a), b)
+    with use_engine("flint"):   # the exact solve of eq:M-O in fmpq_mat (the same rationals)
+        Om = angular_velocity(M, gamma, mass_tensor(n, a), b)
     w = vec(Om)
     dg = dH_gamma([_fq(v) for v in w], [_fq(v) for v in gamma], _fq(b), n)
     dH = list(w) + [_q(v) for v in dg]
@@ -154,24 +156,11 @@ def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None,
     res.independent = len(cols)
     N = len(ans.coords)
     m = N - n
-    rows, rhs = [], []
-    pts = _points(n, 2 * (len(cols) // N) + 6, seed, "linear")
-    for M, g in pts:
-        fd = field_data(n, a, b, M, g)
-        pt = [_fq(v) for v in list(vec(M)) + list(g)]
-        dH = [_fq(v) for v in fd["dH"]]
-        De = _fq(fd["Delta"] ** e)
-        vkey = (n, degree, seed, tuple(pt))
-        if vkey not in _VALUES:
-            _VALUES[vkey] = [_values(fb[u], pt, N) for u in cols]
-        Vs = _VALUES[vkey]
-        for i in range(N):
-            rows.append([sum((V[i][j] * dH[j] for j in range(N)), flint.fmpq(0)) for V in Vs])
-            rhs.append(De * _fq(fd["X"][i]))
-        gg = [2 * _fq(v) for v in g]
-        for i in range(m):
-            rows.append([sum((V[i][m + k] * gg[k] for k in range(n)), flint.fmpq(0)) for V in Vs])
-            rhs.append(flint.fmpq(0))
+    rows, per_point = _linear_rows(n, degree, a, b, seed, fb, cols)
+    rhs = []
+    for D, X in per_point:
+        De = _fq(D ** e)
+        rhs += [De * x for x in X] + [flint.fmpq(0)] * m
     clock("conditions")
     part, kernel = _rref_solve(rows, rhs)
     clock("kernel")
@@ -207,6 +196,39 @@ def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None,
     clock("generic")
     res.seconds = time.perf_counter() - t0
     return res
+
+
+#: per (n, degree, seed, a, b): the rows of the linear stage and, per point, Delta and X (the
+#: boxes of one degree and (a, b) differ only in e, i.e. in the right-hand side Delta^e X)
+_ROWS: dict = {}
+
+
+def _linear_rows(n: int, degree: int, a, b, seed: int, fb: list, cols: list) -> tuple[list, list]:
+    r"""The conditions $P\,dH = \Delta^e X$ (rows $i < N$) and $P\,d\|\gamma\|^2 = 0$ (rows
+    $i < m$) of :func:`search_box` at its seeded points, on the columns ``cols``: the rows (which do
+    not depend on $e$) and, per point, $(\Delta, X)$, exact; kept per (n, degree, seed, a, b)."""
+    key = (n, degree, seed, a, b, tuple(cols))
+    if key in _ROWS:
+        return _ROWS[key]
+    N = n * (n - 1) // 2 + n
+    m = N - n
+    rows, per_point = [], []
+    for M, g in _points(n, 2 * (len(cols) // N) + 6, seed, "linear"):
+        fd = field_data(n, a, b, M, g)
+        pt = [_fq(v) for v in list(vec(M)) + list(g)]
+        dH = [_fq(v) for v in fd["dH"]]
+        vkey = (n, degree, seed, tuple(pt))
+        if vkey not in _VALUES:
+            _VALUES[vkey] = [_values(fb[u], pt, N) for u in cols]
+        Vs = _VALUES[vkey]
+        for i in range(N):
+            rows.append([sum((V[i][j] * dH[j] for j in range(N)), flint.fmpq(0)) for V in Vs])
+        gg = [2 * _fq(v) for v in g]
+        for i in range(m):
+            rows.append([sum((V[i][m + k] * gg[k] for k in range(n)), flint.fmpq(0)) for V in Vs])
+        per_point.append((fd["Delta"], [_fq(x) for x in fd["X"]]))
+    _ROWS[key] = rows, per_point
+    return rows, per_point
 
 
 def _generic(res: BoxResult, fb, cols, seed: int, jacobi: bool = False) -> None:
@@ -308,7 +330,7 @@ def _span_basis(eqs: list, R) -> list[sp.Expr]:
     form of their coefficient matrix (monomials in increasing exponent order)."""
     if not eqs:
         return []
-    terms = [e.to_dict() for e in eqs]
+    terms = [{tuple(int(k) for k in mono): c for mono, c in e.to_dict().items()} for e in eqs]
     monos = sorted({mono for t in terms for mono in t})
     pos = {mono: i for i, mono in enumerate(monos)}
     A = flint.fmpq_mat(len(eqs), len(monos))
