@@ -165,3 +165,12 @@ def test_rational_draws_the_integers_of_ceiling_and_floor():
         mine = points.rational(r1, lo, hi, q)
         qq = r2.randint(1, q)
         assert mine == sp.Rational(r2.randint(int(sp.ceiling(lo * qq)), int(sp.floor(hi * qq))), qq)
+
+
+def test_power_blocks_are_the_expanded_products():
+    M, gamma, _ = ba.coordinates(3)
+    x = gamma[2]
+    for j, B in enumerate(ba._symbolic_blocks(3)):
+        for k in (1, 2, 3):
+            mine = ba._power_block(3, j, k)
+            assert [sp.srepr(v) for v in mine] == [sp.srepr(sp.expand(x**k * v)) for v in B]
