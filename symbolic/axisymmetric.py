@@ -109,8 +109,32 @@ def block_C(x=x, a=a, b=b) -> sp.Matrix:
 
 def Delta(x=x, a=a, b=b) -> sp.Expr:
     r"""$\Delta(x) := \det C$ (eq:Delta), derived as the determinant of the block of :func:`block_C`.
-    Polynomial in $a, b, x$; positive for $x^2 \le 1$, $b > 0$, $a > -2$ (see proofs/s4_delta.py)."""
+    Polynomial in $a, b, x$; positive for $x^2 \le 1$, $b > 0$, $a > -2$ (see proofs/s4_delta.py).
+
+    At rational $(x, a, b)$ (the seeded points of the searches and point checks) the value is
+    the same determinant, expanded once in $\mathbb{Q}[x, a, b]$ (:func:`_delta_polynomial`) and
+    evaluated there exactly, instead of a substitution into the matrix and a determinant per call."""
+    args = (x, a, b)
+    if all(isinstance(v, (int, sp.Rational)) for v in args):
+        R, poly = _delta_polynomial()
+        conv = R.domain.from_sympy
+        return R.domain.to_sympy(poly(*(conv(sp.Rational(v)) for v in args)))
+    return _delta_expr(*args)
+
+
+@lru_cache(maxsize=64)
+def _delta_expr(x, a, b) -> sp.Expr:
+    """``expand(det(block_C(x, a, b)))`` for symbolic arguments (SymPy expressions are immutable,
+    so a repeated call returns the same expression)."""
     return sp.expand(block_C(x, a, b).det())
+
+
+@lru_cache(maxsize=1)
+def _delta_polynomial():
+    r"""$\det C$ of :func:`block_C` (at the symbols $x, a, b$) as a sparse polynomial of
+    $\mathbb{Q}[x, a, b]$ (through :func:`block_C`, as the symbolic route goes)."""
+    R = sp.ring([x, a, b], sp.QQ)[0]
+    return R, R(sp.expand(block_C().det()))
 
 
 def det_L_axisym(n: int, x=x, a=a, b=b) -> sp.Expr:

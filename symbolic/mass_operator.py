@@ -22,29 +22,40 @@ def L_entries(gamma, Jdiag, b, zero, one, derivative: int | None = None):
     r"""Rows of the matrix of $L_\gamma$ (eq:M-O; or of $\partial L_\gamma/\partial\gamma_m$ for
     ``derivative = m``) in the basis $E_i\wedge E_j$, $i<j$, with entries computed in the
     arithmetic of the inputs (SymPy expressions, QQ or ``fmpq`` elements; ``zero`` and ``one`` are
-    that arithmetic's). Domain: any $\gamma\in\mathbb{R}^n$, diagonal $\mathbb{J}$, any $b$."""
+    that arithmetic's). Domain: any $\gamma\in\mathbb{R}^n$, diagonal $\mathbb{J}$, any $b$.
+
+    The entry in row $(k, l)$, column $(i, j)$ of the rolling term is the coordinate $(k, l)$ of
+    $((E_i\wedge E_j)\gamma)\wedge\gamma = \gamma_j E_i\wedge\gamma - \gamma_i E_j\wedge\gamma$,
+    $\gamma_j(\delta_{ki}\gamma_l - \delta_{li}\gamma_k) - \gamma_i(\delta_{kj}\gamma_l - \delta_{lj}\gamma_k)$:
+    every term carries a Kronecker delta between $\{k, l\}$ and $\{i, j\}$, so the entries of
+    disjoint pairs are $b \cdot 0$ (computed once); the others are written with the deltas
+    resolved ($\delta\,t$ is ``t`` or ``zero``, exactly $1 \cdot t$ or $0 \cdot t$ in each arithmetic)."""
     n = len(gamma)
     pairs = _pairs(n)
 
-    def d(p, q):  # Kronecker delta in the input arithmetic
-        return one if p == q else zero
-
     def g(p):  # gamma_p, or its derivative d gamma_p / d gamma_m
-        return gamma[p] if derivative is None else d(p, derivative)
+        return gamma[p] if derivative is None else (one if p == derivative else zero)
 
+    def dt(p, q, t):  # delta_pq * t
+        return t if p == q else zero * t
+
+    disjoint = b * (zero * zero - zero * zero)
     rows = []
     for k, l in pairs:
         row = []
         for i, j in pairs:
+            if k != i and k != j and l != i and l != j:
+                row.append(disjoint)
+                continue
             # coordinate (k, l) of ((E_i ^ E_j) gamma) ^ gamma = gamma_j E_i^gamma - gamma_i E_j^gamma
             if derivative is None:
-                entry = gamma[j] * (d(k, i) * gamma[l] - d(l, i) * gamma[k]) \
-                    - gamma[i] * (d(k, j) * gamma[l] - d(l, j) * gamma[k])
+                entry = gamma[j] * (dt(k, i, gamma[l]) - dt(l, i, gamma[k])) \
+                    - gamma[i] * (dt(k, j, gamma[l]) - dt(l, j, gamma[k]))
             else:  # product rule on the two gamma factors
-                entry = g(j) * (d(k, i) * gamma[l] - d(l, i) * gamma[k]) \
-                    + gamma[j] * (d(k, i) * g(l) - d(l, i) * g(k)) \
-                    - g(i) * (d(k, j) * gamma[l] - d(l, j) * gamma[k]) \
-                    - gamma[i] * (d(k, j) * g(l) - d(l, j) * g(k))
+                entry = g(j) * (dt(k, i, gamma[l]) - dt(l, i, gamma[k])) \
+                    + gamma[j] * (dt(k, i, g(l)) - dt(l, i, g(k))) \
+                    - g(i) * (dt(k, j, gamma[l]) - dt(l, j, gamma[k])) \
+                    - gamma[i] * (dt(k, j, g(l)) - dt(l, j, g(k)))
             entry = b * entry
             if derivative is None and (k, l) == (i, j):
                 entry = entry + Jdiag[i] + Jdiag[j]

@@ -93,7 +93,9 @@ def rational(rng: random.Random, lo: sp.Rational | int = -3, hi: sp.Rational | i
         raise ValueError(f"empty interval [{lo}, {hi}]")
     for _ in range(10_000):
         q = rng.randint(1, max_den)
-        p = rng.randint(int(sp.ceiling(lo * q)), int(sp.floor(hi * q)))
+        # ceil(lo q) and floor(hi q) in integer arithmetic (SymPy's ceiling/floor build function
+        # objects: they were most of the cost of drawing a point)
+        p = rng.randint(-((-lo.p * q) // lo.q), (hi.p * q) // hi.q)
         r = sp.Rational(p, q)
         if (nonzero and r == 0) or (open_lo and r == lo) or (open_hi and r == hi):
             continue

@@ -35,16 +35,25 @@ def flint_bivectors(ans: ba.Ansatz) -> list[dict]:
     return _FLINT_BIVECTORS[key]
 
 
+#: per coordinate tuple: entry expression -> its fmpq_mpoly (a box of degree d repeats every
+#: entry of the box of degree d - 1)
+_FLINT_ENTRIES: dict = {}
+
+
 def _flint_bivectors(ans: ba.Ansatz) -> list[dict]:
     ctx = mpoly_context(ans.coords)
+    memo = _FLINT_ENTRIES.setdefault(tuple(ans.coords), {})
     out = []
     for B in ans.bivectors:
         entries = {}
         for i in range(B.rows):
             for j in range(i + 1, B.cols):
-                if B[i, j] != 0:
-                    poly = sp.Poly(B[i, j], *ans.coords)
-                    entries[(i, j)] = ctx.from_dict({m: _fq(c) for m, c in poly.as_dict().items()})
+                e = B[i, j]
+                if e != 0:
+                    if e not in memo:
+                        poly = sp.Poly(e, *ans.coords)
+                        memo[e] = ctx.from_dict({m: _fq(c) for m, c in poly.as_dict().items()})
+                    entries[(i, j)] = memo[e]
         out.append(entries)
     return out
 

@@ -37,11 +37,13 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import flint
 import sympy as sp
 from chaplygin_nd.symbolic.algebra import vec
 from chaplygin_nd.symbolic.axisymmetric import Delta, mass_tensor
+from chaplygin_nd.symbolic.exact.flint_engine import use_engine
 from chaplygin_nd.symbolic.model import angular_velocity
 from chaplygin_nd.symbolic.search import bivector_ansatz as ba
 from chaplygin_nd.symbolic.search.box_columns import flint_bivectors
@@ -70,15 +72,25 @@ def field_data(n: int, a, b, M: sp.Matrix, gamma: sp.Matrix) -> dict:
     $\partial_{\gamma_k}H = -\tfrac12\langle\Omega, \partial_{\gamma_k}L_\gamma\,\Omega\rangle$ for the
     extension $H = \tfrac12\langle M, L_\gamma^{-1}M\rangle$ of eq:M-O to $\mathbb{R}^n$), $X$ of
     eq:motion-general ($[M, \Omega]$, $-\Omega\gamma$) and $\Delta(x)$, $\Delta'(x)$ (eq:Delta), exact."""
-    Om = angular_velocity(M, gamma, mass_tensor(n, a), b)
+    with use_engine("flint"):   # the exact solve of eq:M-O in fmpq_mat (the same rationals)
+        Om = angular_velocity(M, gamma, mass_tensor(n, a), b)
     w = vec(Om)
     dg = dH_gamma([_fq(v) for v in w], [_fq(v) for v in gamma], _fq(b), n)
     dH = list(w) + [_q(v) for v in dg]
     X = list(vec(M * Om - Om * M)) + list(-Om * gamma)
-    xs = sp.Symbol("x")
-    D = Delta(xs, a, b)
     x = gamma[n - 1]
-    return {"dH": dH, "X": X, "Delta": D.subs(xs, x), "dDelta": sp.diff(D, xs).subs(xs, x)}
+    R, dD = _delta_derivative(a, b)
+    return {"dH": dH, "X": X, "Delta": Delta(x, a, b),
+            "dDelta": R.domain.to_sympy(dD(R.domain.from_sympy(sp.Rational(x))))}
+
+
+@lru_cache(maxsize=16)
+def _delta_derivative(a, b):
+    r"""$\Delta'(x)$ (eq:Delta) at rational $(a, b)$, a polynomial of $\mathbb{Q}[x]$ (derived once per
+    $(a, b)$ and evaluated exactly at each point of :func:`field_data`)."""
+    xs = sp.Symbol("x")
+    R = sp.ring([xs], sp.QQ)[0]
+    return R, R(sp.diff(Delta(xs, sp.Rational(a), sp.Rational(b)), xs))
 
 
 @dataclass
@@ -144,24 +156,11 @@ def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None,
     res.independent = len(cols)
     N = len(ans.coords)
     m = N - n
-    rows, rhs = [], []
-    pts = _points(n, 2 * (len(cols) // N) + 6, seed, "linear")
-    for M, g in pts:
-        fd = field_data(n, a, b, M, g)
-        pt = [_fq(v) for v in list(vec(M)) + list(g)]
-        dH = [_fq(v) for v in fd["dH"]]
-        De = _fq(fd["Delta"] ** e)
-        vkey = (n, degree, seed, tuple(pt))
-        if vkey not in _VALUES:
-            _VALUES[vkey] = [_values(fb[u], pt, N) for u in cols]
-        Vs = _VALUES[vkey]
-        for i in range(N):
-            rows.append([sum((V[i][j] * dH[j] for j in range(N)), flint.fmpq(0)) for V in Vs])
-            rhs.append(De * _fq(fd["X"][i]))
-        gg = [2 * _fq(v) for v in g]
-        for i in range(m):
-            rows.append([sum((V[i][m + k] * gg[k] for k in range(n)), flint.fmpq(0)) for V in Vs])
-            rhs.append(flint.fmpq(0))
+    rows, per_point = _linear_rows(n, degree, a, b, seed, fb, cols)
+    rhs = []
+    for D, X in per_point:
+        De = _fq(D ** e)
+        rhs += [De * x for x in X] + [flint.fmpq(0)] * m
     clock("conditions")
     part, kernel = _rref_solve(rows, rhs)
     clock("kernel")
@@ -197,6 +196,39 @@ def search_box(n: int, degree: int, e: int, a, b, *, seed: int, progress=None,
     clock("generic")
     res.seconds = time.perf_counter() - t0
     return res
+
+
+#: per (n, degree, seed, a, b): the rows of the linear stage and, per point, Delta and X (the
+#: boxes of one degree and (a, b) differ only in e, i.e. in the right-hand side Delta^e X)
+_ROWS: dict = {}
+
+
+def _linear_rows(n: int, degree: int, a, b, seed: int, fb: list, cols: list) -> tuple[list, list]:
+    r"""The conditions $P\,dH = \Delta^e X$ (rows $i < N$) and $P\,d\|\gamma\|^2 = 0$ (rows
+    $i < m$) of :func:`search_box` at its seeded points, on the columns ``cols``: the rows (which do
+    not depend on $e$) and, per point, $(\Delta, X)$, exact; kept per (n, degree, seed, a, b)."""
+    key = (n, degree, seed, a, b, tuple(cols))
+    if key in _ROWS:
+        return _ROWS[key]
+    N = n * (n - 1) // 2 + n
+    m = N - n
+    rows, per_point = [], []
+    for M, g in _points(n, 2 * (len(cols) // N) + 6, seed, "linear"):
+        fd = field_data(n, a, b, M, g)
+        pt = [_fq(v) for v in list(vec(M)) + list(g)]
+        dH = [_fq(v) for v in fd["dH"]]
+        vkey = (n, degree, seed, tuple(pt))
+        if vkey not in _VALUES:
+            _VALUES[vkey] = [_values(fb[u], pt, N) for u in cols]
+        Vs = _VALUES[vkey]
+        for i in range(N):
+            rows.append([sum((V[i][j] * dH[j] for j in range(N)), flint.fmpq(0)) for V in Vs])
+        gg = [2 * _fq(v) for v in g]
+        for i in range(m):
+            rows.append([sum((V[i][m + k] * gg[k] for k in range(n)), flint.fmpq(0)) for V in Vs])
+        per_point.append((fd["Delta"], [_fq(x) for x in fd["X"]]))
+    _ROWS[key] = rows, per_point
+    return rows, per_point
 
 
 def _generic(res: BoxResult, fb, cols, seed: int, jacobi: bool = False) -> None:
@@ -236,44 +268,51 @@ def _combine(fb, cols, coeffs, ctx) -> dict:
 def jacobi_equations(n: int, a, b, P0: dict, Ks: list[dict], seed: int, ctx, points: int | None = None):
     r"""The Jacobi condition of the module docstring at seeded rational points of $P$, for
     $P = P_0 + \sum_i t_i K_i$: polynomials in $t_i$ and $\sigma$ over $\mathbb{Q}$ (a basis of
-    their span), and the generators $(t_1, \dots, t_r, \sigma)$."""
+    their span), and the generators $(t_1, \dots, t_r, \sigma)$. The arithmetic in $t, \sigma$ is
+    FLINT's ``fmpq_mpoly`` (the values at a point are ``fmpq``); the basis is read back into SymPy."""
     ts = sp.symbols(f"t1:{len(Ks) + 1}")
     gens = (*ts, sigma)
-    R, *rg = sp.ring(gens, sp.QQ)
+    T = flint.fmpq_mpoly_ctx.get(tuple(str(g) for g in gens), "lex")
+    tg = T.gens()
+    zero = T.from_dict({})
     N = ctx.nvars()
     parts = [P0, *Ks]
-    coef = [R(1), *rg[:-1]]
-    s = rg[-1]
+    coef = [T.from_dict({(0,) * len(gens): 1}), *tg[:-1]]
+    s = tg[-1]
+    # each part's entries and their non-zero partial derivatives, once (they do not depend on the point)
+    table = [(c, [((i, j), f, [(l, d) for l in range(N) if (d := f.derivative(l)) != 0])
+                  for (i, j), f in part.items()]) for part, c in zip(parts, coef, strict=True)]
     count = points if points is not None else 3 + len(Ks) // 4
     eqs = []
     for M, g in _points(n, count, seed, "jacobi"):
         pt = [_fq(v) for v in list(vec(M)) + list(g)]
         fd = field_data(n, a, b, M, g)
-        D, dD = R(R.domain.from_sympy(sp.Rational(fd["Delta"]))), R(R.domain.from_sympy(sp.Rational(fd["dDelta"])))
-        V = [[R(0)] * N for _ in range(N)]
-        dV = [[[R(0)] * N for _ in range(N)] for _ in range(N)]
-        for part, c in zip(parts, coef, strict=True):
-            for (i, j), f in part.items():
-                v = c * _qr(R, f(*pt))
+        D, dD = _fq(fd["Delta"]), _fq(fd["dDelta"])
+        V = [[zero] * N for _ in range(N)]
+        dV = [[[zero] * N for _ in range(N)] for _ in range(N)]
+        for c, entries in table:
+            for (i, j), f, derivatives in entries:
+                v = c * f(*pt)
                 V[i][j] += v
                 V[j][i] -= v
-                for l in range(N):
-                    dv = f.derivative(l)
-                    if dv != 0:
-                        w = c * _qr(R, dv(*pt))
-                        dV[l][i][j] += w
-                        dV[l][j][i] -= w
+                for l, d in derivatives:
+                    w = c * d(*pt)
+                    dV[l][i][j] += w
+                    dV[l][j][i] -= w
         PdD = [V[i][N - 1] * dD for i in range(N)]
         for i in range(N):
             for j in range(i + 1, N):
                 for k in range(j + 1, N):
-                    jac = R(0)
+                    jac = zero
                     for (p, q, r) in ((i, j, k), (j, k, i), (k, i, j)):
-                        jac += sum((V[p][l] * dV[l][q][r] for l in range(N) if V[p][l] and dV[l][q][r]), R(0))
+                        for l in range(N):
+                            if V[p][l] != 0 and dV[l][q][r] != 0:
+                                jac += V[p][l] * dV[l][q][r]
                     extra = V[j][k] * PdD[i] + V[k][i] * PdD[j] + V[i][j] * PdD[k]
-                    val = D * jac + s * extra
+                    val = jac * D + s * extra
                     if val != 0:
                         eqs.append(val)
+    R = sp.ring(gens, sp.QQ)[0]
     return _span_basis(eqs, R), gens
 
 
@@ -286,15 +325,18 @@ def _qr(R, v: flint.fmpq):
 
 
 def _span_basis(eqs: list, R) -> list[sp.Expr]:
-    """A basis (over QQ) of the span of the sampled equations, as SymPy expressions."""
+    """A basis (over QQ) of the span of the sampled equations (``fmpq_mpoly`` in the generators
+    of the SymPy ring ``R``, in its order), as SymPy expressions: the rows of the reduced echelon
+    form of their coefficient matrix (monomials in increasing exponent order)."""
     if not eqs:
         return []
-    monos = sorted({mono for e in eqs for mono in e.keys()})
+    terms = [{tuple(int(k) for k in mono): c for mono, c in e.to_dict().items()} for e in eqs]
+    monos = sorted({mono for t in terms for mono in t})
     pos = {mono: i for i, mono in enumerate(monos)}
     A = flint.fmpq_mat(len(eqs), len(monos))
-    for r, e in enumerate(eqs):
-        for mono, c in e.items():
-            A[r, pos[mono]] = _fq(R.domain.to_sympy(c))
+    for r, t in enumerate(terms):
+        for mono, c in t.items():
+            A[r, pos[mono]] = c
     Rr, rank = A.rref()
     out = []
     for i in range(rank):

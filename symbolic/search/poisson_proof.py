@@ -195,7 +195,17 @@ def borisov_mamaev(a, b) -> sp.Matrix:
 def jacobi_residual(Pmat: sp.Matrix, coords, n: int, a, b, sig) -> list[sp.Expr]:
     r"""The Jacobi condition of the module docstring for a symbolic bivector $P$ (entries
     polynomial in the coordinates): $\Delta[P,P]_{ijk} + \sigma\sum_{\mathrm{cyc}}P_{jk}(P\,d\Delta)_i$,
-    one polynomial per triple $i<j<k$ (an identity modulo the sphere when $\Pi$ is Poisson)."""
+    one polynomial per triple $i<j<k$ (an identity modulo the sphere when $\Pi$ is Poisson).
+
+    When every entry is a polynomial over $\mathbb{Q}$ (in the coordinates and the symbols $a, b$,
+    $\sigma$ may carry) the arithmetic runs in SymPy's sparse polynomials and each residual is
+    returned expanded (:func:`_jacobi_residual_ring`); otherwise with expressions, as below."""
+    fast = _jacobi_residual_ring(Pmat, coords, a, b, sig)
+    return fast if fast is not None else _jacobi_residual_expr(Pmat, coords, a, b, sig)
+
+
+def _jacobi_residual_expr(Pmat: sp.Matrix, coords, a, b, sig) -> list[sp.Expr]:
+    """:func:`jacobi_residual` with SymPy expressions (any entries rational in a, b)."""
     N = len(coords)
     x = coords[-1]
     D = Delta(x, a, b)
@@ -211,4 +221,35 @@ def jacobi_residual(Pmat: sp.Matrix, coords, n: int, a, b, sig) -> list[sp.Expr]
                 extra = (Pmat[j, k] * Pmat[i, N - 1] + Pmat[k, i] * Pmat[j, N - 1]
                          + Pmat[i, j] * Pmat[k, N - 1]) * dD
                 out.append(sp.expand(D * jac + sig * extra))
+    return out
+
+
+def _jacobi_residual_ring(Pmat: sp.Matrix, coords, a, b, sig) -> list[sp.Expr] | None:
+    r""":func:`jacobi_residual` in $\mathbb{Q}[\text{coords}, \text{parameters}]$ (``PolyElement``
+    products and derivatives instead of expression trees), the same polynomials as expanded
+    expressions; None when an entry is not a polynomial there (a denominator in $a, b$)."""
+    N = len(coords)
+    x = coords[-1]
+    D = Delta(x, a, b)
+    dD = sp.diff(D, x)
+    entries = [Pmat[i, j] for i in range(N) for j in range(N)]
+    params = set().union(*(sp.sympify(e).free_symbols for e in (*entries, D, sig))) - set(coords)
+    R, *gens = sp.ring(list(coords) + sorted(params, key=sp.default_sort_key), sp.QQ)
+    try:
+        P = [[R(sp.sympify(Pmat[i, j])) for j in range(N)] for i in range(N)]
+        RD, RdD, Rsig = R(D), R(dD), R(sp.sympify(sig))
+    except Exception:  # CoercionFailed / ValueError: not a polynomial over QQ in these generators
+        return None
+    dP = [[[P[j][k].diff(gens[l]) for k in range(N)] for j in range(N)] for l in range(N)]
+    out = []
+    for i in range(N):
+        for j in range(i + 1, N):
+            for k in range(j + 1, N):
+                jac = R.zero
+                for (p, q, r) in ((i, j, k), (j, k, i), (k, i, j)):
+                    for l in range(N):
+                        if P[p][l] and dP[l][q][r]:
+                            jac += P[p][l] * dP[l][q][r]
+                extra = (P[j][k] * P[i][N - 1] + P[k][i] * P[j][N - 1] + P[i][j] * P[k][N - 1]) * RdD
+                out.append((RD * jac + Rsig * extra).as_expr())
     return out
