@@ -52,6 +52,8 @@ class _Stages:
         self.kids: dict[str, float] = {}
         self.count: dict[str, int] = {}
         self._stack: list[list] = []
+        self.prefix = 0.0  # CPU of the parked processes up to the first call (in "end parked")
+        self.parkings = 0
 
     def wrap(self, owner, attr: str, stage: str) -> None:
         inner = getattr(owner, attr)
@@ -91,6 +93,14 @@ def _instrument() -> _Stages:
     s.wrap(derivations, "replay", "replay the recorded calls")
     s.wrap(derivations, "_run_check", "rows re-run with the mutant (worker)")
     s.wrap(forkpoint.Parked, "__init__", "set-up: park a row or test session")
+    parked_init = forkpoint.Parked.__init__
+
+    def noting_prefix(self, *args, **kwargs):  # the parked process's CPU up to the first call
+        parked_init(self, *args, **kwargs)
+        s.prefix += self.first_call or 0.0
+        s.parkings += 1
+
+    forkpoint.Parked.__init__ = noting_prefix
     s.wrap(forkpoint.Parked, "run", "rows/tests from the parked process")
     s.wrap(forkpoint.Parked, "close", "end parked processes (their CPU: children)")
     s.wrap(planned, "record_tasks", "set-up: record every function in one run per row")
@@ -123,10 +133,12 @@ def _decide(tasks, fast: bool | None) -> dict:
         if derivations.PLANNED:  # the planning's one run per row, timed with the mutants
             planned.record_tasks(tasks, 1)
         out = [r for g in runloop.groups(tasks, 1) for r in runloop.evaluate_group(g)]
-        return out, _cpu() - c0, stages.own, stages.kids, stages.count
+        return (out, _cpu() - c0, stages.own, stages.kids, stages.count,
+                (stages.parkings, stages.prefix))
 
-    (records, cpu, own, kids, count), wall = in_fork(work)
-    return {"records": records, "cpu": cpu, "wall": wall, "own": own, "kids": kids, "count": count}
+    (records, cpu, own, kids, count, (parkings, prefix)), wall = in_fork(work)
+    return {"records": records, "cpu": cpu, "wall": wall, "own": own, "kids": kids, "count": count,
+            "parkings": parkings, "prefix cpu": prefix}
 
 
 def draw(size: int, seed: int) -> list:
@@ -191,7 +203,9 @@ def main(out: Path, size: int, seed: int, fast: bool, planned: Path | None = Non
             + " |")
     for k in runs:
         r = result[k]
-        lines.append(f"\n{k}: {r['cpu']:.1f} CPU s ({r['cpu'] / max(1, result['size']):.2f} per "
+        lines.append(f"\n{k}: {r['parkings']} parked processes, {r['prefix cpu']:.1f} CPU s up to "
+                     "their first calls (counted in 'end parked processes')")
+        lines.append(f"{k}: {r['cpu']:.1f} CPU s ({r['cpu'] / max(1, result['size']):.2f} per "
                      f"mutant), {r['wall']:.1f} s wall, load {r['load']} at start")
     if fast:
         differ = sorted(v for v in result["before"]["verdicts"]
