@@ -29,7 +29,9 @@ import time
 from pathlib import Path
 
 #: The switches of :mod:`.derivations` that ``--fast`` turns off ("before") and on ("after").
-FLAGS = ("TESTS_FORK",)
+#: ``PLANNED``: every function's calls recorded in one run per row (:mod:`.planned`), made inside
+#: the timed run (its CPU is the mutants'), not in the shared planning.
+FLAGS = ("PLANNED",)
 
 
 def _cpu() -> float:
@@ -50,6 +52,8 @@ class _Stages:
         self.kids: dict[str, float] = {}
         self.count: dict[str, int] = {}
         self._stack: list[list] = []
+        self.prefix = 0.0  # CPU of the parked processes up to the first call (in "end parked")
+        self.parkings = 0
 
     def wrap(self, owner, attr: str, stage: str) -> None:
         inner = getattr(owner, attr)
@@ -74,7 +78,13 @@ class _Stages:
 
 
 def _instrument() -> _Stages:
-    from chaplygin_nd.ledger.mutation import cache_scope, derivations, equivalence, forkpoint
+    from chaplygin_nd.ledger.mutation import (
+        cache_scope,
+        derivations,
+        equivalence,
+        forkpoint,
+        planned,
+    )
     from chaplygin_nd.ledger.mutation import runtime as mr
 
     s = _Stages()
@@ -83,8 +93,18 @@ def _instrument() -> _Stages:
     s.wrap(derivations, "replay", "replay the recorded calls")
     s.wrap(derivations, "_run_check", "rows re-run with the mutant (worker)")
     s.wrap(forkpoint.Parked, "__init__", "set-up: park a row or test session")
+    parked_init = forkpoint.Parked.__init__
+
+    def noting_prefix(self, *args, **kwargs):  # the parked process's CPU up to the first call
+        parked_init(self, *args, **kwargs)
+        s.prefix += self.first_call or 0.0
+        s.parkings += 1
+
+    forkpoint.Parked.__init__ = noting_prefix
     s.wrap(forkpoint.Parked, "run", "rows/tests from the parked process")
     s.wrap(forkpoint.Parked, "close", "end parked processes (their CPU: children)")
+    s.wrap(planned, "record_tasks", "set-up: record every function in one run per row")
+    s.wrap(planned, "guard", "set-up: check a planned recording (guard)")
     s.wrap(derivations, "_tests_reaching", "set-up: test map (instrumented run)")
     s.wrap(mr, "kill", "tests run with the mutant")
     s.wrap(mr, "kill_slow", "slow tests (last resort)")
@@ -103,18 +123,22 @@ def _decide(tasks, fast: bool | None) -> dict:
 
     def work():
         os.nice(0)
-        from chaplygin_nd.ledger.mutation import derivations, runloop
+        from chaplygin_nd.ledger.mutation import derivations, planned, runloop
 
         if fast is not None:
             for flag in FLAGS:
                 setattr(derivations, flag, fast)
         stages = _instrument()
         c0 = _cpu()
+        if derivations.PLANNED:  # the planning's one run per row, timed with the mutants
+            planned.record_tasks(tasks, 1)
         out = [r for g in runloop.groups(tasks, 1) for r in runloop.evaluate_group(g)]
-        return out, _cpu() - c0, stages.own, stages.kids, stages.count
+        return (out, _cpu() - c0, stages.own, stages.kids, stages.count,
+                (stages.parkings, stages.prefix))
 
-    (records, cpu, own, kids, count), wall = in_fork(work)
-    return {"records": records, "cpu": cpu, "wall": wall, "own": own, "kids": kids, "count": count}
+    (records, cpu, own, kids, count, (parkings, prefix)), wall = in_fork(work)
+    return {"records": records, "cpu": cpu, "wall": wall, "own": own, "kids": kids, "count": count,
+            "parkings": parkings, "prefix cpu": prefix}
 
 
 def draw(size: int, seed: int) -> list:
@@ -146,8 +170,10 @@ def main(out: Path, size: int, seed: int, fast: bool, planned: Path | None = Non
             c0 = _cpu()
             if planned is not None and planned.is_file():  # this bench's own earlier planning
                 tasks, result["planning cpu"] = pickle.loads(planned.read_bytes())
-            else:
+            else:  # the recordings of one run per row are made in each timed run (_decide)
+                kept, derivations.PLANNED = derivations.PLANNED, False
                 tasks = derivations.plan("derivations", selection, 1)
+                derivations.PLANNED = kept
                 result["planning cpu"] = round(_cpu() - c0, 1)
                 if planned is not None:
                     planned.write_bytes(pickle.dumps((tasks, result["planning cpu"])))
@@ -177,7 +203,9 @@ def main(out: Path, size: int, seed: int, fast: bool, planned: Path | None = Non
             + " |")
     for k in runs:
         r = result[k]
-        lines.append(f"\n{k}: {r['cpu']:.1f} CPU s ({r['cpu'] / max(1, result['size']):.2f} per "
+        lines.append(f"\n{k}: {r['parkings']} parked processes, {r['prefix cpu']:.1f} CPU s up to "
+                     "their first calls (counted in 'end parked processes')")
+        lines.append(f"{k}: {r['cpu']:.1f} CPU s ({r['cpu'] / max(1, result['size']):.2f} per "
                      f"mutant), {r['wall']:.1f} s wall, load {r['load']} at start")
     if fast:
         differ = sorted(v for v in result["before"]["verdicts"]

@@ -11,7 +11,8 @@ replacing the function's ``__code__`` (no source file is written). Two commands 
 What belongs here, by module: the operators (:mod:`.operators`); running a row with a mutant and
 its time budget (:mod:`.checks`); deciding that a mutant no row told apart is equivalent
 (:mod:`.equivalence`, and the reviewed arguments of :mod:`.argued`); recording a function's calls
-once and replaying them on each mutant (:mod:`.replay`); running a row or a test session
+once and replaying them on each mutant (:mod:`.replay`), every function's calls in one run of
+each row at planning (:mod:`.planned`); running a row or a test session
 with a mutant from a process parked at the function's first call (:mod:`.forkpoint`); keeping caches that a mutant cannot
 reach (:mod:`.cache_scope`); the workers, grouping and progress of a long run
 (:mod:`.runloop`); the record file, ``--resume`` and its consistency (:mod:`.record`); the

@@ -44,7 +44,7 @@ from types import FunctionType
 from typing import Any
 
 from chaplygin_nd.ledger.catalog import ROOT
-from chaplygin_nd.ledger.mutation import cache_scope, checks, forkpoint
+from chaplygin_nd.ledger.mutation import cache_scope, checks, forkpoint, planned
 from chaplygin_nd.ledger.mutation import runtime as mr
 from chaplygin_nd.ledger.mutation.argued import argued
 from chaplygin_nd.ledger.mutation.equivalence import settle
@@ -163,6 +163,10 @@ def _recording(key: str, fn, check: str, base, seconds: float) -> Recording:
         return _RECORDINGS[(key, check)]
     if any(k != key for k, _ in _RECORDINGS):
         _RECORDINGS.clear()
+    made = planned.take(key, check) if PLANNED else None  # this row's run for every function
+    if made is not None and made.problem != planned.NOT_BASELINE:
+        _RECORDINGS[(key, check)] = planned.guard(fn, made)
+        return _RECORDINGS[(key, check)]
     outcome: dict = {}
     if check == GENERATED_CHECK:
         from chaplygin_nd.symbolic.codegen.kernels import stale_report
@@ -206,6 +210,11 @@ FORK = True
 #: is); ``False``: a whole ``pytest`` session in the worker per mutant (the same answer, slower:
 #: ``python -m bench.bench_mutation_profile --fast`` runs both side by side).
 TESTS_FORK = True
+#: Whether the planning records every planned function's calls in ONE run of each row
+#: (:mod:`.planned`) for the workers to take, instead of each worker running a row once per
+#: function to record it (the same answer, slower: ``python -m bench.bench_mutation_profile
+#: --fast`` runs both side by side).
+PLANNED = True
 #: This worker's parked processes ((function, row) -> :class:`.forkpoint.Parked`), of the current
 #: function only (tasks come grouped by function; :func:`end_group` ends them).
 _PARKED: dict[tuple[str, str], forkpoint.Parked] = {}
@@ -272,14 +281,14 @@ def _decide_by_rows(task: Task, fn, code, record: dict) -> dict:
     m = task.mutant
     original = fn.__code__
     line = mutated_position(m.description)
-    planned = [(row, base, seconds) for row, base, seconds in task.rows]
+    order = [(row, base, seconds) for row, base, seconds in task.rows]
     if m.function in task.emitted:
-        planned.append((GENERATED_CHECK, None, 0.0))
+        order.append((GENERATED_CHECK, None, 0.0))
     replayed: list[str] = []
     differing: list[str] = []
     unreplayed: list[tuple[str, object, float]] = []
     calls, ran = 0, False
-    for check, base, seconds in planned:  # cheapest first: replay, and run only what may change
+    for check, base, seconds in order:  # cheapest first: replay, and run only what may change
         rec = _recording(m.function, fn, check, base, seconds)
         if rec.problem:
             unreplayed.append((check, base, seconds))
@@ -363,8 +372,13 @@ def plan(target: str, selection: list[Mutant], jobs: int, tests_for=()) -> list[
         f"planning: running {len(files)} test files unmutated, to find the tests that reach the "
         f"{len(tested)} functions no row reaches{' or re-run' if tests_for else ''}",
         what="tests done").start()) if tested else {}
-    return [Task(target, m, tuple((r, base[r][0], base[r][1]) for r in chosen[m.function]),
-                 frozenset(emitted), tuple(t for t, _ in reach.get(m.function, ())))
-            for m in selection]
+    tasks = [Task(target, m, tuple((r, base[r][0], base[r][1]) for r in chosen[m.function]),
+                  frozenset(emitted), tuple(t for t, _ in reach.get(m.function, ())))
+             for m in selection]
+    if PLANNED and needed:
+        planned.record_tasks(tasks, jobs, phase=Phase(
+            f"planning: recording the calls of every mutated function in one run of each of the "
+            f"{len(needed)} rows ({plural(jobs, 'job')})", what="rows done").start())
+    return tasks
 
 

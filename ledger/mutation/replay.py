@@ -203,7 +203,7 @@ def calls_through(fn: FunctionType, hook):
     """Within the block every call of ``fn`` — from anywhere: its code object itself is replaced
     by a two-line trampoline — goes to ``hook(*args, **kwargs)``; ``fn``'s code is restored on
     exit. The one mechanism of the mutation tools' recorders and comparers."""
-    name = "__mutate_hook__"
+    name = f"__mutate_hook_{fn.__name__}__"  # one per function: several may be hooked at once
     src = f"def {fn.__name__}(*args, **kwargs):\n    return {name}(*args, **kwargs)\n"
     ns: dict = {}
     exec(compile(src, "<mutate hook>", "exec"), ns)  # noqa: S102 - fixed template
@@ -217,24 +217,16 @@ def calls_through(fn: FunctionType, hook):
         fn.__globals__.pop(name, None)
 
 
-def record(fn: FunctionType, run) -> Recording:
-    """Run ``run()`` (one ledger row, unmutated) with every call of ``fn`` recorded; then replay
-    the original on the records (the dynamic guard). ``fn``'s code is restored on return. The
-    run is watched for the caches that depend on ``fn`` (:mod:`.cache_scope`, when a scope is
-    open): the others keep what it computed."""
-    from chaplygin_nd.ledger.mutation import cache_scope
-
-    rec = Recording()
-    why = impure(fn)
-    if why:
-        rec.problem = why
-        return rec
-    original = fn.__code__
-    orig = _clone(fn, original)
+def recorder(fn: FunctionType, rec: Recording, on_call=lambda: None):
+    """The hook (for :func:`calls_through`) that appends each call of ``fn`` to ``rec``: its
+    arguments before, its value (or raise) and its arguments after, copied; ``rec.problem`` says
+    why the calls cannot be replayed (an argument or value that cannot be copied, a module-level
+    container changed, more than :data:`MAX_CALLS` calls). ``on_call()`` first, at every call."""
+    orig = _clone(fn, fn.__code__)
     names = mutable_globals(fn)
 
     def hook(*args, **kwargs):
-        cache_scope.called()
+        on_call()
         if rec.problem:
             return orig(*args, **kwargs)
         try:
@@ -260,6 +252,23 @@ def record(fn: FunctionType, run) -> Recording:
             rec.problem, rec.calls = f"more than {MAX_CALLS} calls", []
         return value
 
+    return hook
+
+
+def record(fn: FunctionType, run) -> Recording:
+    """Run ``run()`` (one ledger row, unmutated) with every call of ``fn`` recorded; then replay
+    the original on the records (the dynamic guard). ``fn``'s code is restored on return. The
+    run is watched for the caches that depend on ``fn`` (:mod:`.cache_scope`, when a scope is
+    open): the others keep what it computed."""
+    from chaplygin_nd.ledger.mutation import cache_scope
+
+    rec = Recording()
+    why = impure(fn)
+    if why:
+        rec.problem = why
+        return rec
+    original = fn.__code__
+    hook = recorder(fn, rec, cache_scope.called)
     try:
         with calls_through(fn, hook):
             cache_scope.clear()
