@@ -128,20 +128,23 @@ def _main(argv: list[str] | None, command: str) -> int:
                           started=datetime.now(UTC).strftime("%Y-%m-%dT%H:%M:%SZ"))
     say(f"seed {args.seed}")
     say(f"{'id':<24} {'verdict':<20} {'seconds':>8}  method [n]")
-    stale_text: list[str] = []
+    regenerated: list[tuple[str, list[str]]] = []
     also: Callable[..., object] | None = None
     if args.check_generated:
-        from chaplygin_nd.symbolic.codegen.kernels import stale_report
+        from chaplygin_nd.ledger.reach import regenerated_and_emitted
 
-        also = stale_report
+        also = regenerated_and_emitted
     if targets:
         graph.import_beside()
     results = run(rows, jobs=args.jobs, seed=args.seed, on_result=lambda r: say(report.line(r)),
-                  also=also, on_also=lambda text: stale_text.append(str(text)))
-    problems = _problems(results, whole=not args.ids)
+                  also=also, on_also=regenerated.append)
+    # regenerated beside the rows (runner.run's ``also``): the stale text and the derivations
+    # the kernels of generated/ call
+    problems = _problems(results, whole=not args.ids,
+                         emitted=regenerated[0][1] if regenerated else None)
     generated = "not checked"
     if args.check_generated:
-        stale = stale_text[0]   # regenerated beside the rows (runner.run's ``also``)
+        stale = regenerated[0][0]
         generated = "STALE" if stale else "up to date"
         if stale:
             problems.append(stale)
@@ -169,10 +172,11 @@ def _main(argv: list[str] | None, command: str) -> int:
     return 1 if problems else 0
 
 
-def _problems(results, whole: bool) -> list[str]:
+def _problems(results, whole: bool, emitted: list[str] | None = None) -> list[str]:
     """What makes the run fail: a proof that raised, a ``fails`` row, an ``open`` row without a
     reason, a finding without a kind, a proof registering an id that is no row; on a ``whole``
-    run also a printed formula or an emitted derivation that no row reaches (DESIGN rule 1)."""
+    run also a printed formula or an emitted derivation that no row reaches (DESIGN rule 1;
+    ``emitted``: the emitted derivations when already recorded, else recorded here)."""
     problems = []
     for r in results:
         if r.error:
@@ -190,7 +194,8 @@ def _problems(results, whole: bool) -> list[str]:
         problems += [f"printed function {f} is reached by no ledger row" for f in missing]
         # every derivation emitted into generated/ must be checked by some row
         problems += [f"derivation {f} is emitted into generated/ but reached by no ledger row"
-                     for f in unreached_emitted({r.row.id: list(r.derived) for r in results})]
+                     for f in unreached_emitted({r.row.id: list(r.derived) for r in results},
+                                                emitted)]
     unknown = unknown_registrations()
     problems += [f"{i}: registered by a proof but not a ledger row" for i in unknown]
     return problems

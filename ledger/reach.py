@@ -234,6 +234,21 @@ def emitted_derivations() -> list[str]:
     return sorted(rec.calls)
 
 
+def regenerated_and_emitted() -> tuple[str, list[str]]:
+    """``verify --check-generated``'s task beside the rows: generated/ regenerated into a temporary
+    folder and compared byte for byte (:func:`symbolic.codegen.kernels.stale_report`; '' when up to
+    date), with every derivation that regeneration calls recorded — the list of
+    :func:`emitted_derivations` (the same emitters, from cleared caches) out of the same derivation
+    of the kernels. ``(stale text, emitted derivations)``."""
+    from chaplygin_nd.symbolic.codegen.kernels import stale_report
+
+    functions = derivation_functions()
+    clear_derivation_caches()
+    with Recorder(functions) as rec:
+        text = stale_report()
+    return text, sorted(rec.calls)
+
+
 def unreached_emitted(derived_by_row: dict[str, list[str]],
                       emitted: list[str] | None = None) -> list[str]:
     """Emitted derivations (:func:`emitted_derivations`) reached by no row of ``derived_by_row``."""

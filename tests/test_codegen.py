@@ -88,3 +88,13 @@ def test_expression_builders_are_stamped_import_nothing_and_are_stale_checked(fr
     target = copy / "expression_builders.py"
     target.write_text(text.replace("ops.rational(1, 2)", "ops.rational(1, 3)", 1))
     assert "expression_builders.py" in kernels.diff_report(copy, fresh)
+
+
+def test_the_regeneration_beside_the_rows_records_the_emitted_derivations():
+    """verify's task beside the rows regenerates generated/ and records the derivations it calls:
+    the same list as emitted_derivations (which verify no longer derives a second time)."""
+    from chaplygin_nd.ledger import reach
+
+    text, emitted = reach.regenerated_and_emitted()
+    assert text == ""
+    assert emitted and emitted == reach.emitted_derivations()

@@ -23,6 +23,7 @@ temporary folder and returns the diff (empty when up to date) — ``make verify`
 from __future__ import annotations
 
 import difflib
+import functools
 import hashlib
 import importlib
 import sys
@@ -218,13 +219,14 @@ def _run(block, args, comps, shape, names):
 '''
 
 
-def kernels_of(producer: str, _memo: dict[str, list[Kernel]] = {}) -> list[Kernel]:  # noqa: B006
-    """The Kernel list a producer ``"module:function"`` returns (derived once per process)."""
-    if producer not in _memo:
-        module, func = producer.split(":")
-        make: Callable[[], list[Kernel]] = getattr(importlib.import_module(module), func)
-        _memo[producer] = make()
-    return _memo[producer]
+@functools.cache
+def kernels_of(producer: str) -> list[Kernel]:
+    """The Kernel list a producer ``"module:function"`` returns (derived once per process, in a
+    ``functools`` cache: :func:`ledger.reach.clear_caches` empties it, as it must before the calls
+    of a regeneration are recorded)."""
+    module, func = producer.split(":")
+    make: Callable[[], list[Kernel]] = getattr(importlib.import_module(module), func)
+    return make()
 
 
 def render(stem: str, producer: str) -> str:
