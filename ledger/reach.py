@@ -240,10 +240,11 @@ def regenerated_and_emitted() -> tuple[str, list[str]]:
     date), with every derivation that regeneration calls recorded — the list of
     :func:`emitted_derivations` (the same emitters, from cleared caches) out of the same derivation
     of the kernels. ``(stale text, emitted derivations)``."""
-    from chaplygin_nd.symbolic.codegen.kernels import stale_report
+    from chaplygin_nd.symbolic.codegen.kernels import KERNELS, stale_report
 
     functions = derivation_functions()
     clear_derivation_caches()
+    KERNELS.clear()
     with Recorder(functions) as rec:
         text = stale_report()
     return text, sorted(rec.calls)

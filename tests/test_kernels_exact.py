@@ -21,6 +21,7 @@ import mpmath
 import numpy as np
 import pytest
 import sympy as sp
+from chaplygin_nd.symbolic.codegen import kernels as codegen
 from chaplygin_nd.symbolic.codegen.kernels import MODULES, kernels_of
 from chaplygin_nd.symbolic.exact.mpmath_eval import mp_abs_eval, mp_eval
 
@@ -32,14 +33,14 @@ FIDELITY_ULPS = 64
 
 def _all_kernels(config):
     """Every kernel, derived once per run: by the first pytest-xdist worker that collects this
-    module, unpickled by the other (conftest.derived_once), and left in codegen.kernels_of's memo
-    (its default argument) so that test_codegen's regeneration in either worker reuses them
+    module, unpickled by the other (conftest.derived_once), and left in codegen.KERNELS
+    (kernels_of's memo) so that test_codegen's regeneration in either worker reuses them
     instead of deriving them again."""
     from conftest import derived_once
 
     derived = derived_once(config, "codegen-kernels",
                            lambda: {producer: kernels_of(producer) for _, producer in MODULES})
-    kernels_of.__defaults__[0].update(derived)
+    codegen.KERNELS.update(derived)
     return [(stem, k) for stem, producer in MODULES for k in kernels_of(producer)]
 
 

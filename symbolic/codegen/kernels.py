@@ -23,7 +23,6 @@ temporary folder and returns the diff (empty when up to date) — ``make verify`
 from __future__ import annotations
 
 import difflib
-import functools
 import hashlib
 import importlib
 import sys
@@ -219,14 +218,20 @@ def _run(block, args, comps, shape, names):
 '''
 
 
-@functools.cache
+#: The Kernel lists derived in this process, by producer (:func:`kernels_of`). Not a
+#: ``functools`` cache, so a recording of the regeneration's calls empties it itself
+#: (:func:`ledger.reach.regenerated_and_emitted`); the tests fill it with kernels another worker derived.
+KERNELS: dict[str, list[Kernel]] = {}
+
+
 def kernels_of(producer: str) -> list[Kernel]:
-    """The Kernel list a producer ``"module:function"`` returns (derived once per process, in a
-    ``functools`` cache: :func:`ledger.reach.clear_caches` empties it, as it must before the calls
-    of a regeneration are recorded)."""
-    module, func = producer.split(":")
-    make: Callable[[], list[Kernel]] = getattr(importlib.import_module(module), func)
-    return make()
+    """The Kernel list a producer ``"module:function"`` returns (derived once per process:
+    :data:`KERNELS`)."""
+    if producer not in KERNELS:
+        module, func = producer.split(":")
+        make: Callable[[], list[Kernel]] = getattr(importlib.import_module(module), func)
+        KERNELS[producer] = make()
+    return KERNELS[producer]
 
 
 def render(stem: str, producer: str) -> str:
