@@ -14,7 +14,7 @@ from chaplygin_nd.symbolic.exact.points import generator, skew_matrix, sphere_po
 from chaplygin_nd.symbolic.search import bivector_ansatz as ba
 from chaplygin_nd.symbolic.search.point_values import fq as _fq
 
-__all__ = ["mpoly_context", "flint_bivectors", "sample_points", "rref_solve", "independent_columns",
+__all__ = ["mpoly_context", "jacobi_values", "flint_bivectors", "sample_points", "rref_solve", "independent_columns",
            "sphere_reduce"]
 
 
@@ -124,3 +124,30 @@ def sphere_reduce(expr: sp.Expr, gamma: list) -> sp.Expr:
     g = gamma[-1]
     rest = 1 - sum(v**2 for v in gamma[:-1])
     return sp.expand(sp.rem(sp.Poly(expr, g), sp.Poly(g**2 - rest, g)).as_expr())
+
+
+def jacobi_values(V, dV, D, dD, s, zero):
+    r"""The Jacobi identity of $\Pi = \Delta^{s}P$ at one point, cleared of $\Delta^{2s-1}$: for
+    every $i < j < k$ the value $\Delta\sum_{\mathrm{cyc}}\sum_l P_{pl}\,\partial_l P_{qr}
+    + s\sum_{\mathrm{cyc}} P_{qr}P_{p,N}\,\partial_x\Delta$ (cyclic over $(p, q, r)$ in $(i, j, k)$;
+    the last coordinate is $x = \gamma_n$, the only one $\Delta$ depends on). ``V``: the values
+    $P_{pl}$, ``dV[l]``: those of $\partial_l P$, ``D``, ``dD``: $\Delta$, $\partial_x\Delta$ (elements of
+    one ring, e.g. FLINT ``fmpq_mpoly`` in the unknowns, or their coefficients); ``s`` the exponent
+    (of that ring), ``zero`` its zero.
+    Yields ``((i, j, k), value)`` for the non-zero values (the Hamiltonisation search and its
+    generic Jacobi stage)."""
+    N = len(V)
+    PdD = [V[i][N - 1] * dD for i in range(N)]
+    for i in range(N):
+        for j in range(i + 1, N):
+            for k in range(j + 1, N):
+                jac = zero
+                for (p, q, r) in ((i, j, k), (j, k, i), (k, i, j)):
+                    for l in range(N):
+                        if V[p][l] != 0 and dV[l][q][r] != 0:
+                            jac += V[p][l] * dV[l][q][r]
+                extra = V[j][k] * PdD[i] + V[k][i] * PdD[j] + V[i][j] * PdD[k]
+                val = D * jac + s * extra
+                if val != 0:
+                    yield (i, j, k), val
+

@@ -51,6 +51,7 @@ from dataclasses import dataclass, field
 
 import flint
 import sympy as sp
+from chaplygin_nd.symbolic.search.box_columns import jacobi_values
 from chaplygin_nd.symbolic.search.polys_ab import (
     AB,
     ab_ctx,
@@ -221,19 +222,7 @@ def jacobi_polys(n: int, fb: list, cols: list, P0: list, Ks: list, points: list)
                         dv = cu * df.compose(*pt, ctx=ctx)
                         dV[l][i][j] += dv
                         dV[l][j][i] -= dv
-        PdD = [V[i][N - 1] * dD for i in range(N)]
-        for i in range(N):
-            for j in range(i + 1, N):
-                for k in range(j + 1, N):
-                    jac = zero
-                    for (p, q, r) in ((i, j, k), (j, k, i), (k, i, j)):
-                        for l in range(N):
-                            if not V[p][l].is_zero() and not dV[l][q][r].is_zero():
-                                jac += V[p][l] * dV[l][q][r]
-                    extra = V[j][k] * PdD[i] + V[k][i] * PdD[j] + V[i][j] * PdD[k]
-                    val = D * jac + s * extra
-                    if not val.is_zero():
-                        out.append(((pi, i, j, k), val))
+        out += [((pi, *ijk), val) for ijk, val in jacobi_values(V, dV, D, dD, s, zero)]
     return out, ctx
 
 

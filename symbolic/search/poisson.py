@@ -46,7 +46,7 @@ from chaplygin_nd.symbolic.axisymmetric import Delta, mass_tensor
 from chaplygin_nd.symbolic.exact.flint_engine import use_engine
 from chaplygin_nd.symbolic.model import angular_velocity
 from chaplygin_nd.symbolic.search import bivector_ansatz as ba
-from chaplygin_nd.symbolic.search.box_columns import flint_bivectors
+from chaplygin_nd.symbolic.search.box_columns import flint_bivectors, jacobi_values
 from chaplygin_nd.symbolic.search.box_columns import independent_columns as _independent_columns
 from chaplygin_nd.symbolic.search.box_columns import mpoly_context as _ctx
 from chaplygin_nd.symbolic.search.box_columns import rref_solve as _rref_solve
@@ -299,19 +299,7 @@ def jacobi_equations(n: int, a, b, P0: dict, Ks: list[dict], seed: int, ctx, poi
                     w = c * d(*pt)
                     dV[l][i][j] += w
                     dV[l][j][i] -= w
-        PdD = [V[i][N - 1] * dD for i in range(N)]
-        for i in range(N):
-            for j in range(i + 1, N):
-                for k in range(j + 1, N):
-                    jac = zero
-                    for (p, q, r) in ((i, j, k), (j, k, i), (k, i, j)):
-                        for l in range(N):
-                            if V[p][l] != 0 and dV[l][q][r] != 0:
-                                jac += V[p][l] * dV[l][q][r]
-                    extra = V[j][k] * PdD[i] + V[k][i] * PdD[j] + V[i][j] * PdD[k]
-                    val = jac * D + s * extra
-                    if val != 0:
-                        eqs.append(val)
+        eqs += [val for _, val in jacobi_values(V, dV, D, dD, s, zero)]
     R = sp.ring(gens, sp.QQ)[0]
     return _span_basis(eqs, R), gens
 
