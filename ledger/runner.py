@@ -144,11 +144,6 @@ def unknown_registrations() -> list[str]:
 
 #: The seconds assumed for a row the stored timings do not name (:func:`longest_first`).
 UNTIMED_SECONDS = 1.0
-#: The seconds of :func:`run`'s ``also`` in the order of :func:`longest_first` (``verify
-#: --check-generated``'s regeneration of generated/: 4.3 s cold on an idle core, measured). Handed
-#: out after every row, it started only when the queue was empty and ran alone after the last row
-#: (5 s of a 40 s warm run's wall); in its place by length it runs beside the rows.
-ALSO_SECONDS = 4.5
 #: The name of :func:`run`'s ``also`` in the order the workers take their tasks (no row id
 #: starts with a space).
 ALSO_TASK = " also"
@@ -182,10 +177,13 @@ def longest_first(ids: Sequence[str], seconds: dict[str, float]) -> list[str]:
 
 
 def hand_out_order(ids: Sequence[str], seconds: dict[str, float], also: bool) -> list[str]:
-    """The order in which the workers take their tasks: the rows ``ids`` and, with ``also``,
-    :data:`ALSO_TASK` (timed :data:`ALSO_SECONDS`), longest first (:func:`longest_first`)."""
-    tasks = list(ids) + ([ALSO_TASK] if also else [])
-    return longest_first(tasks, {**seconds, ALSO_TASK: ALSO_SECONDS})
+    """The order in which the workers take their tasks: with ``also``, :data:`ALSO_TASK` first,
+    then the rows ``ids`` longest first (:func:`longest_first`). ``verify --check-generated``'s
+    ``also`` empties the derivation caches of the worker that takes it, to record the calls of
+    the regeneration (:func:`ledger.reach.regenerated_and_emitted`): first, it finds them empty and
+    leaves them filled for the rows after it; handed out after the rows, it ran alone after the
+    last one."""
+    return ([ALSO_TASK] if also else []) + longest_first(ids, seconds)
 
 
 def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFAULT_SEED,
@@ -198,9 +196,9 @@ def run(rows: Sequence[Row], *, jobs: int | None = None, seed: int = points.DEFA
     decided (in one process: in ledger order; in several: as the rows finish); the results are
     returned in ledger order. ``seed`` is the seed of every seeded check (passed to each worker
     with each row); ``fresh``: see :func:`_run_one`. ``also``: a picklable call without
-    arguments (``verify --check-generated``: the regeneration of generated/) handed out among the
-    rows in its place by length (:data:`ALSO_SECONDS`), or run after the rows in one process; its value goes to ``on_also`` (an exception it raises is
-    raised here). ``on_wake``: called while waiting for the workers, every few seconds
+    arguments (``verify --check-generated``: the regeneration of generated/) handed out before
+    the rows (:func:`hand_out_order`), or run after them in one process; its value goes to
+    ``on_also`` (an exception it raises is raised here). ``on_wake``: called while waiting for the workers, every few seconds
     (:func:`chaplygin_nd.processes.as_completed`)."""
     discover()
     specs = registry()
