@@ -26,6 +26,7 @@ import uuid
 from collections.abc import Callable
 from datetime import UTC, datetime
 from pathlib import Path
+from typing import cast
 
 from chaplygin_nd.ledger import graph, report
 from chaplygin_nd.ledger.catalog import ROOT, is_checkout, resolve
@@ -137,7 +138,7 @@ def _main(argv: list[str] | None, command: str) -> int:
     if targets:
         graph.import_beside()
     results = run(rows, jobs=args.jobs, seed=args.seed, on_result=lambda r: say(report.line(r)),
-                  also=also, on_also=regenerated.append)
+                  also=also, on_also=lambda value: regenerated.append(cast("tuple[str, list[str]]", value)))
     # regenerated beside the rows (runner.run's ``also``): the stale text and the derivations
     # the kernels of generated/ call
     problems = _problems(results, whole=not args.ids,
