@@ -63,3 +63,9 @@ def test_an_oversized_poisson_box_is_refused_in_one_line_naming_the_override(cap
     assert exit_code(poisson_main, ["40", "8"]) == 2
     line = one_error_line(capsys)
     assert "--max-hours" in line and "nothing was run" in line
+    # every box of n = 9 up to d = 12 is below the limit, the request is not: refused as a whole
+    from chaplygin_nd.symbolic.search import poisson_cost as pc
+    assert all(5 * pc.poisson_cost(9, d).cpu() < 24 * 3600 for d in range(13))
+    assert exit_code(poisson_main, ["9", "12"]) == 2
+    line = one_error_line(capsys)
+    assert "in all" in line and "nothing was run" in line

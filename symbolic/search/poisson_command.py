@@ -6,7 +6,7 @@ S7:poisson-controls, S7:poisson-n4, S7:poisson-n5; symbolic/search/poisson.py).
     chaplygin poisson 4 2 --e 1 --jacobi-generic     # a Jacobi box carried to generic (a, b)
 
 Before each box: one line with its size and a CPU-time estimate by stage (stderr;
-symbolic/search/poisson_cost.py); boxes estimated above ``--max-hours`` are refused before any runs. Then one line per box:
+symbolic/search/poisson_cost.py); boxes estimated above ``--max-hours`` (one degree, or all together) are refused before any runs. Then one line per box:
 the linear stage (inconsistent, or the dimension of the sampled affine space), the Gröbner basis
 of the Jacobi stage, the outcome (``excluded (linear)``, ``excluded (Jacobi)`` — both exact —
 or ``solutions``) and over which (a, b) an exclusion holds (``for generic (a, b)`` or ``at this
@@ -26,20 +26,26 @@ def _over(generic: str) -> str:
     return " for generic (a, b)" if generic.startswith("generic") else " at this (a, b) only"
 
 
-def _refusal(n: int, start: int, degree: int, exponents: int, max_hours: float) -> str:
-    """Why the boxes are refused before any runs ('' if not): a degree whose estimated CPU time
-    for ``exponents`` values of e, Jacobi stage included (symbolic/search/poisson_cost.py), is
-    above ``max_hours``."""
+def _plan(n: int, start: int, degree: int, exponents: int, max_hours: float) -> tuple[str, float]:
+    """``(refusal, cpu)``: the estimated CPU seconds of the boxes d = ``start``..``degree`` for
+    ``exponents`` values of e, Jacobi stage included (symbolic/search/poisson_cost.py), and why
+    they are refused before any runs ('' if not): one degree, or all of them together, above
+    ``max_hours`` (each box alone may be small while the request is not)."""
     from chaplygin_nd.symbolic.search.cost import duration
     from chaplygin_nd.symbolic.search.poisson_cost import poisson_cost
 
+    override = "nothing was run (raise --max-hours to run it anyway, or ask for a lower degree or a smaller n)"
+    total = 0.0
     for d in range(start, degree + 1):
         cpu = exponents * poisson_cost(n, d).cpu()
+        total += cpu
         if cpu > max_hours * 3600:
             return (f"box n={n} d={d} needs an estimated {duration(cpu)} of CPU for {exponents} "
-                    f"exponent(s) e, above --max-hours {max_hours:g}; nothing was run (raise "
-                    f"--max-hours to run it anyway, or ask for a lower degree or a smaller n)")
-    return ""
+                    f"exponent(s) e, above --max-hours {max_hours:g}; {override}"), total
+    if total > max_hours * 3600:
+        return (f"boxes n={n} d={start}..{degree} need an estimated {duration(total)} of CPU in all "
+                f"for {exponents} exponent(s) e, above --max-hours {max_hours:g}; {override}"), total
+    return "", total
 
 
 def main(argv: list[str]) -> int:
@@ -82,7 +88,7 @@ def main(argv: list[str]) -> int:
             raise ValueError(f"--e {args.e!r}: comma-separated integers, e.g. 0,1,2") from None
         if args.json is not None and not args.json.absolute().parent.is_dir():
             raise ValueError(f"--json {args.json}: no folder {args.json.absolute().parent}")
-        refusal = _refusal(args.n, args.start, args.degree, len(es), args.max_hours)
+        refusal, planned = _plan(args.n, args.start, args.degree, len(es), args.max_hours)
         if refusal:
             raise ValueError(refusal)
     except ValueError as err:
@@ -93,6 +99,10 @@ def main(argv: list[str]) -> int:
     from chaplygin_nd.symbolic.search import poisson as ps
 
     seed = ledger_seed() if args.seed is None else args.seed
+    from chaplygin_nd.symbolic.search.cost import duration
+
+    print(f"plan: boxes n={args.n} d={args.start}..{args.degree}, {len(es)} exponent(s) e: an "
+          f"estimated {duration(planned)} of CPU in all", file=sys.stderr, flush=True)
     rows = []
     for d in range(args.start, args.degree + 1):
         print(f"box: {ps.estimate(args.n, d)} per e", file=sys.stderr, flush=True)
