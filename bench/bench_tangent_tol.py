@@ -23,6 +23,7 @@ by the validation study (bench/bench_evidence.py) at it.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import time
 from dataclasses import replace
 
@@ -87,9 +88,10 @@ class _Counting:
         return out
 
 
-def run_one(s, ens, y0, seed, tol):
-    """The rows' integration of ``ens`` at ``tol``: records, states at T, CPU and steps."""
-    from chaplygin_nd.simulate.analysis import drawn_evidence as de
+@contextlib.contextmanager
+def _counted():
+    """Inside it, every integrator the rows compile counts its CPU and steps into the yielded log
+    (``{"cpu", "steps", "order"}``)."""
     from chaplygin_nd.simulate.integrators import heyoka_taylor as ht
 
     log = {"cpu": 0.0, "steps": 0, "order": 0}
@@ -101,10 +103,18 @@ def run_one(s, ens, y0, seed, tol):
 
     ht.compiled_integrator = counting
     try:
-        s = replace(s, tol=tol)
-        Z, megno, lyap, extra = de._integrate(s, ens, y0, seed)
+        yield log
     finally:
         ht.compiled_integrator = original
+
+
+def run_one(s, ens, y0, seed, tol):
+    """The rows' integration of ``ens`` at ``tol``: records, states at T, CPU and steps."""
+    from chaplygin_nd.simulate.analysis import drawn_evidence as de
+
+    s = replace(s, tol=tol)
+    with _counted() as log:
+        Z, megno, lyap, extra = de._integrate(s, ens, y0, seed)
     records = de.analyse(s, ens, Z, megno, lyap, extra)
     return records, extra["final"], log
 
@@ -192,20 +202,9 @@ def cost(orbits=ORBITS, tols=(1e-10, 1e-9), repeat=5, only=None):
 def run_one_integrate(s, ens, y0, seed, tol):
     """Only the integration of :func:`run_one` (no frequency analysis): its CPU and steps."""
     from chaplygin_nd.simulate.analysis import drawn_evidence as de
-    from chaplygin_nd.simulate.integrators import heyoka_taylor as ht
 
-    log = {"cpu": 0.0, "steps": 0, "order": 0}
-    original = ht.compiled_integrator
-
-    def counting(*args, **kw):
-        ta, sec, how = original(*args, **kw)
-        return _Counting(ta, log), sec, how
-
-    ht.compiled_integrator = counting
-    try:
+    with _counted() as log:
         de._integrate(replace(s, tol=tol), ens, y0, seed)
-    finally:
-        ht.compiled_integrator = original
     return log
 
 
