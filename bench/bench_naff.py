@@ -20,8 +20,10 @@ SHAPES = ((32, 5, 16385), (32, 5, 8193), (32, 10, 9601))
 DT = 0.5
 
 
-def _earlier_find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a) -> None:
-    """The line loop as it was before the kept buffers and the frozen Newton rows."""
+def earlier_find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a) -> None:
+    """The line loop as it was before the kept buffers and the frozen Newton rows (the reference
+    of this bench and of tests/test_naff_buffers.py): fresh arrays for every line, ``abs`` of a
+    padded FFT, every row through every Newton step."""
     from chaplygin_nd.simulate.analysis import naff_lines
     from scipy.fft import fft
 
@@ -88,7 +90,7 @@ def measure(shapes=SHAPES, repeats: int = 2) -> list[dict]:
             for name in ("earlier", "current"):
                 current = naff_lines._find_lines
                 if name == "earlier":
-                    naff_lines._find_lines = _earlier_find_lines
+                    naff_lines._find_lines = earlier_find_lines
                 try:
                     c0 = time.process_time()
                     outs[name] = naff.lines_batch(Z, DT)

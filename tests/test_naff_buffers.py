@@ -1,6 +1,6 @@
 """The NAFF line loop with kept buffers (in-place FFT, conjugated outer product, no residual after
-the last line) returns the very bits of the earlier loop, kept here as the reference, on seeded
-signals of the evidence rows' kinds of length; also when calls of other shapes come in between
+the last line) returns the very bits of the earlier loop (the reference kept in bench/bench_naff.py)
+on seeded signals of the evidence rows' kinds of length; also when calls of other shapes come in between
 and when two threads run it at once."""
 
 from __future__ import annotations
@@ -9,40 +9,8 @@ import threading
 
 import numpy as np
 import pytest
+from chaplygin_nd.bench.bench_naff import earlier_find_lines
 from chaplygin_nd.simulate.analysis import naff, naff_lines
-
-
-def _reference_find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a) -> None:
-    """The earlier ``naff_lines._find_lines``: fresh arrays for every line, ``abs`` of a padded FFT."""
-    from scipy.fft import fft
-
-    K, N = R.shape
-    omega_grid = 2 * np.pi * np.fft.fftfreq(pad, d=dt)
-    idx = np.arange(K)
-    X = np.zeros((K, P * L), dtype=complex)
-    for m in range(terms):
-        np.multiply(R, w[None], out=X[:, :N])
-        spec = np.abs(fft(X, n=pad, axis=1))
-        i = np.argmax(spec, axis=1)
-        y0, y1, y2 = (np.log(spec[idx, (i + s) % pad] + 1e-300) for s in (-1, 0, 1))
-        den = y0 - 2 * y1 + y2
-        shift = np.where(np.abs(den) > 0, 0.5 * (y0 - y2) / np.where(den == 0, 1, den), 0.0)
-        nu = omega_grid[i] + shift * (2 * np.pi / (pad * dt))
-        Xr = X.reshape(K, P, L)
-        for _ in range(newton):
-            phi, d1, d2 = naff_lines._projections(Xr, nu, dt, L, True)
-            g = 2 * np.real(np.conj(phi) * d1)
-            h = 2 * np.real(np.abs(d1) ** 2 + np.conj(phi) * d2)
-            step = np.where(h < 0, g / np.where(h == 0, 1, h), 0.0)
-            nu = nu - np.clip(step, -np.pi / (N * dt), np.pi / (N * dt))
-        phi, alpha, beta = naff_lines._projections(Xr, nu, dt, L, False)
-        found_w[:, m] = nu
-        found_a[:, m] = np.abs(phi)
-        line = alpha[:, :, None] * beta[:, None, :]
-        np.conjugate(line, out=line)
-        line = line.reshape(K, P * L)[:, :N]
-        line *= phi[:, None]
-        R -= line
 
 
 def _reference_lines(Z, dt, terms=12, constant=1e-6, floor=1e-9, newton=4):
@@ -60,7 +28,7 @@ def _reference_lines(Z, dt, terms=12, constant=1e-6, floor=1e-9, newton=4):
     pad = next_fast_len(N)
     found_w, found_a = np.zeros((K, terms)), np.zeros((K, terms))
     with naff_lines._one_blas_thread():
-        _reference_find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a)
+        earlier_find_lines(R, w, dt, pad, P, L, terms, newton, found_w, found_a)
     out = []
     for k in range(K):
         if not live[k]:
